@@ -1,0 +1,86 @@
+"""Particle systems: point masses, the seed's starting point (equation 15)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..massprops import MassProperties
+
+__all__ = ["ParticleSystem"]
+
+
+@dataclass(frozen=True, eq=False)
+class ParticleSystem:
+    """Point masses with positions and (optionally) velocities.
+
+    masses: (n,) kg, each > 0.
+    positions: (n, d) m, d = 2 or 3.
+    velocities: (n, d) m/s, or None for a system at rest.
+    names: optional labels, one per particle.
+    """
+
+    masses: np.ndarray
+    positions: np.ndarray
+    velocities: np.ndarray | None = None
+    names: tuple[str, ...] | None = None
+
+    kind = "particles"
+
+    def __post_init__(self) -> None:
+        masses = np.array(self.masses, dtype=float).reshape(-1)
+        positions = np.array(self.positions, dtype=float)
+        if positions.ndim == 1:
+            positions = positions.reshape(len(masses), -1)
+        if len(masses) == 0:
+            raise GeometryError("a particle system needs at least one particle")
+        if positions.shape[0] != len(masses) or positions.shape[1] not in (2, 3):
+            raise GeometryError("each particle needs a position with 2 or 3 coordinates")
+        if not np.all(np.isfinite(masses)) or np.any(masses <= 0):
+            raise GeometryError("every particle needs a positive, finite mass")
+        if not np.all(np.isfinite(positions)):
+            raise GeometryError("a particle position is not a finite number")
+        velocities = self.velocities
+        if velocities is not None:
+            velocities = np.array(velocities, dtype=float).reshape(positions.shape)
+            if not np.all(np.isfinite(velocities)):
+                raise GeometryError("a particle velocity is not a finite number")
+            velocities.setflags(write=False)
+        if self.names is not None and len(self.names) != len(masses):
+            raise GeometryError("give one name per particle")
+        masses.setflags(write=False)
+        positions.setflags(write=False)
+        object.__setattr__(self, "masses", masses)
+        object.__setattr__(self, "positions", positions)
+        object.__setattr__(self, "velocities", velocities)
+
+    @property
+    def dim(self) -> int:
+        return self.positions.shape[1]
+
+    @property
+    def total_mass(self) -> float:
+        """kg."""
+        return float(self.masses.sum())
+
+    @property
+    def center_of_mass(self) -> np.ndarray:
+        """(d,) m: Σ mᵢ rᵢ / M, summed about the first particle."""
+        anchor = self.positions[0]
+        return anchor + self.masses @ (self.positions - anchor) / self.total_mass
+
+    def mass_properties(self) -> MassProperties:
+        """Mass, centre of mass and inertia tensor (about the centre) of the particles."""
+        com = self.center_of_mass
+        offsets = self.positions - com
+        if self.dim == 2:
+            offsets = np.pad(offsets, ((0, 0), (0, 1)))
+        inertia = (self.masses @ np.einsum("ki,ki->k", offsets, offsets)) * np.eye(3) - np.einsum(
+            "k,ki,kj->ij", self.masses, offsets, offsets)
+        return MassProperties(self.dim, self.total_mass, 0.0, com, inertia, parts=len(self.masses))
+
+    def hull_points(self) -> np.ndarray:
+        """(n, d) points whose convex hull is the system's."""
+        return self.positions
