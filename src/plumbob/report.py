@@ -1,0 +1,100 @@
+"""Reports for the CLI: JSON (SI units, snake_case keys) and plain-text tables."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import tempfile
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+
+from .massprops import MassProperties
+
+__all__ = ["jsonable", "dump_json", "table", "format_number", "mass_properties_dict",
+           "write_atomically"]
+
+
+def jsonable(value: Any) -> Any:
+    """Plain Python values for ``json``: arrays become lists, numpy scalars floats,
+    non-finite floats ``None`` (JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return jsonable(value.tolist())
+    if isinstance(value, (np.bool_, bool)):
+        return bool(value)
+    if isinstance(value, (np.integer, int)):
+        return int(value)
+    if isinstance(value, (np.floating, float)):
+        value = float(value)
+        return value if math.isfinite(value) else None
+    return value
+
+
+def dump_json(obj: dict, stream=None) -> None:
+    """Write exactly one JSON object and a newline."""
+    stream = stream or sys.stdout
+    stream.write(json.dumps(jsonable(obj), indent=2, allow_nan=False) + "\n")
+
+
+def format_number(value: float, digits: int = 6) -> str:
+    """A number with ``digits`` significant figures; tiny round-off shown as 0."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—" if value is None else str(value)
+    if value == 0:
+        return "0"
+    return f"{value:.{digits}g}"
+
+
+def format_vector(vector: Iterable[float], digits: int = 6) -> str:
+    return "(" + ", ".join(format_number(float(v), digits) for v in vector) + ")"
+
+
+def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:
+    """Two aligned columns: label and value."""
+    width = max((len(label) for label, _ in rows), default=0)
+    lines = [title, "-" * len(title)] if title else []
+    lines += [f"{label:<{width}}  {value}" for label, value in rows]
+    return "\n".join(lines)
+
+
+def mass_properties_dict(props: MassProperties, kind: str) -> dict[str, Any]:
+    """The JSON object of ``plumbob mass`` for one body (SI units)."""
+    out: dict[str, Any] = {"kind": kind, "mass": props.mass}
+    if kind == "lamina" or (props.dim == 2 and props.measure > 0):
+        out["area"] = props.measure
+    elif props.measure > 0 or kind != "particles":
+        out["volume"] = props.measure
+    out.update(
+        center_of_mass=props.center_of_mass,
+        inertia=props.inertia,
+        principal_moments=props.principal_moments,
+        principal_axes=props.principal_axes,
+        exact=props.exact,
+        relative_error=props.relative_error,
+        parts=props.parts,
+    )
+    if props.notes:
+        out["notes"] = list(props.notes)
+    return out
+
+
+def write_atomically(path: str, text: str) -> None:
+    """Write ``text`` to ``path`` all at once: a temporary file renamed into place,
+    so a failure never leaves a partial file."""
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".plumbob-", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w") as handle:
+            handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
