@@ -47,6 +47,8 @@ def rotation_matrix(axis: np.ndarray | list[float], angle: float) -> np.ndarray:
         raise GeometryError("a rotation axis must be a non-zero finite vector")
     x, y, z = axis / norm
     c, s = np.cos(angle), np.sin(angle)
+    # Quarter turns are exact: cos(π/2) is 6e-17 in floating point, not 0.
+    c, s = (0.0 if abs(c) < 1e-15 else c), (0.0 if abs(s) < 1e-15 else s)
     k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
     return c * np.eye(3) + s * k + (1 - c) * np.outer([x, y, z], [x, y, z])
 

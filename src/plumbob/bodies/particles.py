@@ -71,6 +71,57 @@ class ParticleSystem:
         anchor = self.positions[0]
         return anchor + self.masses @ (self.positions - anchor) / self.total_mass
 
+    # -------------------------------------------------------------- motion
+    @property
+    def _velocities(self) -> np.ndarray:
+        """(n, d) m/s; zeros for a system given without velocities."""
+        if self.velocities is None:
+            return np.zeros_like(self.positions)
+        return self.velocities
+
+    @property
+    def velocity_of_center(self) -> np.ndarray:
+        """(d,) m/s: the velocity of the centre of mass, Σ mᵢ vᵢ / M.
+
+        >>> ParticleSystem([1.0, 3.0], [[0, 0], [1, 0]], [[4, 0], [0, 0]]).velocity_of_center
+        array([1., 0.])
+        """
+        return self.momentum / self.total_mass
+
+    @property
+    def momentum(self) -> np.ndarray:
+        """(d,) kg·m/s: the total linear momentum P = Σ mᵢ vᵢ = M v_G (seed eq. 25).
+
+        >>> ParticleSystem([5e4, 3e4], [[0, 0], [10, 0]], [[2, 0], [0, 0]]).momentum
+        array([100000.,      0.])
+        >>> ParticleSystem([1.0], [[0, 0]]).momentum   # no velocities: at rest
+        array([0., 0.])
+        """
+        return self.masses @ self._velocities
+
+    @property
+    def kinetic_energy(self) -> float:
+        """J: ½ Σ mᵢ |vᵢ|².
+
+        >>> ParticleSystem([3.0, 3.0], [[0, 0], [1, 0]], [[2, 0], [0, 0]]).kinetic_energy
+        6.0
+        """
+        v = self._velocities
+        return 0.5 * float(self.masses @ np.einsum("ki,ki->k", v, v))
+
+    @property
+    def kinetic_energy_relative(self) -> float:
+        """J: ½ Σ mᵢ |vᵢ − v_G|², the kinetic energy relative to the centre of mass.
+
+        The total is ``½ M |v_G|² + kinetic_energy_relative`` (König's theorem);
+        it is what an instantaneous internal impact can take away.
+
+        >>> ParticleSystem([3.0, 3.0], [[0, 0], [1, 0]], [[2, 0], [0, 0]]).kinetic_energy_relative
+        3.0
+        """
+        w = self._velocities - self.velocity_of_center
+        return 0.5 * float(self.masses @ np.einsum("ki,ki->k", w, w))
+
     def mass_properties(self) -> MassProperties:
         """Mass, centre of mass and inertia tensor (about the centre) of the particles."""
         com = self.center_of_mass

@@ -1,0 +1,109 @@
+"""Laminas: plane regions with an areal density, exact by Green's theorem."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..integrals.polygon import bulge_arc_geometry
+from ..massprops import MassProperties
+from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
+from .region import Region
+
+__all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia"]
+
+
+def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
+    """Inertia tensor (3, 3) from central second moments ``∫ r rᵀ dm`` (2, 2) or (3, 3)."""
+    c = np.zeros((3, 3))
+    n = central.shape[0]
+    c[:n, :n] = central
+    return np.trace(c) * np.eye(3) - c
+
+
+def lamina_mass_properties(region: Region, areal_density: float) -> tuple[float, np.ndarray, np.ndarray]:
+    """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
+    origin = region.local_origin()
+    m = region.moments(origin)
+    if not m.m0 > 0:
+        raise GeometryError(
+            "the region has no area (zero, or its rings run clockwise): "
+            "outer boundaries must run counter-clockwise, holes clockwise")
+    centre = m.m1 / m.m0
+    central = m.m2 - m.m0 * np.outer(centre, centre)
+    return m.m0, origin + centre, central
+
+
+@dataclass(frozen=True, eq=False)
+class Lamina(Body):
+    """A plane region with uniform areal density.
+
+    region: the exact shape (lines, arcs, Béziers).
+    density: kg/m³ when ``thickness`` is given, else kg/m² (areal); None = not given (1).
+    thickness: m, or None for a lamina given by its areal density.
+    exact, relative_error, note: for regions that came out of a faceted boolean.
+    """
+
+    region: Region
+    density: float | None = None
+    thickness: float | None = None
+    name: str | None = None
+    exact: bool = True
+    relative_error: float = 0.0
+    note: str | None = None
+
+    kind = "lamina"
+    dim = 2
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "density", check_density(self.density))
+        object.__setattr__(self, "thickness", check_density(self.thickness, "thickness"))
+
+    @property
+    def areal_density(self) -> float:
+        """kg/m²: density × thickness, or the areal density itself."""
+        rho = 1.0 if self.density is None else self.density
+        return rho * self.thickness if self.thickness is not None else rho
+
+    def mass_properties(self) -> MassProperties:
+        area, centre, central = lamina_mass_properties(self.region, 1.0)
+        sigma = self.areal_density
+        notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
+        if self.note:
+            notes.append(self.note)
+        return MassProperties(2, sigma * area, area, centre, sigma * second_moments_to_inertia(central),
+                              exact=self.exact, relative_error=self.relative_error, notes=tuple(notes))
+
+    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
+        tol = self.region.size * 1e-4 if tolerance is None else tolerance
+        return np.concatenate([r.flattened(tol) for r in self.region.rings])
+
+    def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
+        down = np.asarray(down, dtype=float)
+        candidates = [self.hull_points(tolerance / 4)]
+        for ring in self.region.rings:
+            if ring.bulges is None:
+                continue
+            arcs = ring.bulges != 0
+            p0, p1 = ring._ends(arcs)
+            centre, radius, alpha, bisector = bulge_arc_geometry(p0, p1, ring.bulges[arcs])
+            # The arc's point furthest along `down`, if the arc's sweep reaches it.
+            cos_angle = bisector @ down
+            inside = cos_angle >= np.cos(alpha)
+            candidates.append(centre[inside] + radius[inside, None] * down)
+        return lowest(np.concatenate(candidates), down, tolerance)
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
+        offset = np.zeros(2) if offset is None else np.asarray(offset, dtype=float)
+        matrix = np.asarray(matrix, dtype=float)
+        if matrix.shape != (2, 2) or not np.allclose(matrix @ matrix.T, np.eye(2), atol=1e-12):
+            raise GeometryError("a lamina is placed by a 2×2 rotation or reflection")
+        return replace(self, region=self.region.transformed(matrix, offset))
+
+    def with_default_density(self, density: float) -> Body:
+        return self if self.density is not None else replace(self, density=check_density(density))
+
+    def to_geometry(self, segments: int = 128):
+        return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)) / 2)

@@ -1,0 +1,242 @@
+"""Solids: closed triangle meshes, prisms (extrusions) and solids of revolution.
+
+These three generators are exact: a mesh by the divergence theorem, a prism
+and a solid of revolution from the exact area moments of their profile
+(Pappus–Guldin, extended to second moments). Every closed-form primitive in
+:mod:`plumbob.bodies.primitives` is one of them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..integrals.mesh import triangle_soup_moments
+from ..massprops import MassProperties
+from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
+from .lamina import lamina_mass_properties, second_moments_to_inertia
+from .region import Region
+
+__all__ = ["MeshSolid", "Extrusion", "Revolution", "CLOSURE_TOLERANCE"]
+
+CLOSURE_TOLERANCE = 1e-9  # |vector area| / area above which a surface is open
+
+
+class _UniformSolid(Body):
+    kind = "solid"
+    dim = 3
+    density: float | None
+    exact: bool = True
+    relative_error: float = 0.0
+    note: str | None = None
+
+    def _finish(self, volume: float, centre: np.ndarray, central: np.ndarray) -> MassProperties:
+        """Mass properties from volume (m³), centre (3,) and ``∫ r rᵀ dV`` about it (3, 3)."""
+        rho = 1.0 if self.density is None else self.density
+        notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
+        if self.note:
+            notes.append(self.note)
+        return MassProperties(3, rho * volume, volume, centre, rho * second_moments_to_inertia(central),
+                              exact=self.exact, relative_error=self.relative_error, notes=tuple(notes))
+
+    def with_default_density(self, density: float) -> Body:
+        return self if self.density is not None else replace(self, density=check_density(density))
+
+
+def _circle_steps(radius: float, tolerance: float) -> int:
+    """Points per turn so that chords stay within ``tolerance`` of a circle."""
+    if radius <= tolerance:
+        return 4
+    return int(min(4096, max(8, np.ceil(np.pi / np.arccos(1 - tolerance / radius)))))
+
+
+@dataclass(frozen=True, eq=False)
+class MeshSolid(_UniformSolid):
+    """A solid bounded by a closed, outward-wound triangle mesh.
+
+    triangles: (n, 3, 3) m, any float dtype (float32 from binary STL is kept).
+    density: kg/m³ or None (not given: 1).
+    """
+
+    triangles: np.ndarray
+    density: float | None = None
+    name: str | None = None
+    exact: bool = True
+    relative_error: float = 0.0
+    note: str | None = None
+
+    def __post_init__(self) -> None:
+        tri = np.asarray(self.triangles)
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3):
+            raise GeometryError("a mesh needs an (n, 3, 3) array of triangles")
+        if len(tri) < 4:
+            raise GeometryError(f"a closed mesh needs at least 4 triangles, this one has {len(tri)}")
+        object.__setattr__(self, "triangles", tri)
+        object.__setattr__(self, "density", check_density(self.density))
+
+    def mass_properties(self) -> MassProperties:
+        m = triangle_soup_moments(self.triangles)
+        if not np.isfinite(m.m0):
+            raise GeometryError("the mesh has a coordinate that is not a finite number")
+        if np.linalg.norm(m.vector_area) > CLOSURE_TOLERANCE * max(m.area, 1e-300):
+            raise GeometryError(
+                "the mesh is not closed (its faces do not enclose a volume, so any "
+                "volume would depend on the origin): repair it or pass --repair")
+        if not m.m0 > 0:
+            raise GeometryError(
+                "the mesh encloses no volume" if m.m0 == 0 else
+                "the mesh is inside out (its faces point inward): flip its winding")
+        centre = m.m1 / m.m0
+        central = m.m2 - m.m0 * np.outer(centre, centre)
+        return self._finish(m.m0, m.origin + centre, central)
+
+    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
+        return np.unique(self.triangles.reshape(-1, 3), axis=0).astype(float)
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
+        matrix = np.asarray(matrix, dtype=float)
+        offset = np.zeros(3) if offset is None else np.asarray(offset, dtype=float)
+        tri = self.triangles.astype(float) @ matrix.T + offset
+        if np.linalg.det(matrix) < 0:
+            tri = tri[:, ::-1]  # a mirror turns the winding inside out
+        return replace(self, triangles=tri)
+
+    def to_geometry(self, segments: int = 128):
+        import manifold3d
+
+        verts, index = np.unique(self.triangles.reshape(-1, 3).astype(np.float64), axis=0,
+                                 return_inverse=True)
+        mesh = manifold3d.Mesh(vert_properties=verts.astype(np.float32),
+                               tri_verts=index.reshape(-1, 3).astype(np.uint32))
+        return manifold3d.Manifold(mesh)
+
+
+def _cross_section(region: Region, segments: int):
+    import manifold3d
+
+    tol = region.size * (1 - np.cos(np.pi / segments)) / 2
+    rings = [r.flattened(tol) for r in region.rings]
+    return manifold3d.CrossSection(rings, manifold3d.FillRule.Positive)
+
+
+@dataclass(frozen=True, eq=False)
+class Extrusion(_UniformSolid):
+    """A prism: ``profile`` (in the xy-plane) swept from z = 0 to z = ``height`` (m)."""
+
+    profile: Region
+    height: float
+    density: float | None = None
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.height) and self.height > 0):
+            raise GeometryError(f"an extrusion needs a positive height, not {self.height}")
+        object.__setattr__(self, "density", check_density(self.density))
+
+    def mass_properties(self) -> MassProperties:
+        area, centre2, central2 = lamina_mass_properties(self.profile, 1.0)
+        h = self.height
+        central = np.zeros((3, 3))
+        central[:2, :2] = h * central2
+        central[2, 2] = area * h**3 / 12
+        return self._finish(area * h, np.append(centre2, h / 2), central)
+
+    def _profile_points(self, tolerance: float | None) -> np.ndarray:
+        from .lamina import Lamina
+
+        return Lamina(self.profile).hull_points(tolerance)
+
+    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
+        pts = self._profile_points(tolerance)
+        return np.concatenate((np.pad(pts, ((0, 0), (0, 1))),
+                               np.pad(pts, ((0, 0), (0, 1)), constant_values=self.height)))
+
+    def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
+        from .lamina import Lamina
+
+        down = np.asarray(down, dtype=float)
+        flat = down[:2]
+        pts = self._profile_points(tolerance / 4)
+        if np.linalg.norm(flat) > 0:
+            exact = Lamina(self.profile).support_points(flat / np.linalg.norm(flat), tolerance)
+            pts = np.concatenate((pts, exact))
+        levels = [np.pad(pts, ((0, 0), (0, 1)), constant_values=z) for z in (0.0, self.height)]
+        return lowest(np.concatenate(levels), down, tolerance)
+
+    def to_geometry(self, segments: int = 128):
+        import manifold3d
+
+        return manifold3d.Manifold.extrude(_cross_section(self.profile, segments), self.height)
+
+
+@dataclass(frozen=True, eq=False)
+class Revolution(_UniformSolid):
+    """The solid swept by ``profile`` — a region in the (r, z) half-plane r ≥ 0,
+    given as (x, y) = (r, z) — turning a full circle about the z-axis.
+
+    Exact from the profile's area moments up to degree 3:
+    ``V = 2π∫r dA``, ``∫z dV = 2π∫r z dA``, ``∫z² dV = 2π∫r z² dA``,
+    ``∫x² dV = ∫y² dV = π∫r³ dA``.
+    """
+
+    profile: Region
+    density: float | None = None
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.profile.bounds[0, 0] < -1e-12 * self.profile.size:
+            raise GeometryError("a profile to revolve must lie where x ≥ 0 (x is the radius)")
+        object.__setattr__(self, "density", check_density(self.density))
+
+    def mass_properties(self) -> MassProperties:
+        z0 = float(self.profile.local_origin()[1])
+        m = self.profile.moments(np.array([0.0, z0]), degree=3)
+        s_r = m.m1[0]
+        if not s_r > 0:
+            raise GeometryError("the profile has no area to revolve (or its rings run clockwise)")
+        volume = 2 * np.pi * s_r
+        zc = m.m2[0, 1] / s_r  # relative to z0
+        czz = 2 * np.pi * m.m3[0, 1, 1] - volume * zc * zc
+        cxx = np.pi * m.m3[0, 0, 0]
+        central = np.diag([cxx, cxx, czz])
+        return self._finish(volume, np.array([0.0, 0.0, z0 + zc]), central)
+
+    def _rings(self, tolerance: float | None) -> tuple[np.ndarray, int]:
+        from .lamina import Lamina
+
+        tol = self.profile.size * 1e-4 if tolerance is None else tolerance
+        pts = Lamina(self.profile).hull_points(tol)
+        return pts, _circle_steps(float(pts[:, 0].max()), tol)
+
+    @staticmethod
+    def _sweep(pts: np.ndarray, angles: np.ndarray) -> np.ndarray:
+        c, s = np.cos(angles), np.sin(angles)
+        r, z = pts[:, 0:1], pts[:, 1:2]
+        return np.stack((r * c, r * s, np.broadcast_to(z, (len(pts), len(angles)))), axis=-1).reshape(-1, 3)
+
+    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
+        pts, steps = self._rings(tolerance)
+        return self._sweep(pts, 2 * np.pi * np.arange(steps) / steps)
+
+    def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
+        from .lamina import Lamina
+
+        down = np.asarray(down, dtype=float)
+        pts, steps = self._rings(tolerance / 4)
+        candidates = [self._sweep(pts, 2 * np.pi * np.arange(steps) / steps)]
+        radial = np.hypot(down[0], down[1])
+        if radial > 0:
+            # Every lowest point lies in the half-plane facing `down`: the profile's
+            # support there, in the direction (radial, down_z), is exact.
+            psi = np.arctan2(down[1], down[0])
+            direction = np.array([radial, down[2]])
+            half = Lamina(self.profile).support_points(direction / np.linalg.norm(direction), tolerance)
+            candidates.append(self._sweep(np.concatenate((half, pts)), np.array([psi])))
+        return lowest(np.concatenate(candidates), down, tolerance)
+
+    def to_geometry(self, segments: int = 128):
+        import manifold3d
+
+        return manifold3d.Manifold.revolve(_cross_section(self.profile, segments), segments)
