@@ -24,7 +24,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="plumbob", description="Mass properties, stability and energy from geometry alone.")
+    parser = _Parser(
+        prog="plumbob", description="Mass properties, stability and energy from geometry alone."
+    )
     parser.add_argument("--version", action="version", version=f"plumbob {_version()}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in COMMANDS:

@@ -149,7 +149,9 @@ class MassProperties:
         offset = self.center_of_mass_3d - _as_3d(np.asarray(point, dtype=float))
         return self.inertia + _parallel_axis(self.mass, offset)
 
-    def moment_about_axis(self, point: np.ndarray | list[float], axis: np.ndarray | list[float]) -> float:
+    def moment_about_axis(
+        self, point: np.ndarray | list[float], axis: np.ndarray | list[float]
+    ) -> float:
         """Moment of inertia about the line through ``point`` along ``axis``, kg·m²."""
         axis = np.asarray(axis, dtype=float)
         axis = _as_3d(axis) / np.linalg.norm(axis)
@@ -178,7 +180,9 @@ class MassProperties:
         offset = np.asarray(offset, dtype=float)
         return replace(self, center_of_mass=self.center_of_mass + offset[: self.dim])
 
-    def transformed(self, matrix: np.ndarray, offset: np.ndarray | list[float] | None = None) -> MassProperties:
+    def transformed(
+        self, matrix: np.ndarray, offset: np.ndarray | list[float] | None = None
+    ) -> MassProperties:
         """Turned (or mirrored) by the orthogonal ``matrix`` about the origin, then moved.
 
         ``matrix`` is (2, 2) for a lamina — it must keep the plane — or (3, 3).
@@ -197,7 +201,9 @@ class MassProperties:
         result = replace(self, center_of_mass=com, inertia=full @ self.inertia @ full.T)
         return result if offset is None else result.translated(offset)
 
-    def rotated(self, angle: float, axis: np.ndarray | list[float] = (0.0, 0.0, 1.0)) -> MassProperties:
+    def rotated(
+        self, angle: float, axis: np.ndarray | list[float] = (0.0, 0.0, 1.0)
+    ) -> MassProperties:
         """Turned by ``angle`` radians about ``axis`` through the origin (z for a lamina)."""
         return self.transformed(rotation_matrix(axis, angle))
 

@@ -14,8 +14,14 @@ import numpy as np
 
 from .massprops import MassProperties
 
-__all__ = ["jsonable", "dump_json", "table", "format_number", "mass_properties_dict",
-           "write_atomically"]
+__all__ = [
+    "jsonable",
+    "dump_json",
+    "table",
+    "format_number",
+    "mass_properties_dict",
+    "write_atomically",
+]
 
 
 def jsonable(value: Any) -> Any:

@@ -73,8 +73,11 @@ class Body(ABC):
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         """This body turned or mirrored by an orthogonal ``matrix`` (dim × dim), then moved."""
-        return Transformed(self, np.asarray(matrix, dtype=float),
-                           np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float))
+        return Transformed(
+            self,
+            np.asarray(matrix, dtype=float),
+            np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float),
+        )
 
     def translated(self, offset: np.ndarray | list[float]) -> Body:
         return self.transformed(np.eye(self.dim), np.asarray(offset, dtype=float))
@@ -146,6 +149,7 @@ class Transformed(Body):
 
             m = self.matrix
             return shapely.affinity.affine_transform(
-                inner, [m[0, 0], m[0, 1], m[1, 0], m[1, 1], self.offset[0], self.offset[1]])
+                inner, [m[0, 0], m[0, 1], m[1, 0], m[1, 1], self.offset[0], self.offset[1]]
+            )
         affine = np.hstack((self.matrix, self.offset[:, None]))
         return inner.transform(affine)

@@ -169,7 +169,8 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str) -> 
     if len(densities) > 1:
         raise GeometryError(
             f"the {what} mixes overlapping parts of different densities: carve one out of the "
-            "other with a difference, or use an assembly")
+            "other with a difference, or use an assembly"
+        )
     density = densities.pop()
     dim = bodies[0].dim
     fine = build([b.to_geometry(segments) for b in bodies])
@@ -178,8 +179,10 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str) -> 
     if not fine_size > 0:
         raise GeometryError(f"the {what} is empty: the parts do not overlap")
     error = abs(fine_size - coarse_size) / 3 / fine_size
-    note = (f"the {what} of overlapping parts was computed on facets "
-            f"({segments} segments per turn); estimated relative error {error:.1e}")
+    note = (
+        f"the {what} of overlapping parts was computed on facets "
+        f"({segments} segments per turn); estimated relative error {error:.1e}"
+    )
     if dim == 2:
         import shapely
 
@@ -198,8 +201,11 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     dim = _same_dim(bodies)
     geoms = [b.to_geometry(segments) for b in bodies]
     slack = _slack(bodies, geoms, dim, segments)
-    overlap = sum(_measure(_overlap(geoms[i], geoms[j], dim), dim)
-                  for i in range(len(geoms)) for j in range(i + 1, len(geoms)))
+    overlap = sum(
+        _measure(_overlap(geoms[i], geoms[j], dim), dim)
+        for i in range(len(geoms))
+        for j in range(i + 1, len(geoms))
+    )
     if overlap <= slack:
         return Composite(bodies, (1.0,) * len(bodies))
     if dim == 2:
@@ -223,7 +229,8 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
         if inside <= slack:
             continue  # disjoint: nothing to remove
         if size - inside > slack or any(
-                _measure(_overlap(g, k.to_geometry(segments), dim), dim) > slack for k in kept):
+            _measure(_overlap(g, k.to_geometry(segments), dim), dim) > slack for k in kept
+        ):
             return _faceted_difference(body, holes, segments)
         kept.append(hole)
     if not kept:
@@ -250,8 +257,11 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     geoms = [b.to_geometry(segments) for b in bodies]
     for i, (b, g) in enumerate(zip(bodies, geoms)):
         slack = _slack((b,), [g], dim, segments)
-        if all(_measure(g, dim) - _measure(_overlap(g, h, dim), dim) <= slack
-               for j, h in enumerate(geoms) if j != i):
+        if all(
+            _measure(g, dim) - _measure(_overlap(g, h, dim), dim) <= slack
+            for j, h in enumerate(geoms)
+            if j != i
+        ):
             return b
 
     def build(gs):

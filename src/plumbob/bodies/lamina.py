@@ -23,14 +23,17 @@ def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
     return np.trace(c) * np.eye(3) - c
 
 
-def lamina_mass_properties(region: Region, areal_density: float) -> tuple[float, np.ndarray, np.ndarray]:
+def lamina_mass_properties(
+    region: Region, areal_density: float
+) -> tuple[float, np.ndarray, np.ndarray]:
     """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
     origin = region.local_origin()
     m = region.moments(origin)
     if not m.m0 > 0:
         raise GeometryError(
             "the region has no area (zero, or its rings run clockwise): "
-            "outer boundaries must run counter-clockwise, holes clockwise")
+            "outer boundaries must run counter-clockwise, holes clockwise"
+        )
     centre = m.m1 / m.m0
     central = m.m2 - m.m0 * np.outer(centre, centre)
     return m.m0, origin + centre, central
@@ -73,8 +76,16 @@ class Lamina(Body):
         notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
         if self.note:
             notes.append(self.note)
-        return MassProperties(2, sigma * area, area, centre, sigma * second_moments_to_inertia(central),
-                              exact=self.exact, relative_error=self.relative_error, notes=tuple(notes))
+        return MassProperties(
+            2,
+            sigma * area,
+            area,
+            centre,
+            sigma * second_moments_to_inertia(central),
+            exact=self.exact,
+            relative_error=self.relative_error,
+            notes=tuple(notes),
+        )
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         tol = self.region.size * 1e-4 if tolerance is None else tolerance

@@ -129,7 +129,8 @@ class ParticleSystem:
         if self.dim == 2:
             offsets = np.pad(offsets, ((0, 0), (0, 1)))
         inertia = (self.masses @ np.einsum("ki,ki->k", offsets, offsets)) * np.eye(3) - np.einsum(
-            "k,ki,kj->ij", self.masses, offsets, offsets)
+            "k,ki,kj->ij", self.masses, offsets, offsets
+        )
         return MassProperties(self.dim, self.total_mass, 0.0, com, inertia, parts=len(self.masses))
 
     def hull_points(self) -> np.ndarray:

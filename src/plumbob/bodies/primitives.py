@@ -22,10 +22,26 @@ from .region import Region, Ring
 from .solid import Extrusion, MeshSolid, Revolution
 
 __all__ = [
-    "rectangle", "triangle", "polygon", "regular_polygon", "disc", "semicircle", "sector",
-    "circular_segment", "annulus",
-    "box", "pyramid", "tetrahedron", "cylinder", "cone", "frustum", "sphere", "hemisphere",
-    "torus", "prism", "revolve",
+    "rectangle",
+    "triangle",
+    "polygon",
+    "regular_polygon",
+    "disc",
+    "semicircle",
+    "sector",
+    "circular_segment",
+    "annulus",
+    "box",
+    "pyramid",
+    "tetrahedron",
+    "cylinder",
+    "cone",
+    "frustum",
+    "sphere",
+    "hemisphere",
+    "torus",
+    "prism",
+    "revolve",
 ]
 
 
@@ -77,7 +93,9 @@ def sector_region(radius: float, angle: float) -> Region:
     if a == 2 * np.pi:
         return disc_region(r)
     ends = r * np.array([[np.cos(a / 2), -np.sin(a / 2)], [np.cos(a / 2), np.sin(a / 2)]])
-    return Region((Ring(np.vstack(([0.0, 0.0], ends)), bulges=np.array([0.0, np.tan(a / 4), 0.0])),))
+    return Region(
+        (Ring(np.vstack(([0.0, 0.0], ends)), bulges=np.array([0.0, np.tan(a / 4), 0.0])),)
+    )
 
 
 def segment_region(radius: float, angle: float) -> Region:
@@ -120,7 +138,7 @@ def disc(radius: float, **kw) -> Lamina:
 
 
 def semicircle(radius: float, **kw) -> Lamina:
-    """Straight edge on the x-axis, centre of the circle at the origin, y ≥ 0 (the seed's Figure 27)."""
+    """Straight edge on the x-axis, circle centre at the origin, y ≥ 0 (the seed's Figure 27)."""
     return Lamina(semicircle_region(radius), **kw)
 
 
@@ -149,8 +167,10 @@ def _mesh_from_faces(vertices: np.ndarray, faces: list[list[int]], **kw) -> Mesh
 def box(length: float, width: float, height: float, **kw) -> MeshSolid:
     """Corner at the origin, edges along +x, +y, +z (m)."""
     a, b, c = _positive(length, "length"), _positive(width, "width"), _positive(height, "height")
-    v = np.array([[0, 0, 0], [a, 0, 0], [a, b, 0], [0, b, 0],
-                  [0, 0, c], [a, 0, c], [a, b, c], [0, b, c]], dtype=float)
+    v = np.array(
+        [[0, 0, 0], [a, 0, 0], [a, b, 0], [0, b, 0], [0, 0, c], [a, 0, c], [a, b, c], [0, b, c]],
+        dtype=float,
+    )
     faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
     return _mesh_from_faces(v, faces, **kw)
 
@@ -204,13 +224,17 @@ def cone(radius: float, height: float, **kw) -> Revolution:
 def sphere(radius: float, **kw) -> Revolution:
     """Centred at the origin."""
     r = _positive(radius, "radius")
-    return Revolution(Region((Ring(np.array([[0.0, -r], [0.0, r]]), bulges=np.array([1.0, 0.0])),)), **kw)
+    return Revolution(
+        Region((Ring(np.array([[0.0, -r], [0.0, r]]), bulges=np.array([1.0, 0.0])),)), **kw
+    )
 
 
 def hemisphere(radius: float, **kw) -> Revolution:
     """Flat face on z = 0, dome up, centre of the sphere at the origin."""
     r = _positive(radius, "radius")
-    quarter = Ring(np.array([[0.0, 0.0], [r, 0.0], [0.0, r]]), bulges=np.array([0.0, np.tan(np.pi / 8), 0.0]))
+    quarter = Ring(
+        np.array([[0.0, 0.0], [r, 0.0], [0.0, r]]), bulges=np.array([0.0, np.tan(np.pi / 8), 0.0])
+    )
     return Revolution(Region((quarter,)), **kw)
 
 

@@ -147,7 +147,12 @@ class Ring:
                 spread = np.abs(np.array([p0 - 2 * c1 + c2, c1 - 2 * c2 + p1])).max()
                 steps = max(2, int(np.ceil(np.sqrt(0.75 * spread / tolerance))) + 1)
                 t = (np.arange(steps) / steps)[:, None]
-                pieces.append((1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * p1)
+                pieces.append(
+                    (1 - t) ** 3 * p0
+                    + 3 * (1 - t) ** 2 * t * c1
+                    + 3 * (1 - t) * t**2 * c2
+                    + t**3 * p1
+                )
             else:
                 pieces.append(p0[None])
         return np.concatenate(pieces)
@@ -172,7 +177,11 @@ class Region:
     def bounds(self) -> np.ndarray:
         """(2, 2): [[xmin, ymin], [xmax, ymax]] of the vertices and control points, m."""
         pts = [r.vertices for r in self.rings]
-        pts += [r.controls[~np.isnan(r.controls)].reshape(-1, 2) for r in self.rings if r.controls is not None]
+        pts += [
+            r.controls[~np.isnan(r.controls)].reshape(-1, 2)
+            for r in self.rings
+            if r.controls is not None
+        ]
         for r in self.rings:
             if r.bulges is not None:
                 arcs = r.bulges != 0
@@ -199,7 +208,9 @@ class Region:
             total = total + ring.moments(origin, degree)
         return total
 
-    def transformed(self, matrix: np.ndarray, offset: np.ndarray | list[float] = (0.0, 0.0)) -> Region:
+    def transformed(
+        self, matrix: np.ndarray, offset: np.ndarray | list[float] = (0.0, 0.0)
+    ) -> Region:
         """Turned or mirrored by a 2×2 orthogonal matrix about (0, 0), then moved.
 
         A mirror reverses every ring, so outer rings stay counter-clockwise.
@@ -240,8 +251,11 @@ class Region:
         for polygon in polygons:
             if polygon.is_empty or polygon.geom_type != "Polygon":
                 continue
-            polygon = shapely.orient_polygons(polygon) if hasattr(shapely, "orient_polygons") else (
-                shapely.geometry.polygon.orient(polygon, 1.0))
+            polygon = (
+                shapely.orient_polygons(polygon)
+                if hasattr(shapely, "orient_polygons")
+                else (shapely.geometry.polygon.orient(polygon, 1.0))
+            )
             rings.append(Ring(np.asarray(polygon.exterior.coords)[:, :2]))
             rings.extend(Ring(np.asarray(i.coords)[:, :2]) for i in polygon.interiors)
         if not rings:

@@ -38,8 +38,16 @@ class _UniformSolid(Body):
         notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
         if self.note:
             notes.append(self.note)
-        return MassProperties(3, rho * volume, volume, centre, rho * second_moments_to_inertia(central),
-                              exact=self.exact, relative_error=self.relative_error, notes=tuple(notes))
+        return MassProperties(
+            3,
+            rho * volume,
+            volume,
+            centre,
+            rho * second_moments_to_inertia(central),
+            exact=self.exact,
+            relative_error=self.relative_error,
+            notes=tuple(notes),
+        )
 
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))
@@ -72,7 +80,9 @@ class MeshSolid(_UniformSolid):
         if tri.ndim != 3 or tri.shape[1:] != (3, 3):
             raise GeometryError("a mesh needs an (n, 3, 3) array of triangles")
         if len(tri) < 4:
-            raise GeometryError(f"a closed mesh needs at least 4 triangles, this one has {len(tri)}")
+            raise GeometryError(
+                f"a closed mesh needs at least 4 triangles, this one has {len(tri)}"
+            )
         object.__setattr__(self, "triangles", tri)
         object.__setattr__(self, "density", check_density(self.density))
 
@@ -83,11 +93,14 @@ class MeshSolid(_UniformSolid):
         if np.linalg.norm(m.vector_area) > CLOSURE_TOLERANCE * max(m.area, 1e-300):
             raise GeometryError(
                 "the mesh is not closed (its faces do not enclose a volume, so any "
-                "volume would depend on the origin): repair it or pass --repair")
+                "volume would depend on the origin): repair it or pass --repair"
+            )
         if not m.m0 > 0:
             raise GeometryError(
-                "the mesh encloses no volume" if m.m0 == 0 else
-                "the mesh is inside out (its faces point inward): flip its winding")
+                "the mesh encloses no volume"
+                if m.m0 == 0
+                else "the mesh is inside out (its faces point inward): flip its winding"
+            )
         centre = m.m1 / m.m0
         central = m.m2 - m.m0 * np.outer(centre, centre)
         return self._finish(m.m0, m.origin + centre, central)
@@ -106,10 +119,13 @@ class MeshSolid(_UniformSolid):
     def to_geometry(self, segments: int = 128):
         import manifold3d
 
-        verts, index = np.unique(self.triangles.reshape(-1, 3).astype(np.float64), axis=0,
-                                 return_inverse=True)
-        mesh = manifold3d.Mesh(vert_properties=verts.astype(np.float32),
-                               tri_verts=index.reshape(-1, 3).astype(np.uint32))
+        verts, index = np.unique(
+            self.triangles.reshape(-1, 3).astype(np.float64), axis=0, return_inverse=True
+        )
+        mesh = manifold3d.Mesh(
+            vert_properties=verts.astype(np.float32),
+            tri_verts=index.reshape(-1, 3).astype(np.uint32),
+        )
         return manifold3d.Manifold(mesh)
 
 
@@ -150,8 +166,12 @@ class Extrusion(_UniformSolid):
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         pts = self._profile_points(tolerance)
-        return np.concatenate((np.pad(pts, ((0, 0), (0, 1))),
-                               np.pad(pts, ((0, 0), (0, 1)), constant_values=self.height)))
+        return np.concatenate(
+            (
+                np.pad(pts, ((0, 0), (0, 1))),
+                np.pad(pts, ((0, 0), (0, 1)), constant_values=self.height),
+            )
+        )
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
         from .lamina import Lamina
@@ -214,7 +234,9 @@ class Revolution(_UniformSolid):
     def _sweep(pts: np.ndarray, angles: np.ndarray) -> np.ndarray:
         c, s = np.cos(angles), np.sin(angles)
         r, z = pts[:, 0:1], pts[:, 1:2]
-        return np.stack((r * c, r * s, np.broadcast_to(z, (len(pts), len(angles)))), axis=-1).reshape(-1, 3)
+        return np.stack(
+            (r * c, r * s, np.broadcast_to(z, (len(pts), len(angles)))), axis=-1
+        ).reshape(-1, 3)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         pts, steps = self._rings(tolerance)
@@ -232,7 +254,9 @@ class Revolution(_UniformSolid):
             # support there, in the direction (radial, down_z), is exact.
             psi = np.arctan2(down[1], down[0])
             direction = np.array([radial, down[2]])
-            half = Lamina(self.profile).support_points(direction / np.linalg.norm(direction), tolerance)
+            half = Lamina(self.profile).support_points(
+                direction / np.linalg.norm(direction), tolerance
+            )
             candidates.append(self._sweep(np.concatenate((half, pts)), np.array([psi])))
         return lowest(np.concatenate(candidates), down, tolerance)
 

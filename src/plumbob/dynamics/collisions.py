@@ -149,7 +149,8 @@ def _restitution(e: float) -> float:
     try:
         e = float(e)
     except (TypeError, ValueError):
-        raise DynamicsError(f"the coefficient of restitution must be a number (got {e!r})") from None
+        raise DynamicsError(f"the coefficient of restitution must be a number (got {e!r})"
+                            ) from None
     if not 0.0 <= e <= 1.0:
         raise DynamicsError(f"the coefficient of restitution e must lie in [0, 1] (got {e}); "
                             "e = 1 is elastic, e = 0 coalescing")

@@ -51,11 +51,12 @@ __all__ = [
 #: Standard acceleration of gravity, m/s² (the seed's g).
 STANDARD_GRAVITY = 9.81
 
-#: A string counts as taut when |d| ≥ L (1 − _TAUT_RTOL).
+#: At t = 0 a string counts as taut when |d| ≥ L (1 − _TAUT_RTOL). During a run the
+#: threshold is 100 × rtol: a string that the solver holds at |d| ≈ L stays taut.
 _TAUT_RTOL = 1e-7
-#: A taut string must first slacken by this fraction of L before a re-tightening
-#: is treated as a new jerk (keeps round-off at |d| ≈ L from firing events).
-_REARM_RTOL = 1e-6
+#: A taut string must first slacken by 10 × that threshold before a re-tightening
+#: is treated as a new jerk (keeps round-off at |d| ≈ L from firing events); the
+#: instant of such a jerk is therefore located to about 1e-7 L / (closing speed).
 _MAX_SEGMENTS = 10_000
 
 
@@ -257,8 +258,10 @@ class SimulationResult:
 class _Dynamics:
     """Vectorised right-hand side of the equations of motion (no I/O, no state)."""
 
-    def __init__(self, model: MotionModel, stabilization: float, friction_speed: float) -> None:
+    def __init__(self, model: MotionModel, stabilization: float, friction_speed: float,
+                 rtol: float = 1e-10) -> None:
         system = model.system
+        self.taut_rtol = max(100.0 * rtol, 1e-12)
         self.model = model
         self.m = system.masses
         self.n, self.d = system.positions.shape
@@ -354,7 +357,7 @@ class _Dynamics:
             return np.zeros(0, dtype=int)
         dvec = r[self.li] - r[self.lj]
         dist = np.sqrt(np.einsum("ki,ki->k", dvec, dvec))
-        ok = ~self.is_string | (dist >= self.ll * (1.0 - _TAUT_RTOL))
+        ok = ~self.is_string | (dist >= self.ll * (1.0 - self.taut_rtol))
         return np.flatnonzero(ok)
 
     def accelerations(self, r: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -469,7 +472,7 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
         raise DynamicsError("the friction regularisation speed must be positive (m/s)")
     if method is None:
         method = "LSODA" if model.has_friction else "DOP853"
-    dyn = _Dynamics(model, stabilization, friction_speed)
+    dyn = _Dynamics(model, stabilization, friction_speed, rtol)
     system = model.system
     n, d = dyn.n, dyn.d
     atol = np.concatenate([np.full(n * d, rtol * length), np.full(n * d, rtol * speed)])
@@ -508,7 +511,7 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
 
 def _string_event(dyn: _Dynamics, k: int, taut: bool):
     """Event: string k reaching its length from below (re-armed below L if taut now)."""
-    target = dyn.ll[k] * (1.0 - _REARM_RTOL) if taut else dyn.ll[k]
+    target = dyn.ll[k] * (1.0 - 10.0 * dyn.taut_rtol) if taut else dyn.ll[k]
     nd = dyn.n * dyn.d
     i, j = int(dyn.li[k]), int(dyn.lj[k])
 

@@ -168,8 +168,8 @@ class VibratingMolecule:
         """(x₁(t), x₂(t), x_G(t)) in m, from positions x1 < x2 (m) and velocities (m/s) at t = 0.
 
         >>> mol = VibratingMolecule(1.0, 1.0, 2.0, 1.0)       # ω = 2 rad/s
-        >>> [np.round(a, 12) for a in mol.positions(np.pi / 2, 0.0, 1.5)]
-        [array(0.5), array(1.), array(0.5)]
+        >>> [round(float(a), 12) for a in mol.positions(np.pi / 2, 0.0, 1.5)]
+        [0.5, 1.0, 0.75]
         """
         t = np.asarray(t, dtype=float)
         total = self.m1 + self.m2

@@ -47,10 +47,19 @@ class VolumeMoments:
     def __add__(self, other: VolumeMoments) -> VolumeMoments:
         shift = other.origin - self.origin
         m1 = other.m1 + other.m0 * shift
-        m2 = other.m2 + np.outer(other.m1, shift) + np.outer(shift, other.m1) + other.m0 * np.outer(shift, shift)
+        m2 = (
+            other.m2
+            + np.outer(other.m1, shift)
+            + np.outer(shift, other.m1)
+            + other.m0 * np.outer(shift, shift)
+        )
         return VolumeMoments(
-            self.origin, self.m0 + other.m0, self.m1 + m1, self.m2 + m2,
-            self.vector_area + other.vector_area, self.area + other.area,
+            self.origin,
+            self.m0 + other.m0,
+            self.m1 + m1,
+            self.m2 + m2,
+            self.vector_area + other.vector_area,
+            self.area + other.area,
             self.triangles + other.triangles,
         )
 
@@ -87,7 +96,7 @@ def triangle_soup_moments(
     ``origin`` defaults to the mean of the first triangles' vertices.
 
     >>> tet = np.array([[[0, 0, 0], [0, 1, 0], [1, 0, 0]], [[0, 0, 0], [1, 0, 0], [0, 0, 1]],
-    ...                 [[0, 0, 0], [0, 0, 1], [0, 1, 0]], [[1, 0, 0], [0, 1, 0], [0, 0, 1]]], float)
+    ...     [[0, 0, 0], [0, 0, 1], [0, 1, 0]], [[1, 0, 0], [0, 1, 0], [0, 0, 1]]], float)
     >>> m = triangle_soup_moments(tet)
     >>> round(m.m0 * 6, 12), np.round(m.origin + m.m1 / m.m0, 12).tolist()
     (1.0, [0.25, 0.25, 0.25])
@@ -99,11 +108,20 @@ def triangle_soup_moments(
         raise ValueError("triangles must have shape (n, 3, 3)")
     n = len(triangles)
     if origin is None:
-        origin = triangles[: min(n, 1024)].reshape(-1, 3).mean(axis=0, dtype=float) if n else np.zeros(3)
+        origin = (
+            triangles[: min(n, 1024)].reshape(-1, 3).mean(axis=0, dtype=float) if n else np.zeros(3)
+        )
     origin = np.asarray(origin, dtype=float)
     total = np.zeros(17)
     for start in range(0, n, chunk):
         total += _chunk_moments(triangles[start : start + chunk].astype(float, copy=False), origin)
     m2 = total[4:13].reshape(3, 3)
-    return VolumeMoments(origin, float(total[0]), total[1:4].copy(), (m2 + m2.T) / 2,
-                         total[13:16].copy(), float(total[16]), n)
+    return VolumeMoments(
+        origin,
+        float(total[0]),
+        total[1:4].copy(),
+        (m2 + m2.T) / 2,
+        total[13:16].copy(),
+        float(total[16]),
+        n,
+    )

@@ -51,7 +51,9 @@ class AreaMoments:
 
     @staticmethod
     def zero(degree: int = 2) -> AreaMoments:
-        return AreaMoments(0.0, np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2, 2)) if degree >= 3 else None)
+        return AreaMoments(
+            0.0, np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2, 2)) if degree >= 3 else None
+        )
 
 
 def _simplex_tensors(measure: np.ndarray, vertices: list[np.ndarray], degree: int):
@@ -150,18 +152,28 @@ def _rotate_shift(m0, m1, m2, m3, rotation, shift):
         m1tt = np.einsum("ki,kj,kl->kijl", m1, t, t)
         m3 = (
             m3
-            + m2t + m2t.transpose(0, 1, 3, 2) + m2t.transpose(0, 3, 1, 2)
-            + m1tt + m1tt.transpose(0, 2, 1, 3) + m1tt.transpose(0, 2, 3, 1)
+            + m2t
+            + m2t.transpose(0, 1, 3, 2)
+            + m2t.transpose(0, 3, 1, 2)
+            + m1tt
+            + m1tt.transpose(0, 2, 1, 3)
+            + m1tt.transpose(0, 2, 3, 1)
             + m0[:, None, None, None] * np.einsum("ki,kj,kl->kijl", t, t, t)
         )
     m1t = np.einsum("ki,kj->kij", m1, shift)
-    m2 = m2 + m1t + m1t.transpose(0, 2, 1) + m0[:, None, None] * np.einsum("ki,kj->kij", shift, shift)
+    m2 = (
+        m2
+        + m1t
+        + m1t.transpose(0, 2, 1)
+        + m0[:, None, None] * np.einsum("ki,kj->kij", shift, shift)
+    )
     m1 = m1 + m0[:, None] * shift
     return m0, m1, m2, m3
 
 
-def arc_cap_moments(p0: np.ndarray, p1: np.ndarray, bulge: np.ndarray, origin: np.ndarray,
-                    degree: int = 2) -> AreaMoments:
+def arc_cap_moments(
+    p0: np.ndarray, p1: np.ndarray, bulge: np.ndarray, origin: np.ndarray, degree: int = 2
+) -> AreaMoments:
     """Signed moments of the circular segments between chords p0→p1 (k, 2) and their arcs.
 
     Each segment counts positive for a positive bulge (the loop "arc out, chord

@@ -33,19 +33,34 @@ MAX_LENGTH = 2000
 MAX_DEPTH = 60
 
 FUNCTIONS = {
-    "sqrt": (np.sqrt, 1), "sin": (np.sin, 1), "cos": (np.cos, 1), "tan": (np.tan, 1),
-    "asin": (np.arcsin, 1), "acos": (np.arccos, 1), "atan": (np.arctan, 1),
-    "atan2": (np.arctan2, 2), "sinh": (np.sinh, 1), "cosh": (np.cosh, 1), "tanh": (np.tanh, 1),
-    "exp": (np.exp, 1), "log": (np.log, 1), "log10": (np.log10, 1), "abs": (np.abs, 1),
-    "min": (np.minimum, 2), "max": (np.maximum, 2), "hypot": (np.hypot, 2),
-    "radians": (np.radians, 1), "degrees": (np.degrees, 1),
+    "sqrt": (np.sqrt, 1),
+    "sin": (np.sin, 1),
+    "cos": (np.cos, 1),
+    "tan": (np.tan, 1),
+    "asin": (np.arcsin, 1),
+    "acos": (np.arccos, 1),
+    "atan": (np.arctan, 1),
+    "atan2": (np.arctan2, 2),
+    "sinh": (np.sinh, 1),
+    "cosh": (np.cosh, 1),
+    "tanh": (np.tanh, 1),
+    "exp": (np.exp, 1),
+    "log": (np.log, 1),
+    "log10": (np.log10, 1),
+    "abs": (np.abs, 1),
+    "min": (np.minimum, 2),
+    "max": (np.maximum, 2),
+    "hypot": (np.hypot, 2),
+    "radians": (np.radians, 1),
+    "degrees": (np.degrees, 1),
     "step": (lambda v: np.where(np.asarray(v) >= 0, 1.0, 0.0), 1),
 }
 CONSTANTS = {"pi": math.pi, "e": math.e}
 
 _TOKEN = re.compile(
     r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<name>[A-Za-z_]\w*)"
-    r"|(?P<op>\*\*|[-+*/^(),]))")
+    r"|(?P<op>\*\*|[-+*/^(),]))"
+)
 _UNICODE = str.maketrans({"×": "*", "·": "*", "÷": "/", "−": "-", "–": "-", "π": " pi "})
 
 
@@ -140,7 +155,9 @@ class _Parser:
             if nxt and nxt[1] == "(":
                 if value not in FUNCTIONS:
                     known = ", ".join(sorted(FUNCTIONS))
-                    raise ExpressionError(f"in {self.text!r}: unknown function {value!r}; known: {known}")
+                    raise ExpressionError(
+                        f"in {self.text!r}: unknown function {value!r}; known: {known}"
+                    )
                 self.take("(")
                 args = [self.expr()]
                 while self.peek() and self.peek()[1] == ",":
@@ -196,7 +213,9 @@ class Expression:
                 if node.value in CONSTANTS:
                     return CONSTANTS[node.value]
                 known = ", ".join(sorted(set(names) | set(CONSTANTS)))
-                raise ExpressionError(f"in {self.text!r}: unknown name {node.value!r}; known: {known}")
+                raise ExpressionError(
+                    f"in {self.text!r}: unknown name {node.value!r}; known: {known}"
+                )
             if op == "neg":
                 return -value(node.args[0])
             if op == "call":
