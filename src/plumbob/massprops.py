@@ -114,12 +114,13 @@ class MassProperties:
     def _principal(self) -> tuple[np.ndarray, np.ndarray]:
         moments, axes = np.linalg.eigh(self.inertia)
         axes = axes.T.copy()
-        # Deterministic signs: the largest component of each axis is positive,
-        # and the three axes form a right-handed frame.
-        signs = np.sign(axes[np.arange(3), np.argmax(np.abs(axes), axis=1)])
-        axes *= signs[:, None]
-        if np.linalg.det(axes) < 0:
-            axes[2] *= -1
+        # Deterministic signs: the first and last axes have their largest
+        # component positive; the middle one completes a right-handed frame.
+        for i in (0, 2):
+            if axes[i, np.argmax(np.abs(axes[i]))] < 0:
+                axes[i] *= -1
+        axes[1] = np.cross(axes[2], axes[0])
+        axes += 0.0  # no negative zeros
         moments.setflags(write=False)
         axes.setflags(write=False)
         return moments, axes

@@ -38,15 +38,36 @@ def jsonable(value: Any) -> Any:
     if isinstance(value, (np.integer, int)):
         return int(value)
     if isinstance(value, (np.floating, float)):
-        value = float(value)
+        value = float(value) + 0.0  # no negative zeros
         return value if math.isfinite(value) else None
     return value
+
+
+def to_json(obj: Any, indent: int = 0) -> str:
+    """JSON text, indented, with short lists of numbers kept on one line."""
+    pad = "  " * (indent + 1)
+    if isinstance(obj, dict):
+        if not obj:
+            return "{}"
+        items = [f"{pad}{json.dumps(k)}: {to_json(v, indent + 1)}" for k, v in obj.items()]
+        return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
+    if isinstance(obj, list):
+        flat = all(not isinstance(v, (dict, list)) for v in obj)
+        if flat and len(obj) <= 16:
+            return "[" + ", ".join(json.dumps(v, allow_nan=False, ensure_ascii=False) for v in obj) + "]"
+        small = all(isinstance(v, list) and all(not isinstance(u, (dict, list)) for u in v) for v in obj)
+        if small and obj and len(obj) <= 4:
+            return "[" + ", ".join(to_json(v) for v in obj) + "]"
+        if not obj:
+            return "[]"
+        return "[\n" + ",\n".join(pad + to_json(v, indent + 1) for v in obj) + "\n" + "  " * indent + "]"
+    return json.dumps(obj, allow_nan=False, ensure_ascii=False)
 
 
 def dump_json(obj: dict, stream=None) -> None:
     """Write exactly one JSON object and a newline."""
     stream = stream or sys.stdout
-    stream.write(json.dumps(jsonable(obj), indent=2, allow_nan=False) + "\n")
+    stream.write(to_json(jsonable(obj)) + "\n")
 
 
 def format_number(value: float, digits: int = 6) -> str:
