@@ -22,7 +22,15 @@ from ..errors import GeometryError
 from ..massprops import MassProperties, combine
 from .base import Body, lowest
 
-__all__ = ["Composite", "Assembly", "union", "difference", "intersection", "DEFAULT_SEGMENTS"]
+__all__ = [
+    "Composite",
+    "Assembly",
+    "union",
+    "difference",
+    "intersection",
+    "leaf_densities",
+    "DEFAULT_SEGMENTS",
+]
 
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
 
@@ -215,10 +223,32 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     return _faceted_body(bodies, _manifold_union, segments, "union")
 
 
+def leaf_densities(body: Body) -> set:
+    """The densities of a body's parts: kg/m³, areal kg/m² for laminas, None where not
+    given, "field" for a density field."""
+    from .lamina import Lamina
+
+    parts = getattr(body, "parts", None)
+    if parts is not None:
+        return set().union(*(leaf_densities(p) for p in parts))
+    inner = getattr(body, "body", body)
+    if isinstance(inner, Lamina):
+        return {None if inner.density is None else inner.areal_density}
+    return {getattr(inner, "density", "field")}
+
+
 def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     """``body`` with ``holes`` removed: exact when each hole lies inside ``body``
-    (and the holes do not overlap each other); a hole wholly outside is ignored."""
+    (and the holes do not overlap each other); a hole wholly outside is ignored.
+
+    A hole with no density of its own weighs what it is cut from.
+    """
     dim = _same_dim((body,) + holes)
+    parent = leaf_densities(body)
+    if len(parent) == 1 and isinstance(density := next(iter(parent)), float):
+        holes = tuple(
+            h.with_default_density(density) if leaf_densities(h) == {None} else h for h in holes
+        )
     outer = body.to_geometry(segments)
     kept: list[Body] = []
     for hole in holes:

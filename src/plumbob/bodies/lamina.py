@@ -117,4 +117,4 @@ class Lamina(Body):
         return self if self.density is not None else replace(self, density=check_density(density))
 
     def to_geometry(self, segments: int = 128):
-        return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)) / 2)
+        return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)), segments)

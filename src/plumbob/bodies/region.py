@@ -126,8 +126,12 @@ class Ring:
         controls = None if self.controls is None else self.controls[::-1, ::-1]
         return Ring(v, bulges, controls)
 
-    def flattened(self, tolerance: float) -> np.ndarray:
-        """Vertices (m, 2) of a polygon within ``tolerance`` (m) of every curved edge."""
+    def flattened(self, tolerance: float, segments: int | None = None) -> np.ndarray:
+        """Vertices (m, 2) of a polygon within ``tolerance`` (m) of every curved edge.
+
+        With ``segments``, arcs are cut into that many chords per full turn instead
+        (the explicit count booleans use, the same in 2D and 3D).
+        """
         if not self.is_curved:
             return self.vertices
         n = len(self.vertices)
@@ -137,7 +141,10 @@ class Ring:
             if self.bulges is not None and self.bulges[i] != 0:
                 centre, r, alpha, u = bulge_arc_geometry(p0[None], p1[None], self.bulges[i : i + 1])
                 r, alpha = r[0], alpha[0]
-                steps = max(2, int(np.ceil(alpha / np.arccos(max(-1.0, 1 - tolerance / r)))))
+                if segments is not None:
+                    steps = max(2, int(np.ceil(segments * alpha / np.pi)))
+                else:
+                    steps = max(2, int(np.ceil(alpha / np.arccos(max(-1.0, 1 - tolerance / r)))))
                 start = np.arctan2(*(p0 - centre[0])[::-1])
                 sweep = 2 * alpha * np.sign(self.bulges[i])
                 angles = start + sweep * np.arange(steps) / steps
@@ -225,13 +232,13 @@ class Region:
     def translated(self, offset: np.ndarray | list[float]) -> Region:
         return self.transformed(np.eye(2), offset)
 
-    def to_shapely(self, tolerance: float | None = None):
+    def to_shapely(self, tolerance: float | None = None, segments: int | None = None):
         """A shapely (Multi)Polygon; curved edges flattened to ``tolerance`` m
-        (default 1e-4 of the region's size)."""
+        (default 1e-4 of the region's size), arcs to ``segments`` per turn if given."""
         import shapely
 
         tol = self.size * 1e-4 if tolerance is None else tolerance
-        rings = [r.flattened(tol) for r in self.rings]
+        rings = [r.flattened(tol, segments) for r in self.rings]
         signs = [polygon_moments(v, v.mean(axis=0)).m0 for v in rings]
         shells = [shapely.Polygon(v) for v, s in zip(rings, signs) if s > 0]
         holes = [shapely.Polygon(v) for v, s in zip(rings, signs) if s < 0]

@@ -132,8 +132,8 @@ class MeshSolid(_UniformSolid):
 def _cross_section(region: Region, segments: int):
     import manifold3d
 
-    tol = region.size * (1 - np.cos(np.pi / segments)) / 2
-    rings = [r.flattened(tol) for r in region.rings]
+    tol = region.size * (1 - np.cos(np.pi / segments))
+    rings = [r.flattened(tol, segments) for r in region.rings]
     return manifold3d.CrossSection(rings, manifold3d.FillRule.Positive)
 
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..bodies import primitives as prim
 from ..bodies.base import Body, check_density
-from ..bodies.csg import Assembly, Composite, difference, intersection, union
+from ..bodies.csg import Assembly, Composite, difference, intersection, leaf_densities, union
 from ..bodies.lamina import Lamina
 from ..bodies.particles import ParticleSystem
 from ..bodies.region import Region, Ring
@@ -477,23 +477,13 @@ def _build_group(
     return _combine(spec, built)
 
 
-def _leaf_densities(body: Body) -> set:
-    """The densities of a body's leaves (areal for laminas; None where not given)."""
-    if isinstance(body, (Composite, Assembly)):
-        return set().union(*(_leaf_densities(p) for p in body.parts))
-    inner = getattr(body, "body", body)
-    if isinstance(inner, Lamina):
-        return {None if inner.density is None else inner.areal_density}
-    return {getattr(inner, "density", "field")}
-
-
 def _combine(spec: _Spec, built: list[tuple[str, Body, str]]) -> Body:
     if len(built) == 1:
         return built[0][1]
     try:
         if all(op == "add" for op, _, _ in built):
             result = union(*(b for _, b, _ in built))
-            if len(_leaf_densities(result)) > 1 and isinstance(result, Composite):
+            if len(leaf_densities(result)) > 1 and isinstance(result, Composite):
                 return Assembly(result.parts)
             return result
         result = built[0][1]
@@ -512,15 +502,11 @@ def _combine(spec: _Spec, built: list[tuple[str, Body, str]]) -> Body:
 
 
 def _hole_material(spec: _Spec, parent: Body, hole: Body, label: str) -> Body:
-    """A removed part weighs what it is cut from: it takes the parent's density."""
-    parent_density = _leaf_densities(parent)
-    hole_density = _leaf_densities(hole)
-    if hole_density == parent_density:
+    """A removed part must weigh what it is cut from (a hole given no density takes the
+    parent's in :func:`difference`)."""
+    hole_density = leaf_densities(hole)
+    if hole_density == {None} or hole_density == leaf_densities(parent):
         return hole
-    if len(parent_density) == 1 and hole_density == {None}:
-        density = parent_density.pop()
-        if isinstance(density, float) and hole.dim == 3:
-            return hole.with_default_density(density)
     raise spec.error(
         label,
         "a removed part must have the same density as the part it is cut "
