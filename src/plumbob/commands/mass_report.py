@@ -25,8 +25,9 @@ def mass_json(reading: Reading) -> dict[str, Any]:
     """One JSON object: the body's mass properties, and each part of an assembly."""
     props = reading.body.mass_properties()
     out = mass_properties_dict(props, reading.body.kind)
-    if reading.body.name:
-        out = {"name": reading.body.name, **out}
+    name = getattr(reading.body, "name", None)
+    if name:
+        out = {"name": name, **out}
     if reading.path:
         out = {"path": reading.path, **out}
     parts = _parts(reading)
@@ -61,7 +62,7 @@ def mass_text(reading: Reading) -> str:
         rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
     rows.append(("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})"))
     rows.append(("parts", str(props.parts)))
-    title = body.name or reading.path or "body"
+    title = getattr(body, "name", None) or reading.path or "body"
     text = table(rows, title)
     parts = _parts(reading)
     if parts:

@@ -98,7 +98,7 @@ def pulley_lift(counterweight: float, lift: float, g: float = STANDARD_GRAVITY) 
     g = _positive(g, "g", "m/s²")
     total = m1 + m2
     tension = 2.0 * m1 * m2 * g / total
-    return PulleyLift(m1, m2, g, (m2 - m1) * g / total, tension, 2.01 * tension)
+    return PulleyLift(m1, m2, g, (m2 - m1) * g / total, tension, 2.0 * tension)
 
 
 # ---------------------------------------------------------------------- mace

@@ -1,0 +1,93 @@
+import json
+import os
+
+import numpy as np
+import pytest
+
+from conftest import SHAPES
+from plumbob.cli import main
+
+KEYS = {"kind", "mass", "center_of_mass", "inertia", "principal_moments", "principal_axes",
+        "exact", "parts"}
+
+
+def run_json(capsys, *args):
+    assert main(["mass", *args, "--json"]) == 0
+    out = capsys.readouterr().out
+    return json.loads(out)
+
+
+def test_json_keys_for_a_lamina(capsys):
+    data = run_json(capsys, os.path.join(SHAPES, "semicircle.toml"))
+    assert KEYS <= set(data)
+    assert data["kind"] == "lamina" and "area" in data and "volume" not in data
+    assert len(data["center_of_mass"]) == 2
+    assert np.array(data["inertia"]).shape == (3, 3)
+    assert data["center_of_mass"][1] == pytest.approx(4 / (3 * np.pi), rel=1e-14)
+    assert any("no density" in n for n in data["notes"])
+
+
+def test_json_keys_for_a_solid_and_density_option(capsys):
+    data = run_json(capsys, os.path.join(SHAPES, "stepped_cylinder.toml"), "--density", "2")
+    assert data["kind"] == "solid" and "volume" in data
+    assert data["mass"] == pytest.approx(2 * 20 * np.pi, rel=1e-14)
+    assert "notes" not in data
+
+
+def test_material_option(capsys):
+    data = run_json(capsys, os.path.join(SHAPES, "stepped_cylinder.toml"), "--material", "steel")
+    assert data["mass"] == pytest.approx(7850 * 20 * np.pi, rel=1e-14)
+
+
+def test_text_report(capsys):
+    assert main(["mass", os.path.join(SHAPES, "l_shape.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "centre of mass" in out and "(0.833333, 0.833333)" in out
+
+
+def test_particles_report(capsys):
+    data = run_json(capsys, os.path.join(SHAPES, "earth_moon.toml"))
+    assert data["kind"] == "particles" and data["parts"] == 2
+
+
+@pytest.mark.parametrize("args, message", [
+    (["missing.toml"], "no such file"),
+    (["shape.xyz"], "unknown file type"),
+    (["bad_key.toml"], "unknown key"),
+    (["unsafe.toml"], "unexpected character"),
+    (["malformed.toml"], "ends too soon"),
+    (["zero.toml"], "must be a positive"),
+    (["ok.toml", "--density", "-1"], "--density must be a positive"),
+    (["ok.toml", "--material", "kryptonite"], "unknown material"),
+])
+def test_bad_input_one_line_exit_2(tmp_path, capsys, args, message):
+    specs = {
+        "shape.xyz": "",
+        "bad_key.toml": '[[part]]\ntype = "disc"\nradius = 1\ncolour = "red"\n',
+        "unsafe.toml": '[[part]]\ntype = "disc"\nradius = "__import__(\'os\')"\n',
+        "malformed.toml": '[[part]]\ntype = "disc"\nradius = "2 +"\n',
+        "zero.toml": '[[part]]\ntype = "box"\nlength = 1\nwidth = 0\nheight = 1\n',
+        "ok.toml": '[[part]]\ntype = "disc"\nradius = 1\n',
+    }
+    for name, text in specs.items():
+        (tmp_path / name).write_text(text)
+    path = str(tmp_path / args[0])
+    code = main(["mass", path, *args[1:]])
+    captured = capsys.readouterr()
+    assert code == 2
+    assert captured.out == ""
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0] and "Traceback" not in captured.err
+
+
+def test_zero_area_body_is_an_error(tmp_path, capsys):
+    path = tmp_path / "flat.toml"
+    path.write_text('[[part]]\ntype = "polygon"\nvertices = [[0, 0], [1, 1], [2, 2]]\n')
+    assert main(["mass", str(path)]) == 2
+    assert "no area" in capsys.readouterr().err
+
+
+def test_usage_errors_exit_2(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["mass"])
+    assert info.value.code == 2
