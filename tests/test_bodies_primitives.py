@@ -12,7 +12,9 @@ RTOL = 1e-13
 
 def check(props, mass, com, diag):
     assert props.mass == pytest.approx(mass, rel=RTOL)
-    np.testing.assert_allclose(props.center_of_mass, com, rtol=RTOL, atol=RTOL * max(1, np.abs(com).max()))
+    np.testing.assert_allclose(
+        props.center_of_mass, com, rtol=RTOL, atol=RTOL * max(1, np.abs(com).max())
+    )
     np.testing.assert_allclose(np.diag(props.inertia), diag, rtol=RTOL)
     off = props.inertia - np.diag(np.diag(props.inertia))
     assert np.abs(off).max() <= RTOL * np.abs(diag).max()
@@ -70,10 +72,15 @@ def test_turned_part_is_exact_sum_of_cylinders():
     """A stepped profile revolved equals the two cylinders it is made of (Pappus vs parts)."""
     profile = P.polygon([[0, 0], [1, 0], [1, 2], [3, 2], [3, 4], [0, 4]])
     turned = P.revolve(profile).mass_properties()
-    parts = P.cylinder(1, 2).mass_properties() + P.cylinder(3, 2).translated([0, 0, 2]).mass_properties()
+    parts = (
+        P.cylinder(1, 2).mass_properties()
+        + P.cylinder(3, 2).translated([0, 0, 2]).mass_properties()
+    )
     assert turned.mass == pytest.approx(parts.mass, rel=RTOL)
     np.testing.assert_allclose(turned.center_of_mass, parts.center_of_mass, atol=RTOL * 4)
-    np.testing.assert_allclose(turned.inertia, parts.inertia, rtol=RTOL, atol=RTOL * parts.inertia.max())
+    np.testing.assert_allclose(
+        turned.inertia, parts.inertia, rtol=RTOL, atol=RTOL * parts.inertia.max()
+    )
 
 
 def test_revolved_arc_profile_is_a_sphere_with_a_hole():
@@ -83,15 +90,21 @@ def test_revolved_arc_profile_is_a_sphere_with_a_hole():
     sphere = P.revolve(half_disc).mass_properties()
     assert sphere.volume == pytest.approx(4 / 3 * np.pi, rel=RTOL)
     notch = P.rectangle(a, 2 * a).translated([0, -a])
-    body = P.revolve(Region(half_disc.rings + (notch.region.rings[0].reversed(),))).mass_properties()
+    body = P.revolve(
+        Region(half_disc.rings + (notch.region.rings[0].reversed(),))
+    ).mass_properties()
     assert body.volume == pytest.approx(4 / 3 * np.pi - np.pi * a * a * 2 * a, rel=RTOL)
 
 
 def test_box_and_prism():
     a, b, c = 1.0, 2.0, 3.0
     m = a * b * c
-    check(P.box(a, b, c).mass_properties(), m, [a / 2, b / 2, c / 2],
-          [m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12])
+    check(
+        P.box(a, b, c).mass_properties(),
+        m,
+        [a / 2, b / 2, c / 2],
+        [m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12],
+    )
     prism = P.prism(P.rectangle(a, b), c).mass_properties()
     np.testing.assert_allclose(prism.inertia, P.box(a, b, c).mass_properties().inertia, rtol=RTOL)
 
@@ -105,7 +118,9 @@ def test_prism_of_disc_is_cylinder():
 
 def test_square_pyramid():
     s, h = 230.0, 147.0
-    props = P.pyramid(s / 2 * np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]]), h, density=2500).mass_properties()
+    props = P.pyramid(
+        s / 2 * np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]]), h, density=2500
+    ).mass_properties()
     m = 2500 * s * s * h / 3
     assert props.mass == pytest.approx(m, rel=RTOL)
     assert props.center_of_mass[2] == pytest.approx(h / 4, rel=RTOL)
@@ -120,7 +135,9 @@ def test_regular_polygon_approaches_disc_and_matches_formula():
     area = n * r * r * np.sin(2 * np.pi / n) / 2
     assert props.area == pytest.approx(area, rel=RTOL)
     # polar moment of a regular n-gon: A r² (2 + cos(2π/n)) / 6
-    assert props.inertia[2, 2] == pytest.approx(area * r * r * (2 + np.cos(2 * np.pi / n)) / 6, rel=RTOL)
+    assert props.inertia[2, 2] == pytest.approx(
+        area * r * r * (2 + np.cos(2 * np.pi / n)) / 6, rel=RTOL
+    )
 
 
 def test_triangle_centre_one_third_of_height():
@@ -129,12 +146,20 @@ def test_triangle_centre_one_third_of_height():
     assert props.inertia[0, 0] == pytest.approx(3 * 3**2 / 18, rel=RTOL)  # b h³/36 · ρ
 
 
-@pytest.mark.parametrize("make", [
-    lambda: P.disc(0), lambda: P.box(1, -1, 1), lambda: P.cone(1, 0), lambda: P.annulus(2, 1),
-    lambda: P.polygon([[0, 0], [1, 1], [2, 2]]), lambda: P.regular_polygon(2, 1),
-    lambda: P.tetrahedron([0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]), lambda: P.torus(1, 2),
-    lambda: P.sphere(float("nan")),
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: P.disc(0),
+        lambda: P.box(1, -1, 1),
+        lambda: P.cone(1, 0),
+        lambda: P.annulus(2, 1),
+        lambda: P.polygon([[0, 0], [1, 1], [2, 2]]),
+        lambda: P.regular_polygon(2, 1),
+        lambda: P.tetrahedron([0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]),
+        lambda: P.torus(1, 2),
+        lambda: P.sphere(float("nan")),
+    ],
+)
 def test_degenerate_primitives_are_errors(make):
     with pytest.raises(GeometryError):
         make()

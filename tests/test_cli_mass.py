@@ -3,12 +3,20 @@ import os
 
 import numpy as np
 import pytest
-
 from conftest import SHAPES
+
 from plumbob.cli import main
 
-KEYS = {"kind", "mass", "center_of_mass", "inertia", "principal_moments", "principal_axes",
-        "exact", "parts"}
+KEYS = {
+    "kind",
+    "mass",
+    "center_of_mass",
+    "inertia",
+    "principal_moments",
+    "principal_axes",
+    "exact",
+    "parts",
+}
 
 
 def run_json(capsys, *args):
@@ -50,16 +58,19 @@ def test_particles_report(capsys):
     assert data["kind"] == "particles" and data["parts"] == 2
 
 
-@pytest.mark.parametrize("args, message", [
-    (["missing.toml"], "no such file"),
-    (["shape.xyz"], "unknown file type"),
-    (["bad_key.toml"], "unknown key"),
-    (["unsafe.toml"], "unexpected character"),
-    (["malformed.toml"], "ends too soon"),
-    (["zero.toml"], "must be a positive"),
-    (["ok.toml", "--density", "-1"], "--density must be a positive"),
-    (["ok.toml", "--material", "kryptonite"], "unknown material"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["missing.toml"], "no such file"),
+        (["shape.xyz"], "unknown file type"),
+        (["bad_key.toml"], "unknown key"),
+        (["unsafe.toml"], "unexpected character"),
+        (["malformed.toml"], "ends too soon"),
+        (["zero.toml"], "must be a positive"),
+        (["ok.toml", "--density", "-1"], "--density must be a positive"),
+        (["ok.toml", "--material", "kryptonite"], "unknown material"),
+    ],
+)
 def test_bad_input_one_line_exit_2(tmp_path, capsys, args, message):
     specs = {
         "shape.xyz": "",

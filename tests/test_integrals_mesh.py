@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 import trimesh
+from conftest import rel
 from hypothesis import given
 from hypothesis import strategies as st
 
-from conftest import rel
 from plumbob.bodies import primitives as P
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError

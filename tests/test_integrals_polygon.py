@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 import shapely
+from conftest import rel, star_polygon
 from hypothesis import given
 from hypothesis import strategies as st
 
-from conftest import rel, star_polygon
 from plumbob.bodies import primitives as P
 from plumbob.bodies.region import Region, Ring
 from plumbob.integrals.polygon import arc_cap_moments, cubic_cap_moments, polygon_moments
@@ -49,9 +49,16 @@ def test_degree_three_moments_by_subdivision():
     m = polygon_moments(v, np.zeros(2), degree=3)
     # Reference: the simplex formula is exact; check against 4-level refinement sums of a
     # 6-point degree-4 rule (Strang–Fix) — independent of the closed form.
-    pts = np.array([[0.445948490915965, 0.445948490915965], [0.445948490915965, 0.108103018168070],
-                    [0.108103018168070, 0.445948490915965], [0.091576213509771, 0.091576213509771],
-                    [0.091576213509771, 0.816847572980459], [0.816847572980459, 0.091576213509771]])
+    pts = np.array(
+        [
+            [0.445948490915965, 0.445948490915965],
+            [0.445948490915965, 0.108103018168070],
+            [0.108103018168070, 0.445948490915965],
+            [0.091576213509771, 0.091576213509771],
+            [0.091576213509771, 0.816847572980459],
+            [0.816847572980459, 0.091576213509771],
+        ]
+    )
     w = np.array([0.223381589678011] * 3 + [0.109951743655322] * 3) / 2
     area = 0.5 * abs(np.cross(v[1] - v[0], v[2] - v[0]))
     q = v[0] + pts[:, :1] * (v[1] - v[0]) + pts[:, 1:] * (v[2] - v[0])

@@ -1,9 +1,9 @@
 import numpy as np
 import pytest
+from conftest import rel
 from hypothesis import given
 from hypothesis import strategies as st
 
-from conftest import rel
 from plumbob.bodies import primitives as P
 from plumbob.bodies.csg import union
 from plumbob.errors import GeometryError
@@ -38,17 +38,23 @@ def test_parallel_axes_rod_end():
     rod = P.box(2, 0.001, 0.001, density=1.0).mass_properties()
     m = rod.mass
     # thin rod about an end, axis z: m L²/3
-    assert rod.moment_about_axis([0, 0.0005, 0.0005], [0, 0, 1]) == pytest.approx(m * 4 / 3, rel=1e-6)
+    assert rod.moment_about_axis([0, 0.0005, 0.0005], [0, 0, 1]) == pytest.approx(
+        m * 4 / 3, rel=1e-6
+    )
 
 
 def test_principal_axes_are_right_handed_and_diagonalise():
     props = P.box(1, 2, 3).transformed(rotation_matrix([1, 2, 3], 0.7)).mass_properties()
     axes = props.principal_axes
     assert np.linalg.det(axes) == pytest.approx(1.0)
-    np.testing.assert_allclose(axes @ props.inertia @ axes.T, np.diag(props.principal_moments),
-                               atol=1e-12 * props.principal_moments.max())
-    np.testing.assert_allclose(props.principal_moments, sorted([13 / 12 * 6, 10 / 12 * 6, 5 / 12 * 6]),
-                               rtol=1e-13)
+    np.testing.assert_allclose(
+        axes @ props.inertia @ axes.T,
+        np.diag(props.principal_moments),
+        atol=1e-12 * props.principal_moments.max(),
+    )
+    np.testing.assert_allclose(
+        props.principal_moments, sorted([13 / 12 * 6, 10 / 12 * 6, 5 / 12 * 6]), rtol=1e-13
+    )
 
 
 def test_lamina_tensor_convention():
@@ -88,8 +94,11 @@ angles = st.floats(-np.pi, np.pi, allow_nan=False)
 offsets = st.lists(st.floats(-1e3, 1e3, allow_nan=False), min_size=3, max_size=3)
 
 
-@given(angles, st.lists(st.floats(-1, 1), min_size=3, max_size=3).filter(
-    lambda v: np.linalg.norm(v) > 0.1), offsets)
+@given(
+    angles,
+    st.lists(st.floats(-1, 1), min_size=3, max_size=3).filter(lambda v: np.linalg.norm(v) > 0.1),
+    offsets,
+)
 def test_rigid_motions_commute_with_mass_properties(angle, axis, offset):
     """Moving the body then integrating = integrating then moving the result."""
     body = union(P.box(1, 2, 0.5), P.cylinder(0.3, 1).translated([0.5, 1, 0.5]))

@@ -5,8 +5,8 @@ import os
 
 import numpy as np
 import pytest
-
 from conftest import SHAPES
+
 from plumbob import load
 from plumbob.cli import main
 
@@ -49,7 +49,8 @@ def test_block_figure_29():
     assert p.mass == pytest.approx(4000.0)
     assert p.center_of_mass[2] == pytest.approx(2.0)  # 2h upright
     lying = load(os.path.join(SHAPES, "block.toml")).transformed(
-        np.array([[0, 0, 1.0], [0, 1, 0], [-1, 0, 0]]))
+        np.array([[0, 0, 1.0], [0, 1, 0], [-1, 0, 0]])
+    )
     low = lying.hull_points()[:, 2].min()
     assert lying.mass_properties().center_of_mass[2] - low == pytest.approx(0.5)  # h/2 lying
 
@@ -75,13 +76,16 @@ def test_earth_moon_exercise_3():
     assert p.center_of_mass[0] == pytest.approx(4660e3, rel=1e-3)
 
 
-@pytest.mark.parametrize("name, com", [
-    ("l_shape.toml", [5 / 6, 5 / 6]),
-    ("semicircle.toml", [0, 4 / (3 * np.pi)]),
-    ("sculpture.toml", [-4 * np.sqrt(3) / 2 / 21, 19 * 1.5 / 21]),
-    ("stepped_cylinder.toml", [2.8, 0, 0]),
-    ("pyramid_cheops.toml", [0, 0, 36.75]),
-])
+@pytest.mark.parametrize(
+    "name, com",
+    [
+        ("l_shape.toml", [5 / 6, 5 / 6]),
+        ("semicircle.toml", [0, 4 / (3 * np.pi)]),
+        ("sculpture.toml", [-4 * np.sqrt(3) / 2 / 21, 19 * 1.5 / 21]),
+        ("stepped_cylinder.toml", [2.8, 0, 0]),
+        ("pyramid_cheops.toml", [0, 0, 36.75]),
+    ],
+)
 def test_through_the_cli(capsys, name, com):
     assert main(["mass", os.path.join(SHAPES, name), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)

@@ -7,12 +7,25 @@ from plumbob.errors import ExpressionError
 from plumbob.spec.expr import evaluate, parse
 
 
-@pytest.mark.parametrize("text, value", [
-    ("sqrt(3)/2", np.sqrt(3) / 2), ("2^3^2", 512.0), ("-2^2", -4.0), ("(1+2)*3", 9.0),
-    ("2**3", 8.0), ("pi", np.pi), ("cos(pi)", -1.0), ("atan2(1, 1)", np.pi / 4),
-    ("3 × 4 ÷ 2", 6.0), ("1e-3 * 5", 5e-3), (".5 + 1.", 1.5), ("max(2, 3) - min(2, 3)", 1.0),
-    ("2 − 1", 1.0), ("degrees(pi)", 180.0),
-])
+@pytest.mark.parametrize(
+    "text, value",
+    [
+        ("sqrt(3)/2", np.sqrt(3) / 2),
+        ("2^3^2", 512.0),
+        ("-2^2", -4.0),
+        ("(1+2)*3", 9.0),
+        ("2**3", 8.0),
+        ("pi", np.pi),
+        ("cos(pi)", -1.0),
+        ("atan2(1, 1)", np.pi / 4),
+        ("3 × 4 ÷ 2", 6.0),
+        ("1e-3 * 5", 5e-3),
+        (".5 + 1.", 1.5),
+        ("max(2, 3) - min(2, 3)", 1.0),
+        ("2 − 1", 1.0),
+        ("degrees(pi)", 180.0),
+    ],
+)
 def test_values(text, value):
     assert evaluate(text) == pytest.approx(value, rel=1e-15)
 
@@ -25,29 +38,43 @@ def test_names_and_vectorised_fields():
     assert field.names == {"z"}
 
 
-@pytest.mark.parametrize("text, degree", [
-    ("1 + x", 1), ("x*y*z", 3), ("(x+y)^3", 3), ("x^2/4", 2), ("exp(x)", None), ("1/x", None),
-    ("x^0.5", None), ("sqrt(2)*x", 1), ("step(x - 0.5)", None), ("7", 0),
-])
+@pytest.mark.parametrize(
+    "text, degree",
+    [
+        ("1 + x", 1),
+        ("x*y*z", 3),
+        ("(x+y)^3", 3),
+        ("x^2/4", 2),
+        ("exp(x)", None),
+        ("1/x", None),
+        ("x^0.5", None),
+        ("sqrt(2)*x", 1),
+        ("step(x - 0.5)", None),
+        ("7", 0),
+    ],
+)
 def test_polynomial_degree(text, degree):
     assert parse(text).degree() == degree
 
 
-@pytest.mark.parametrize("text, message", [
-    ("__import__('os')", "unexpected character"),
-    ("2 +", "ends too soon"),
-    ("open(1)", "unknown function 'open'"),
-    ("a.b", "unexpected character"),
-    ("x[0]", "unexpected character"),
-    ("lambda: 1", "unexpected character"),
-    ("1 2", "unexpected '2'"),
-    ("sqrt(1, 2)", "takes 1 argument"),
-    ("(" * 200 + "1" + ")" * 200, "nests too deeply"),
-    ("1" * 3000, "limited to"),
-    ("", "empty"),
-    ("q + 1", "unknown name 'q'"),
-    ("1/0", "not a finite number"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("__import__('os')", "unexpected character"),
+        ("2 +", "ends too soon"),
+        ("open(1)", "unknown function 'open'"),
+        ("a.b", "unexpected character"),
+        ("x[0]", "unexpected character"),
+        ("lambda: 1", "unexpected character"),
+        ("1 2", "unexpected '2'"),
+        ("sqrt(1, 2)", "takes 1 argument"),
+        ("(" * 200 + "1" + ")" * 200, "nests too deeply"),
+        ("1" * 3000, "limited to"),
+        ("", "empty"),
+        ("q + 1", "unknown name 'q'"),
+        ("1/0", "not a finite number"),
+    ],
+)
 def test_unsafe_or_malformed_expressions_are_errors(text, message):
     with pytest.raises(ExpressionError, match=message):
         evaluate(text)

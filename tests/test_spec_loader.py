@@ -14,7 +14,9 @@ def write(tmp_path, text, name="shape.toml"):
 
 
 def test_parameters_build_on_each_other(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [parameters]
 a = 2
 b = "a^2 + 1"
@@ -22,33 +24,40 @@ b = "a^2 + 1"
 type = "rectangle"
 width = "b"
 height = "a"
-""")
+""",
+    )
     props = load_spec(path).body.mass_properties()
     assert props.area == pytest.approx(10.0)
 
 
 def test_units_scale_lengths_not_angles(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [shape]
 units = "mm"
 [[part]]
 type = "sector"
 radius = 1000
 angle = 90
-""")
+""",
+    )
     props = load_spec(path).body.mass_properties()
     assert props.area == pytest.approx(np.pi / 4, rel=1e-14)
 
 
 def test_material_and_thickness_make_a_heavy_lamina(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [shape]
 material = "steel"
 thickness = 0.01
 [[part]]
 type = "square"
 side = 1
-""")
+""",
+    )
     assert load_spec(path).body.mass_properties().mass == pytest.approx(78.5)
 
 
@@ -59,7 +68,9 @@ def test_lamina_of_a_material_needs_a_thickness(tmp_path):
 
 
 def test_subtract_and_placement(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [shape]
 density = 2
 [[part]]
@@ -71,14 +82,17 @@ op = "subtract"
 type = "disc"
 radius = 0.5
 at = [3, 1]
-""")
+""",
+    )
     body = load_spec(path).body
     assert isinstance(body, Composite)
     assert body.mass_properties().mass == pytest.approx(2 * (8 - np.pi / 4), rel=1e-15)
 
 
 def test_parts_of_different_materials_make_an_assembly(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [[part]]
 name = "foot"
 type = "box"
@@ -93,57 +107,93 @@ radius = 0.05
 height = 2
 at = [0.5, 0.5, 0.2]
 material = "steel"
-""")
+""",
+    )
     body = load_spec(path).body
     assert isinstance(body, Assembly) and body.kind == "assembly"
     assert [p.name for p in body.parts] == ["foot", "post"]
 
 
 def test_rotation_in_3d_and_2d(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [[part]]
 type = "cylinder"
 radius = 1
 height = 2
 rotate = { axis = [0, 1, 0], angle = 90 }
-""")
-    assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx([1, 0, 0], abs=1e-15)
-    path = write(tmp_path, '[[part]]\ntype = "rectangle"\nwidth = 2\nheight = 1\nrotate = 90\n', "b.toml")
-    assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx([-0.5, 1], abs=1e-15)
+""",
+    )
+    assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx(
+        [1, 0, 0], abs=1e-15
+    )
+    path = write(
+        tmp_path, '[[part]]\ntype = "rectangle"\nwidth = 2\nheight = 1\nrotate = 90\n', "b.toml"
+    )
+    assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx(
+        [-0.5, 1], abs=1e-15
+    )
 
 
 def test_particles(tmp_path):
-    path = write(tmp_path, """
+    path = write(
+        tmp_path,
+        """
 [[particle]]
 mass = 1
 position = [0, 0, 0]
 [[particle]]
 mass = 3
 position = [4, 0, 0]
-""")
+""",
+    )
     props = load_spec(path).body.mass_properties()
     assert props.center_of_mass == pytest.approx([3, 0, 0])
 
 
-@pytest.mark.parametrize("text, error, message", [
-    ('[[part]]\ntype = "rectangle"\nwidht = 1\nheight = 1\n', SpecError, "did you mean 'width'"),
-    ('[[part]]\ntype = "rectangel"\nwidth = 1\nheight = 1\n', SpecError, "did you mean 'rectangle'"),
-    ('[[part]]\ntype = "rectangle"\nwidth = 1\n', SpecError, "needs height"),
-    ('[[part]]\ntype = "disc"\nradius = "__import__(\'os\')"\n', SpecError, "unexpected character"),
-    ('[[part]]\ntype = "disc"\nradius = "2 +"\n', SpecError, "ends too soon"),
-    ('[shape]\ndensity = -5\n[[part]]\ntype = "disc"\nradius = 1\n', SpecError, "positive"),
-    ('[[part]]\ntype = "disc"\nradius = 0\n', SpecError, "radius must be a positive"),
-    ('[[part]]\ntype = "box"\nlength = 1\nwidth = 1\nheight = 0\n', SpecError, "height"),
-    ('[shape]\nmaterial = "unobtainium"\nthickness = 1\n[[part]]\ntype = "disc"\nradius = 1\n',
-     SpecError, "unknown material"),
-    ('[shapes]\n', SpecError, "unknown top-level key 'shapes'"),
-    ('[shape]\nname = "x"\n', SpecError, "needs \\[\\[part\\]\\]"),
-    ('[[part]]\ntype = "disc"\nradius = 1\n[[part]]\ntype = "box"\nlength = 1\nwidth = 1\n'
-     'height = 1\n', SpecError, "all parts must be 2D"),
-    ('not toml at all = = =', SpecError, "not valid TOML"),
-    ('[[particle]]\nmass = -1\nposition = [0, 0]\n', SpecError, "must be positive"),
-    ('[parameters]\nx = 1\n[[part]]\ntype = "disc"\nradius = 1\n', SpecError, "reserved"),
-])
+@pytest.mark.parametrize(
+    "text, error, message",
+    [
+        (
+            '[[part]]\ntype = "rectangle"\nwidht = 1\nheight = 1\n',
+            SpecError,
+            "did you mean 'width'",
+        ),
+        (
+            '[[part]]\ntype = "rectangel"\nwidth = 1\nheight = 1\n',
+            SpecError,
+            "did you mean 'rectangle'",
+        ),
+        ('[[part]]\ntype = "rectangle"\nwidth = 1\n', SpecError, "needs height"),
+        (
+            '[[part]]\ntype = "disc"\nradius = "__import__(\'os\')"\n',
+            SpecError,
+            "unexpected character",
+        ),
+        ('[[part]]\ntype = "disc"\nradius = "2 +"\n', SpecError, "ends too soon"),
+        ('[shape]\ndensity = -5\n[[part]]\ntype = "disc"\nradius = 1\n', SpecError, "positive"),
+        ('[[part]]\ntype = "disc"\nradius = 0\n', SpecError, "radius must be a positive"),
+        ('[[part]]\ntype = "box"\nlength = 1\nwidth = 1\nheight = 0\n', SpecError, "height"),
+        (
+            '[shape]\nmaterial = "unobtainium"\nthickness = 1\n'
+            '[[part]]\ntype = "disc"\nradius = 1\n',
+            SpecError,
+            "unknown material",
+        ),
+        ("[shapes]\n", SpecError, "unknown top-level key 'shapes'"),
+        ('[shape]\nname = "x"\n', SpecError, "needs \\[\\[part\\]\\]"),
+        (
+            '[[part]]\ntype = "disc"\nradius = 1\n[[part]]\ntype = "box"\nlength = 1\nwidth = 1\n'
+            "height = 1\n",
+            SpecError,
+            "all parts must be 2D",
+        ),
+        ("not toml at all = = =", SpecError, "not valid TOML"),
+        ("[[particle]]\nmass = -1\nposition = [0, 0]\n", SpecError, "must be positive"),
+        ('[parameters]\nx = 1\n[[part]]\ntype = "disc"\nradius = 1\n', SpecError, "reserved"),
+    ],
+)
 def test_bad_specs_name_the_problem(tmp_path, text, error, message):
     path = write(tmp_path, text)
     with pytest.raises(error, match=message) as info:

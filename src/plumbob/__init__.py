@@ -14,9 +14,21 @@ from importlib import import_module
 from typing import Any
 
 __all__ = [
-    "load", "read", "mass_properties", "MassProperties", "PlumbobError", "primitives",
-    "union", "difference", "intersection", "Assembly", "ParticleSystem", "Lamina",
-    "MeshSolid", "material",
+    "load",
+    "read",
+    "mass_properties",
+    "MassProperties",
+    "PlumbobError",
+    "primitives",
+    "union",
+    "difference",
+    "intersection",
+    "Assembly",
+    "ParticleSystem",
+    "Lamina",
+    "MeshSolid",
+    "material",
+    "collide",
 ]
 
 _LAZY = {
@@ -32,6 +44,7 @@ _LAZY = {
     "Lamina": ("plumbob.bodies.lamina", "Lamina"),
     "MeshSolid": ("plumbob.bodies.solid", "MeshSolid"),
     "material": ("plumbob.materials", "material"),
+    "collide": ("plumbob.dynamics.collisions", "collide"),
 }
 
 

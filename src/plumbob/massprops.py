@@ -144,7 +144,7 @@ class MassProperties:
         """Inertia tensor about ``point`` (parallel axes), kg·m², shape (3, 3).
 
         >>> disc = point_mass(2.0, [1.0, 0.0, 0.0])
-        >>> disc.inertia_about([0, 0, 0])[1, 1]
+        >>> float(disc.inertia_about([0, 0, 0])[1, 1])
         2.0
         """
         offset = self.center_of_mass_3d - _as_3d(np.asarray(point, dtype=float))

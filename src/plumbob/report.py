@@ -54,13 +54,25 @@ def to_json(obj: Any, indent: int = 0) -> str:
     if isinstance(obj, list):
         flat = all(not isinstance(v, (dict, list)) for v in obj)
         if flat and len(obj) <= 16:
-            return "[" + ", ".join(json.dumps(v, allow_nan=False, ensure_ascii=False) for v in obj) + "]"
-        small = all(isinstance(v, list) and all(not isinstance(u, (dict, list)) for u in v) for v in obj)
+            return (
+                "["
+                + ", ".join(json.dumps(v, allow_nan=False, ensure_ascii=False) for v in obj)
+                + "]"
+            )
+        small = all(
+            isinstance(v, list) and all(not isinstance(u, (dict, list)) for u in v) for v in obj
+        )
         if small and obj and len(obj) <= 4:
             return "[" + ", ".join(to_json(v) for v in obj) + "]"
         if not obj:
             return "[]"
-        return "[\n" + ",\n".join(pad + to_json(v, indent + 1) for v in obj) + "\n" + "  " * indent + "]"
+        return (
+            "[\n"
+            + ",\n".join(pad + to_json(v, indent + 1) for v in obj)
+            + "\n"
+            + "  " * indent
+            + "]"
+        )
     return json.dumps(obj, allow_nan=False, ensure_ascii=False)
 
 

@@ -9,9 +9,11 @@ from ._common import add_body_arguments, load_body, print_notices
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
-        "mass", help="mass properties of a body",
+        "mass",
+        help="mass properties of a body",
         description="Mass, area or volume, centre of mass, inertia tensor about the centre of mass "
-                    "and principal axes of the body in PATH.")
+        "and principal axes of the body in PATH.",
+    )
     add_body_arguments(parser)
     parser.set_defaults(func=run)
 

@@ -18,7 +18,9 @@ def _parts(reading: Reading) -> list[tuple[str, str, MassProperties]]:
     body = reading.body
     if not isinstance(body, Assembly):
         return []
-    return [(p.name or f"part {i + 1}", p.kind, p.mass_properties()) for i, p in enumerate(body.parts)]
+    return [
+        (p.name or f"part {i + 1}", p.kind, p.mass_properties()) for i, p in enumerate(body.parts)
+    ]
 
 
 def mass_json(reading: Reading) -> dict[str, Any]:
@@ -33,8 +35,14 @@ def mass_json(reading: Reading) -> dict[str, Any]:
     parts = _parts(reading)
     if parts:
         out["part_properties"] = [
-            {"name": name, **{k: v for k, v in mass_properties_dict(p, kind).items()
-                              if k in ("kind", "mass", "area", "volume", "center_of_mass", "exact")}}
+            {
+                "name": name,
+                **{
+                    k: v
+                    for k, v in mass_properties_dict(p, kind).items()
+                    if k in ("kind", "mass", "area", "volume", "center_of_mass", "exact")
+                },
+            }
             for name, kind, p in parts
         ]
     if reading.notices:
@@ -60,7 +68,9 @@ def mass_text(reading: Reading) -> str:
     rows.append(("principal moments", f"{format_vector(props.principal_moments)} kg·m²"))
     for i, axis in enumerate(props.principal_axes):
         rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
-    rows.append(("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})"))
+    rows.append(
+        ("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})")
+    )
     rows.append(("parts", str(props.parts)))
     title = getattr(body, "name", None) or reading.path or "body"
     text = table(rows, title)
@@ -68,8 +78,10 @@ def mass_text(reading: Reading) -> str:
     if parts:
         width = max(len(n) for n, _, _ in parts)
         lines = ["", f"{'part':<{width}}  {'mass (kg)':>12}  centre of mass (m)"]
-        lines += [f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
-                  for name, _, p in parts]
+        lines += [
+            f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
+            for name, _, p in parts
+        ]
         text += "\n" + "\n".join(lines)
     for note in props.notes:
         text += f"\nnote: {note}"

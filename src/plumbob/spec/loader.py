@@ -632,4 +632,10 @@ def load_spec(path: str) -> Reading:
         raise InputFileError("not a text file (a TOML spec must be UTF-8)", path=path) from None
     except tomllib.TOMLDecodeError as exc:
         raise SpecError(f"not valid TOML: {exc}", path=path) from None
+    if data.get("kind") == "simulation":
+        # A simulation spec (docs/simulate.md) also describes a particle system at t = 0.
+        from ..dynamics.spec import parse_simulation
+
+        simulation = parse_simulation(data, path)
+        return Reading(simulation.model.system, (), path)
     return build_spec(data, path)
