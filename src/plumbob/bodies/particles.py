@@ -2,30 +2,33 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import GeometryError
 from ..massprops import MassProperties
+from .base import Body
 
 __all__ = ["ParticleSystem"]
 
 
 @dataclass(frozen=True, eq=False)
-class ParticleSystem:
+class ParticleSystem(Body):
     """Point masses with positions and (optionally) velocities.
 
     masses: (n,) kg, each > 0.
     positions: (n, d) m, d = 2 or 3.
     velocities: (n, d) m/s, or None for a system at rest.
     names: optional labels, one per particle.
+    name: optional label of the whole system.
     """
 
     masses: np.ndarray
     positions: np.ndarray
     velocities: np.ndarray | None = None
     names: tuple[str, ...] | None = None
+    name: str | None = None
 
     kind = "particles"
 
@@ -133,6 +136,18 @@ class ParticleSystem:
         )
         return MassProperties(self.dim, self.total_mass, 0.0, com, inertia, parts=len(self.masses))
 
-    def hull_points(self) -> np.ndarray:
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
+        """The particles turned or mirrored by ``matrix`` (d × d) and moved by ``offset``;
+        velocities turn with them."""
+        matrix = np.asarray(matrix, dtype=float)
+        offset = np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float)
+        if matrix.shape != (self.dim, self.dim) or not np.allclose(
+            matrix @ matrix.T, np.eye(self.dim), atol=1e-12
+        ):
+            raise GeometryError(f"particles are placed by a {self.dim}×{self.dim} rotation or reflection")
+        velocities = None if self.velocities is None else self.velocities @ matrix.T
+        return replace(self, positions=self.positions @ matrix.T + offset, velocities=velocities)
+
+    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         """(n, d) points whose convex hull is the system's."""
         return self.positions
