@@ -204,8 +204,9 @@ class Region:
         return float(np.linalg.norm(np.ptp(self.bounds, axis=0)))
 
     def local_origin(self) -> np.ndarray:
-        """A point near the region to sum products about."""
-        return self.rings[0].vertices.mean(axis=0)
+        """A point near the region to sum products about: a vertex of its first ring
+        (every offset is then at most the region's size)."""
+        return self.rings[0].vertices[0].copy()
 
     def moments(self, origin: np.ndarray | None = None, degree: int = 2) -> AreaMoments:
         """Signed moments of the region about ``origin`` (default: a local origin)."""
