@@ -49,12 +49,10 @@ def main() -> None:
         )
         print("whole processes (best of runs):")
         print(f"  numpy.fromfile           {read_only:8.3f} s")
-        print(
-            f"  plumbob mass --json      {ours:8.3f} s   {ours / read_only:5.2f}× reading (target ≤ 3)"
-        )
-        print(
-            f"  trimesh load + mass      {theirs:8.3f} s   plumbob is {theirs / ours:5.1f}× faster (target ≥ 10)"
-        )
+        ratio = ours / read_only
+        print(f"  plumbob mass --json      {ours:8.3f} s   {ratio:5.2f}× reading (target ≤ 3)")
+        speedup = theirs / ours
+        print(f"  trimesh load + mass      {theirs:8.3f} s   plumbob is {speedup:5.1f}× faster (target ≥ 10)")
 
         ours_call = time_call(lambda: read(path).body.mass_properties())
         theirs_call = time_call(lambda: trimesh.load(path).mass_properties, repeat=2)
