@@ -23,7 +23,7 @@ import numpy as np
 
 __all__ = ["VolumeMoments", "triangle_soup_moments", "CHUNK"]
 
-CHUNK = 1 << 17  # triangles per pass: ~30 MB of float64 temporaries
+CHUNK = 1 << 12  # triangles per pass: the temporaries (~1 MB) stay in cache
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,7 +32,8 @@ class VolumeMoments:
 
     origin: (3,) m. m0: m³. m1: (3,) m⁴. m2: (3, 3) m⁵.
     vector_area: (3,) m², zero on a closed surface.
-    area: total surface area, m².
+    area: a measure of the surface's size, m²: the sum over triangles of the L1 norm
+        of their vector area (between 1 and √3 times the true area).
     triangles: how many triangles were summed.
     """
 
@@ -65,25 +66,40 @@ class VolumeMoments:
 
 
 def _chunk_moments(tri: np.ndarray, origin: np.ndarray) -> np.ndarray:
-    """Sums for one chunk (k, 3, 3) → flat array of 17 numbers."""
-    a = tri[:, 0] - origin
-    b = tri[:, 1] - origin
-    c = tri[:, 2] - origin
-    normal = np.cross(b - a, c - a)
-    det = np.einsum("ij,ij->i", a, np.cross(b, c))  # 6 × signed tet volume
-    s = a + b + c
+    """Sums for one chunk (k, 3, 3) → flat array of 17 numbers.
+
+    With a, b, c the corners relative to the origin, u = b − a, v = c − a and
+    n = u × v (twice the triangle's vector area), the tetrahedron (0, a, b, c)
+    has 6V = a · (b × c) = a · n. Its integrals: ``∫ r dV = V (a+b+c)/4`` and
+    ``∫ r rᵀ dV = V/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ)`` with s = a + b + c; the
+    last is one small matrix product over the stacked corners.
+    """
+    # component-major copy: corners[i, j] is coordinate j of corner i, contiguous over triangles
+    corners = np.empty((4, 3, len(tri)))
+    np.subtract(tri.transpose(1, 2, 0), origin[None, :, None], out=corners[:3])
+    a, b, c = corners[0], corners[1], corners[2]
+    u = b - a
+    v = c - a
+    n = np.empty_like(u)
+    np.multiply(u[1], v[2], out=n[0])
+    n[0] -= u[2] * v[1]
+    np.multiply(u[2], v[0], out=n[1])
+    n[1] -= u[0] * v[2]
+    np.multiply(u[0], v[1], out=n[2])
+    n[2] -= u[1] * v[0]
+    det = a[0] * n[0]
+    det += a[1] * n[1]
+    det += a[2] * n[2]
+    np.add(a, b, out=corners[3])
+    corners[3] += c
     out = np.empty(17)
     out[0] = det.sum() / 6
-    out[1:4] = det @ s / 24
-    # ∫ r rᵀ over the tet (0, a, b, c) = V/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ), V = det/6
-    w = det / 120
-    q = np.einsum("k,ki,kj->ij", w, a, a)
-    q += np.einsum("k,ki,kj->ij", w, b, b)
-    q += np.einsum("k,ki,kj->ij", w, c, c)
-    q += np.einsum("k,ki,kj->ij", w, s, s)
-    out[4:13] = q.reshape(-1)
-    out[13:16] = normal.sum(axis=0) / 2
-    out[16] = np.sqrt(np.einsum("ij,ij->i", normal, normal)).sum() / 2
+    out[1:4] = corners[3] @ det / 24
+    stacked = corners.transpose(1, 0, 2).reshape(3, -1)
+    weights = np.tile(det, 4)
+    out[4:13] = ((stacked * weights) @ stacked.T).reshape(-1) / 120
+    out[13:16] = n.sum(axis=1) / 2
+    out[16] = np.abs(n).sum() / 2  # L1 size of the surface: the scale closure is judged by
     return out
 
 
