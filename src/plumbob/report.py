@@ -83,7 +83,7 @@ def dump_json(obj: dict, stream=None) -> None:
 
 
 def format_number(value: float, digits: int = 6) -> str:
-    """A number with ``digits`` significant figures; tiny round-off shown as 0."""
+    """A number with ``digits`` significant figures."""
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "—" if value is None else str(value)
     if value == 0:
