@@ -64,7 +64,7 @@ def mass_text(reading: Reading) -> str:
     scale = float(np.abs(props.center_of_mass).max() + np.sqrt(np.trace(props.inertia) / props.mass))
     com = np.where(np.abs(props.center_of_mass) < 1e-12 * scale, 0.0, props.center_of_mass)
     rows.append(("centre of mass", f"{format_vector(com)} m"))
-    inertia = props.inertia
+    inertia = np.where(np.abs(props.inertia) < 1e-12 * np.abs(props.inertia).max(), 0.0, props.inertia)
     labels = ("inertia (about centre)", "", "")
     for label, row in zip(labels, inertia):
         rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row) + "]  kg·m²"))
