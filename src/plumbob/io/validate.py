@@ -47,7 +47,7 @@ ABSURD_COORDINATE = 1e9
 #: m; bounding-box diagonals outside this range draw a warning about units
 PLAUSIBLE_SIZE = (1e-5, 1e3)
 #: triangles; meshes up to this size always get the full topological check
-FULL_CHECK_LIMIT = 100_000
+FULL_CHECK_LIMIT = 50_000
 #: a hole is closed by --repair when its patch is at most this share of the surface
 HOLE_AREA_FRACTION = 0.05
 #: shells beyond which the overlap check is skipped (it costs shells × triangles)
@@ -126,7 +126,8 @@ def check_extent(lo: np.ndarray, hi: np.ndarray, *, path: str | None) -> tuple[s
 
 def finite_bounds(points: np.ndarray, *, path: str | None, what: str = "triangle",
                   chunk: int = CHUNK) -> tuple[np.ndarray, np.ndarray]:
-    """Bounding box (lo, hi) of ``points`` (n, …, d); a NaN or infinity is an error naming its item."""
+    """Bounding box (lo, hi) of ``points`` (n, …, d); a NaN or infinity is an error naming
+    its item."""
     points = np.asarray(points)
     n = len(points)
     d = points.shape[-1]
@@ -222,14 +223,18 @@ def connected_components(n: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.unique(parent, return_inverse=True)[1].reshape(-1)
 
 
-_HASH = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9], dtype=np.uint64)
+def _mix(z: np.ndarray) -> np.ndarray:
+    """splitmix64's finaliser: every input bit reaches every output bit (uint64, wraps)."""
+    z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+    z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    return z ^ (z >> np.uint64(31))
 
 
 def _merge_vertices(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Unique points (V, 3) float64 and the index of each input point, merging exact copies."""
     p = np.ascontiguousarray(points, dtype=float) + 0.0  # -0.0 → 0.0
     bits = p.view(np.uint64)
-    key = (bits[:, 0] * _HASH[0]) ^ (bits[:, 1] * _HASH[1]) ^ (bits[:, 2] * _HASH[2])
+    key = _mix(_mix(_mix(bits[:, 0]) ^ bits[:, 1]) ^ bits[:, 2])
     _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
     unique = p[first]
     if not np.array_equal(unique[inverse], p):  # a hash collision: merge exactly instead
@@ -243,7 +248,8 @@ class Topology:
 
     vertices: (V, 3) m, merged exact copies. faces: (n, 3) indices, winding as read.
     flip: (n,) bool, faces wound against the rest of their shell (to be turned).
-    shell: (n,) shell label 0..shells-1 (faces joined through shared edges).
+    shell: (n,) shell label 0..shells-1 (faces joined through shared edges, however many
+        faces share each).
     boundary: (b, 2) boundary half-edges (vertex indices), directed as in the
         turned faces, each paired with the face it belongs to in ``boundary_face``.
     nonmanifold: edges shared by more than two faces.
@@ -297,7 +303,10 @@ def mesh_topology(triangles: np.ndarray) -> Topology:
     orientable = not bool(np.any(plus == minus))
     weight = np.bincount(plus, minlength=2 * n)
     flip = (weight[plus] < weight[minus]) | ((weight[plus] == weight[minus]) & (plus > minus))
-    shell = np.unique(np.minimum(plus, minus), return_inverse=True)[1].reshape(-1)
+    # Shells: faces joined through any shared edge (also where more than two meet, as
+    # when two cubes share a face), so a shell is a closed surface on its own.
+    same_edge = np.flatnonzero(skey[1:] == skey[:-1])
+    shell = connected_components(n, owner[order[same_edge]], owner[order[same_edge + 1]])
     single = order[starts[counts == 1]]
     boundary = half[single]
     boundary_face = owner[single]
@@ -309,7 +318,8 @@ def mesh_topology(triangles: np.ndarray) -> Topology:
 
 # ---------------------------------------------------------------- repairs
 def _fill_holes(topo: Topology, faces: np.ndarray, shell: np.ndarray, total_area: float,
-                *, path: str | None, label: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
+                *, path: str | None, label: str, scale: float = 1.0
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
     """Close every boundary loop with a fan from its centroid (a new vertex).
 
     Returns vertices, faces, shell labels and a notice. Raises when a hole is
@@ -322,7 +332,8 @@ def _fill_holes(topo: Topology, faces: np.ndarray, shell: np.ndarray, total_area
     loops = int(loop.max()) + 1
     start = topo.vertices[edges[:, 0]]
     size = np.bincount(loop, minlength=loops)
-    centre = np.stack([np.bincount(loop, start[:, i], loops) for i in range(3)], axis=1) / size[:, None]
+    centre = np.stack([np.bincount(loop, start[:, i], loops) for i in range(3)], axis=1)
+    centre /= size[:, None]
     new_faces = np.stack((edges[:, 1], edges[:, 0], nv + loop), axis=1)
     vertices = np.concatenate((topo.vertices, centre))
     tri = vertices[new_faces]
@@ -333,10 +344,10 @@ def _fill_holes(topo: Topology, faces: np.ndarray, shell: np.ndarray, total_area
         worst = int(np.argmax(patch_area))
         raise GeometryError(
             f"{label}is open with a hole too large to close safely ({size[worst]} boundary edges, "
-            f"{patch_area[worst] / total_area:.0%} of the surface) near {fmt_point(centre[worst])}: "
-            "close it in a mesh editor", path=path)
+            f"{patch_area[worst] / total_area:.0%} of the surface) near "
+            f"{fmt_point(centre[worst] / scale)}: close it in a mesh editor", path=path)
     notice = (f"repair: closed {loops} hole{'s' if loops > 1 else ''} ({len(edges)} boundary "
-              f"edges) near {fmt_point(centre[np.argmax(patch_area)])}, adding "
+              f"edges) near {fmt_point(centre[np.argmax(patch_area)] / scale)}, adding "
               f"{patch_area.sum():.4g} m² of surface")
     return (vertices, np.concatenate((faces, new_faces)),
             np.concatenate((shell, shell[topo.boundary_face])), f"{label}{notice}")
@@ -404,7 +415,8 @@ def _resolve_shells(vertices, faces, shell, shells, *, path, label):
     notices: list[str] = []
     tri = vertices[faces]
     origin = vertices.mean(axis=0)
-    det = np.einsum("ij,ij->i", tri[:, 0] - origin, np.cross(tri[:, 1] - origin, tri[:, 2] - origin))
+    a, b, c = tri[:, 0] - origin, tri[:, 1] - origin, tri[:, 2] - origin
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))
     volume = np.bincount(shell, det, shells) / 6
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     area = np.bincount(shell, np.linalg.norm(normal, axis=1), shells) / 2
@@ -424,10 +436,23 @@ def _resolve_shells(vertices, faces, shell, shells, *, path, label):
             notices.append(f"{label}inside out: its faces pointed inward; turned outward")
             faces = faces[:, ::-1]
         return faces, shell, None, notices
+    corners = vertices[faces]
+    order = np.argsort(shell, kind="stable")
+    starts = np.r_[0, np.cumsum(np.bincount(shell, minlength=shells))[:-1]]
+    lo = np.minimum.reduceat(corners.min(axis=1)[order], starts, axis=0)
+    hi = np.maximum.reduceat(corners.max(axis=1)[order], starts, axis=0)
+    boxes_meet = (lo[:, None] <= hi[None, :]).all(axis=2) & (lo[None, :] <= hi[:, None]).all(axis=2)
+    np.fill_diagonal(boxes_meet, False)
+    if not boxes_meet.any():  # shells apart: each is a solid of its own
+        inward = volume < 0
+        if inward.any():
+            faces = np.where(inward[shell][:, None], faces[:, ::-1], faces)
+            what = "its faces" if inward.all() else f"{int(inward.sum())} of {shells} shells"
+            notices.append(f"{label}inside out: {what} pointed inward; turned outward")
+        return faces, shell, None, notices
     if shells > MAX_SHELLS_CHECKED or shells * len(faces) > 50_000_000:
         notices.append(f"{label}shells: {shells} shells, not checked for overlap (too many)")
-        inside_out = volume.sum() < 0
-        if inside_out:
+        if volume.sum() < 0:
             notices.append(f"{label}inside out: its faces pointed inward; turned outward")
             faces = faces[:, ::-1]
         return faces, shell, None, notices
@@ -452,16 +477,8 @@ def _resolve_shells(vertices, faces, shell, shells, *, path, label):
     # On its surface a solid shell must have no material outside it (depth 0), a void
     # shell exactly its host (depth 1); anything else means shells overlap.
     certain = ambiguous or bool(np.any(np.where(positive, depth != 0, depth != 1)))
-    corners = vertices[faces]
-    order = np.argsort(shell, kind="stable")
-    starts = np.r_[0, np.cumsum(np.bincount(shell, minlength=shells))[:-1]]
-    lo = np.minimum.reduceat(corners.min(axis=1)[order], starts, axis=0)
-    hi = np.maximum.reduceat(corners.max(axis=1)[order], starts, axis=0)
     pos = np.flatnonzero(positive)
-    boxes_meet = ((lo[pos, None] <= hi[None, pos]).all(axis=2)
-                  & (lo[None, pos] <= hi[pos, None]).all(axis=2))
-    np.fill_diagonal(boxes_meet, False)
-    if not (certain or boxes_meet.any()):
+    if not (certain or boxes_meet[np.ix_(pos, pos)].any()):
         return faces, shell, None, notices
     # Group each void with the smallest solid shell around it; unite the solids.
     groups = {int(p): [int(p)] for p in pos}
@@ -491,14 +508,16 @@ def _resolve_shells(vertices, faces, shell, shells, *, path, label):
 
 # ---------------------------------------------------------------- the check
 def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | None = None,
-                repair: bool = False, label: str | None = None) -> tuple[MeshSolid, tuple[str, ...]]:
+                repair: bool = False, label: str | None = None,
+                scale: float = 1.0) -> tuple[MeshSolid, tuple[str, ...]]:
     """A :class:`MeshSolid` from a triangle soup (n, 3, 3) in metres, checked and fixed.
 
     Raises :class:`GeometryError` for an empty, flat, open (unless ``repair``
     closes its small holes), non-orientable or non-finite mesh; turns an
     inside-out mesh or inconsistently wound faces (with a notice) and unites
     overlapping shells (with a notice). ``label`` names the body in messages
-    when a file holds several.
+    when a file holds several; ``scale`` (metres per file unit) puts the points
+    that messages name in the file's own coordinates.
     """
     prefix = f"{label}: " if label else ""
     n = len(triangles)
@@ -540,10 +559,10 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
         if not repair:
             raise GeometryError(
                 f"{prefix}the mesh is open: {len(topo.boundary)} boundary edges "
-                f"({holes} hole{'s' if holes > 1 else ''}), e.g. near {fmt_point(near)}; "
+                f"({holes} hole{'s' if holes > 1 else ''}), e.g. near {fmt_point(near / scale)}; "
                 "close it in a mesh editor or pass --repair", path=path)
         vertices, faces, shell, notice = _fill_holes(topo, faces, shell, summary.area,
-                                                     path=path, label=prefix)
+                                                     path=path, label=prefix, scale=scale)
         notices.append(notice)
         changed = True
     elif len(topo.boundary):
@@ -562,7 +581,8 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
         return _solid(united, name, path), tuple(notices)
     if not changed and faces is not before:
         # only whole shells turned: reuse the input's dtype (float32 stays float32)
-        return _solid(vertices[faces].astype(triangles.dtype, copy=False), name, path), tuple(notices)
+        same_dtype = vertices[faces].astype(triangles.dtype, copy=False)
+        return _solid(same_dtype, name, path), tuple(notices)
     if not changed:
         return _solid(triangles, name, path), tuple(notices)
     return _solid(vertices[faces], name, path), tuple(notices)

@@ -1,0 +1,71 @@
+"""``plumbob materials``: the material table — name, density, category, description, source."""
+
+from __future__ import annotations
+
+import argparse
+
+HELP = "list the materials that specs and --material accept, with densities and sources"
+EPILOG = """\
+Densities are typical values in kg/m³ near 20 °C; real pieces vary (the
+descriptions give ranges). Use a name in a spec (material = "oak") or on the
+command line (plumbob mass part.stl --material petg). Names ignore case,
+spaces and hyphens."""
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "materials", help=HELP, description=HELP[0].upper() + HELP[1:] + ".", epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("query", nargs="*", metavar="WORD",
+                        help="show only materials whose name, category or description "
+                             "contains every WORD")
+    parser.add_argument("--category", metavar="NAME",
+                        help="show only this category (concrete, stone, metal, wood, plastic, "
+                             "filament, liquid, ...)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(func=run)
+
+
+def _matches(entry, words: list[str], category: str | None) -> bool:
+    text = f"{entry.name} {entry.category} {entry.description}".lower().replace("_", " ")
+    if category is not None and entry.category.lower() != category.lower():
+        return False
+    return all(w.lower().replace("_", " ").replace("-", " ") in text for w in words)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import MaterialError
+    from ..materials import CATEGORIES, materials, sources
+    from ..report import dump_json
+
+    if args.category is not None and args.category.lower() not in CATEGORIES:
+        raise MaterialError(f"unknown category {args.category!r}; categories: "
+                            + ", ".join(CATEGORIES))
+    chosen = [m for m in materials().values() if _matches(m, args.query, args.category)]
+    refs = sources()
+    used = sorted({m.source for m in chosen})
+    if args.json:
+        dump_json({
+            "units": {"density": "kg/m^3"},
+            "materials": [{"name": m.name, "density": m.density, "category": m.category,
+                           "description": m.description, "source": m.source}
+                          for m in chosen],
+            "sources": {key: refs.get(key, key) for key in used},
+        })
+        return 0
+    if not chosen:
+        print("no material matches; 'plumbob materials' lists them all")
+        return 1
+    rows = [(m.name, f"{m.density:g}", m.category, m.description, m.source) for m in chosen]
+    header = ("name", "kg/m³", "category", "description", "source")
+    widths = [max(len(r[i]) for r in rows + [header]) for i in range(5)]
+    lines = ["  ".join(h.ljust(w) if i != 1 else h.rjust(w) for i, (h, w) in
+                       enumerate(zip(header, widths))).rstrip()]
+    for row in rows:
+        lines.append("  ".join(c.rjust(w) if i == 1 else c.ljust(w)
+                               for i, (c, w) in enumerate(zip(row, widths))).rstrip())
+    lines.append("")
+    lines.append("sources:")
+    lines.extend(f"  {key}: {refs.get(key, key)}" for key in used)
+    print("\n".join(lines))
+    return 0

@@ -1,0 +1,365 @@
+"""DXF outlines through ezdxf, arcs kept exact.
+
+Closed entities become outlines directly: LWPOLYLINE and 2D POLYLINE (bulges
+are exact circular arcs), CIRCLE (two half-turn arcs), closed SPLINE and
+full ELLIPSE. Open pieces — LINE, ARC, open polylines, open splines and
+elliptical arcs — are joined end to end (within 1e-9 of the drawing's size)
+into closed chains. Block references (INSERT) are expanded.
+
+SPLINEs that are non-rational and clamped are split exactly into Bézier
+pieces (degree 3 as they are, degree 2 raised to cubic, degree 1 as lines);
+rational or unclamped ones are flattened within 1e-7 of the drawing's size and
+the lamina marked not exact. Elliptical arcs become cubic Béziers (see
+:func:`~plumbob.io.outlines.elliptic_arc_cubics`).
+
+Units come from the ``$INSUNITS`` header unless ``--units`` is given.
+Entities drawn in another plane than XY are ignored (with a notice); a mirrored
+coordinate system (extrusion (0, 0, −1)) is mapped into XY exactly.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..bodies.region import Ring
+from ..errors import FormatError
+from . import Reading
+from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
+from .validate import FILE_UNITS, fmt_point, units_scale
+
+__all__ = ["read_dxf", "INSUNITS"]
+
+#: $INSUNITS code → (name, metres per unit)
+INSUNITS = {1: "inch", 2: "foot", 3: "mile", 4: "millimeter", 5: "centimeter", 6: "meter",
+            7: "kilometer", 10: "yard", 14: "decimeter"}
+JOIN_TOLERANCE = 1e-9  # relative to the drawing's size
+FLATTEN_TOLERANCE = 1e-7  # relative to the drawing's size
+MAX_BLOCK_DEPTH = 8
+_NAN = np.full((2, 2), np.nan)
+
+
+@dataclass(eq=False)
+class _Piece:
+    """An open or closed run of edges: points (m+1, 2) including its end, bulges (m,),
+    controls (m, 2, 2) NaN except cubic edges."""
+
+    points: np.ndarray
+    bulges: np.ndarray
+    controls: np.ndarray
+    label: str
+    name: str | None
+    error: float = 0.0
+    approximation: str | None = None
+
+    def reversed(self) -> _Piece:
+        return _Piece(self.points[::-1], -self.bulges[::-1], self.controls[::-1, ::-1], self.label,
+                      self.name, self.error, self.approximation)
+
+    def outline(self, scale: float) -> Outline:
+        ring = Ring(self.points[:-1] * scale, self.bulges, self.controls * scale)
+        return Outline(ring, self.label, self.name, self.error * scale * scale, self.approximation)
+
+
+def read_dxf(path: str, units: str | None = None) -> Reading:
+    """Laminas from the closed outlines of a DXF drawing (see module docstring)."""
+    doc = _open(path)
+    code = doc.header.get("$INSUNITS", 0)
+    file_units = INSUNITS.get(int(code)) if isinstance(code, int | float) else None
+    scale, notices = units_scale(units, file_units, FILE_UNITS.get(str(file_units)))
+    notices = list(notices)
+    pieces: list[_Piece] = []
+    counts: dict[str, int] = {}
+    try:
+        for entity in doc.modelspace():  # per entity
+            _collect(entity, pieces, counts, 0)
+    except FormatError:
+        raise
+    except Exception as error:  # noqa: BLE001 - ezdxf raises every kind on corrupt entities
+        raise FormatError(f"has an entity ezdxf cannot interpret: {type(error).__name__}: "
+                          f"{str(error)[:200]}", path=path) from None
+    if counts.get("tilted"):
+        notices.append(f"dxf: ignored {counts.pop('tilted')} entities not drawn in the XY plane")
+    if counts.get("other"):
+        counts.pop("other")
+    closed, open_pieces = _split_closed(pieces)
+    loops, leftovers = _join(open_pieces)
+    closed += loops
+    if not closed:
+        kinds = ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) or "no drawable entities"
+        where = (f"; an open end at {fmt_point(leftovers[0].points[-1])}" if leftovers else "")
+        raise FormatError(
+            f"has no closed outline ({kinds}){where}: draw closed LWPOLYLINEs, CIRCLEs or "
+            "LINE/ARC chains that meet end to end", path=path)
+    if leftovers:
+        notices.append(f"dxf: ignored {len(leftovers)} open piece(s) that do not close "
+                       f"(e.g. {leftovers[0].label} ending at "
+                       f"{fmt_point(leftovers[0].points[-1])})")
+    outlines = [p.outline(scale) for p in closed]
+    stem = os.path.splitext(os.path.basename(path))[0]
+    body, more = body_from_outlines(outlines, path=path, name=stem, scale=scale)
+    return Reading(body, tuple(notices) + more, path)
+
+
+def _open(path: str):
+    import ezdxf
+    from ezdxf import recover
+
+    try:
+        doc, _auditor = recover.readfile(path)
+    except (ezdxf.DXFError, OSError, UnicodeError, ValueError) as error:
+        raise FormatError(f"is not a readable DXF file: {str(error)[:200] or type(error).__name__}",
+                          path=path) from None
+    except Exception as error:  # noqa: BLE001 - the recovering parser may raise anything
+        raise FormatError(f"is not a readable DXF file: {type(error).__name__}: "
+                          f"{str(error)[:200]}", path=path) from None
+    return doc
+
+
+# ------------------------------------------------------------------ entities
+def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int) -> None:
+    kind = entity.dxftype()
+    if kind == "INSERT":
+        if depth >= MAX_BLOCK_DEPTH:
+            raise FormatError(f"nests block references deeper than {MAX_BLOCK_DEPTH}")
+        for sub in entity.virtual_entities():
+            _collect(sub, pieces, counts, depth + 1)
+        return
+    maker = _MAKERS.get(kind)
+    if maker is None:
+        counts["other"] = counts.get("other", 0) + 1
+        return
+    counts[kind] = counts.get(kind, 0) + 1
+    extrusion = np.asarray(entity.dxf.get("extrusion", (0.0, 0.0, 1.0)), dtype=float)
+    tilted = abs(abs(extrusion[2]) - np.linalg.norm(extrusion)) > 1e-12 * np.linalg.norm(extrusion)
+    if kind in ("LINE", "SPLINE", "ELLIPSE"):  # drawn in world coordinates
+        extrusion = np.array([0.0, 0.0, 1.0])
+    if tilted and kind != "LINE":
+        counts["tilted"] = counts.get("tilted", 0) + 1
+        return
+    handle = entity.dxf.get("handle", "?")
+    layer = entity.dxf.get("layer", "0")
+    label = f"{kind} #{handle} (layer {layer!r})"
+    piece = maker(entity, label, layer)
+    if piece is None:
+        return
+    if extrusion[2] < 0:  # OCS mirrored: x ↦ −x, arcs turn the other way
+        piece.points = piece.points * np.array([-1.0, 1.0])
+        piece.controls = piece.controls * np.array([-1.0, 1.0])
+        piece.bulges = -piece.bulges
+    pieces.append(piece)
+
+
+def _xy(points) -> np.ndarray:
+    return np.array([[float(p[0]), float(p[1])] for p in points]).reshape(-1, 2)
+
+
+def _polyline(points: np.ndarray, bulges: np.ndarray, closed: bool, label: str,
+              name: str) -> _Piece | None:
+    if len(points) < 2:
+        return None
+    if closed and not np.array_equal(points[0], points[-1]):
+        points = np.vstack((points, points[:1]))
+    else:
+        bulges = bulges[:-1]
+    n = len(points) - 1
+    return _Piece(points, bulges[:n].astype(float), np.broadcast_to(_NAN, (n, 2, 2)).copy(),
+                  label, name)
+
+
+def _lwpolyline(entity, label, name):
+    data = np.array([(x, y, b) for x, y, b in entity.get_points("xyb")], dtype=float).reshape(-1, 3)
+    return _polyline(data[:, :2], data[:, 2], bool(entity.closed), label, name)
+
+
+def _polyline2d(entity, label, name):
+    if not (entity.is_2d_polyline or entity.is_3d_polyline):
+        return None  # polyface and polygon meshes have no outline
+    vertices = list(entity.vertices)
+    points = _xy([v.dxf.location for v in vertices])
+    bulges = np.array([float(v.dxf.get("bulge", 0.0)) for v in vertices])
+    if entity.is_3d_polyline:
+        bulges[:] = 0.0
+    return _polyline(points, bulges, bool(entity.is_closed), label, name)
+
+
+def _circle(entity, label, name):
+    centre = _xy([entity.dxf.center])[0]
+    radius = float(entity.dxf.radius)
+    if not radius > 0:
+        return None
+    starts, bulges = arc_bulges(centre, radius, 0.0, 2 * np.pi)
+    points = np.vstack((starts, starts[:1]))
+    return _Piece(points, bulges, np.broadcast_to(_NAN, (2, 2, 2)).copy(), label, name)
+
+
+def _arc(entity, label, name):
+    centre = _xy([entity.dxf.center])[0]
+    radius = float(entity.dxf.radius)
+    start = np.radians(float(entity.dxf.start_angle) % 360)
+    sweep = np.radians((float(entity.dxf.end_angle) - float(entity.dxf.start_angle)) % 360)
+    if sweep == 0:
+        sweep = 2 * np.pi
+    if not radius > 0:
+        return None
+    starts, bulges = arc_bulges(centre, radius, start, sweep)
+    end, _ = arc_bulges(centre, radius, start + sweep, 0.0)
+    return _Piece(np.vstack((starts, end)), bulges,
+                  np.broadcast_to(_NAN, (len(bulges), 2, 2)).copy(), label, name)
+
+
+def _line(entity, label, name):
+    points = _xy([entity.dxf.start, entity.dxf.end])
+    if np.array_equal(points[0], points[1]):
+        return None
+    return _Piece(points, np.zeros(1), _NAN[None].copy(), label, name)
+
+
+def _ellipse(entity, label, name):
+    centre = _xy([entity.dxf.center])[0]
+    u = _xy([entity.dxf.major_axis])[0]
+    v = _xy([entity.minor_axis])[0]
+    t0 = float(entity.dxf.start_param)
+    sweep = (float(entity.dxf.end_param) - t0) % (2 * np.pi)
+    if sweep < 1e-12:
+        sweep = 2 * np.pi
+    ru, rv = np.linalg.norm(u), np.linalg.norm(v)
+    if abs(ru - rv) <= 1e-12 * ru:  # a circle
+        turn = np.sign(u[0] * v[1] - u[1] * v[0])  # −1 when the ellipse runs clockwise
+        start = np.arctan2(u[1], u[0]) + t0 * turn
+        starts, bulges = arc_bulges(centre, ru, start, sweep * turn)
+        end, _ = arc_bulges(centre, ru, start + sweep * turn, 0.0)
+        return _Piece(np.vstack((starts, end)), bulges,
+                      np.broadcast_to(_NAN, (len(bulges), 2, 2)).copy(), label, name)
+    points, controls, error = elliptic_arc_cubics(centre, u, v, t0, sweep)
+    return _Piece(points, np.zeros(len(controls)), controls, label, name, error,
+                  "elliptical arcs as cubic Béziers (error below 1e-10 of their size)")
+
+
+def _spline(entity, label, name):
+    tool = entity.construction_tool()
+    degree = int(tool.degree)
+    if not tool.is_rational and tool.is_clamped and degree <= 3:
+        beziers = [np.asarray([(p[0], p[1]) for p in b], dtype=float)
+                   for b in tool.bezier_decomposition()]
+        if beziers:
+            return _bezier_piece(beziers, degree, label, name)
+    # rational, unclamped or high degree: flatten within a stated distance
+    ctrl = _xy(tool.control_points)
+    size = float(np.linalg.norm(np.ptp(ctrl, axis=0))) or 1.0
+    distance = FLATTEN_TOLERANCE * size
+    points = _xy(tool.flattening(distance))
+    if len(points) < 2:
+        return None
+    length = float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+    n = len(points) - 1
+    return _Piece(points, np.zeros(n), np.broadcast_to(_NAN, (n, 2, 2)).copy(), label, name,
+                  distance * length, "splines flattened (error below 1e-7 of their size)")
+
+
+def _bezier_piece(beziers: list[np.ndarray], degree: int, label: str, name: str) -> _Piece:
+    starts, ends, controls = [], [], []
+    for b in beziers:  # per Bézier span
+        if degree == 3:
+            c = b[1:3]
+        elif degree == 2:  # raise exactly to a cubic
+            c = np.array([b[0] + 2 / 3 * (b[1] - b[0]), b[2] + 2 / 3 * (b[1] - b[2])])
+        else:
+            c = _NAN
+        starts.append(b[0])
+        ends.append(b[-1])
+        controls.append(c)
+    points = np.vstack((np.array(starts), ends[-1][None]))
+    return _Piece(points, np.zeros(len(starts)), np.array(controls), label, name)
+
+
+_MAKERS = {
+    "LWPOLYLINE": _lwpolyline,
+    "POLYLINE": _polyline2d,
+    "CIRCLE": _circle,
+    "ARC": _arc,
+    "LINE": _line,
+    "ELLIPSE": _ellipse,
+    "SPLINE": _spline,
+}
+
+
+# ------------------------------------------------------------------ joining
+def _split_closed(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
+    if not pieces:
+        return [], []
+    ends = np.concatenate([p.points[[0, -1]] for p in pieces])
+    size = float(np.linalg.norm(np.ptp(ends, axis=0))) or 1.0
+    tol = JOIN_TOLERANCE * size
+    closed, open_ = [], []
+    for p in pieces:  # per entity
+        gap = np.linalg.norm(p.points[-1] - p.points[0])
+        if gap <= tol and len(p.bulges) >= 1 and not (len(p.bulges) == 1 and p.bulges[0] == 0
+                                                      and np.isnan(p.controls[0]).all()):
+            p.points = np.vstack((p.points[:-1], p.points[:1]))
+            closed.append(p)
+        else:
+            open_.append(p)
+    return closed, open_
+
+
+def _join(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
+    """Chain open pieces whose ends meet into closed pieces; return (loops, leftovers)."""
+    if not pieces:
+        return [], []
+    from .validate import connected_components
+
+    ends = np.concatenate([p.points[[0, -1]] for p in pieces])  # (2k, 2): start, end
+    size = float(np.linalg.norm(np.ptp(ends, axis=0))) or 1.0
+    tol = JOIN_TOLERANCE * size
+    order = np.lexsort((ends[:, 1], ends[:, 0]))
+    # Ends that meet: near in x after sorting, then checked in full (few candidates).
+    i, j = [], []
+    for shift in range(1, 9):
+        a, b = order[:-shift], order[shift:]
+        near = np.linalg.norm(ends[a] - ends[b], axis=1) <= tol
+        i.append(a[near])
+        j.append(b[near])
+    node = connected_components(len(ends), np.concatenate(i), np.concatenate(j))
+    degree = np.bincount(node)
+    used = np.zeros(len(pieces), dtype=bool)
+    loops, leftovers = [], []
+    at: dict[int, list[int]] = {}
+    for e, n in enumerate(node):  # per piece end
+        at.setdefault(int(n), []).append(e)
+    for first in range(len(pieces)):  # walk each chain once
+        if used[first]:
+            continue
+        chain = [pieces[first]]
+        used[first] = True
+        start_node, current = node[2 * first], node[2 * first + 1]
+        ok = degree[start_node] == 2
+        while current != start_node:
+            if degree[current] != 2:
+                ok = False
+                break
+            nxt = [e for e in at[int(current)] if not used[e // 2]]
+            if not nxt:
+                ok = False
+                break
+            e = nxt[0]
+            used[e // 2] = True
+            piece = pieces[e // 2]
+            chain.append(piece if e % 2 == 0 else piece.reversed())
+            current = node[e + 1] if e % 2 == 0 else node[e - 1]
+        if ok and current == start_node:
+            loops.append(_concat(chain))
+        else:
+            leftovers.extend(chain)
+    return loops, leftovers
+
+
+def _concat(chain: list[_Piece]) -> _Piece:
+    points = np.vstack([p.points[:-1] for p in chain] + [chain[0].points[:1]])
+    labels = ", ".join(p.label for p in chain[:3]) + (", …" if len(chain) > 3 else "")
+    approx = next((p.approximation for p in chain if p.approximation), None)
+    return _Piece(points, np.concatenate([p.bulges for p in chain]),
+                  np.concatenate([p.controls for p in chain]), f"chain of {labels}",
+                  chain[0].name, sum(p.error for p in chain), approx)

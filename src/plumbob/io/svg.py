@@ -1,0 +1,280 @@
+"""SVG outlines: every closed path and shape, curves kept exact.
+
+The file is first parsed with defusedxml, which refuses entity declarations
+(entity-expansion bombs) and external references; then svgelements resolves
+styles, ``<use>`` and transforms. Segments become ring edges: lines as they
+are, circular arcs as bulges (exact), quadratic Béziers raised exactly to
+cubics, cubic Béziers as they are, elliptical arcs as cubic Béziers within
+about 1e-11 of their size (the lamina is then marked not exact, with a bound).
+
+Coordinates are read in user units (the numbers in the path data). Their size
+comes from the ``<svg>`` element: with a viewBox and a physical width or
+height (``100mm``, ``4in``, a number of CSS px), one user unit is that length
+over the viewBox's (exact CSS factors: 1 in = 96 px = 25.4 mm); without a
+viewBox a user unit is a CSS px (1/96 in); ``--units`` overrides both.
+
+Coordinates keep the SVG's orientation (y points down the page).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+import numpy as np
+
+from ..bodies.region import Ring
+from ..errors import FormatError, GeometryError
+from . import Reading
+from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
+from .validate import fmt_point, units_scale
+
+__all__ = ["read_svg", "PX"]
+
+PX = 0.0254 / 96  #: metres per CSS px
+
+
+def read_svg(path: str, units: str | None = None) -> Reading:
+    """Laminas from the closed paths and shapes of an SVG file (see module docstring)."""
+    _check_xml(path)
+    import svgelements as se
+
+    svg = _parse(path, None)
+    viewport = se.Matrix(svg.viewbox_transform) if svg.viewbox_transform else se.Matrix()
+    per_unit = _metres_per_user_unit(svg)
+    if not viewport.is_identity():  # read coordinates in user units, not svgelements' px
+        inverse = ~viewport
+        numbers = " ".join(repr(float(getattr(inverse, k))) for k in "abcdef")
+        svg = _parse(path, f"matrix({numbers})")
+    notices: list[str] = []
+    if units is not None:
+        scale, more = units_scale(units)
+        notices += more
+        if per_unit is not None and not np.isclose(per_unit, scale):
+            notices.append(f"units: the SVG's size says one user unit is {per_unit * 1e3:.6g} mm; "
+                           f"--units {units} used instead")
+    elif per_unit is not None:
+        scale = per_unit
+        notices.append(f"units: from the SVG's width and viewBox (one user unit is "
+                       f"{per_unit * 1e3:.6g} mm)")
+    else:
+        scale = PX
+        notices.append("units: the SVG gives no physical size; one user unit read as 1 px "
+                       "(1/96 in) — use --units to say otherwise")
+    outlines, skipped = _outlines(svg, path, scale)
+    if skipped:
+        notices.append(f"svg: ignored {skipped} open line/polyline element(s), which enclose "
+                       "no area")
+    if not outlines:
+        raise FormatError("has no closed path or shape", path=path)
+    stem = os.path.splitext(os.path.basename(path))[0]
+    body, more = body_from_outlines(outlines, path=path, name=stem, scale=scale)
+    return Reading(body, tuple(notices) + more, path)
+
+
+def _check_xml(path: str) -> None:
+    """Parse once with defusedxml: no entities, no external references, well-formed."""
+    import xml.etree.ElementTree as ElementTree
+
+    import defusedxml.ElementTree as safe_xml
+    from defusedxml import DefusedXmlException
+
+    try:
+        root = safe_xml.parse(path, forbid_dtd=False, forbid_entities=True,
+                              forbid_external=True).getroot()
+    except DefusedXmlException as error:
+        raise FormatError(f"declares XML entities or external references "
+                          f"({type(error).__name__}): refused (entity-expansion attack?)",
+                          path=path) from None
+    except ElementTree.ParseError as error:
+        raise FormatError(f"is not well-formed XML: {error}", path=path) from None
+    except (ValueError, RecursionError) as error:
+        raise FormatError(f"is not well-formed XML: {error}", path=path) from None
+    if not root.tag.lower().endswith("svg"):
+        raise FormatError(f"is XML but not SVG (its root element is <{root.tag}>)", path=path)
+
+
+def _parse(path: str, transform: str | None):
+    import svgelements as se
+
+    try:
+        svg = se.SVG.parse(path, reify=True, transform=transform)
+    except Exception as error:  # noqa: BLE001 - svgelements raises every kind on bad input
+        raise FormatError(f"cannot be read as SVG: {type(error).__name__}: "
+                          f"{str(error)[:200]}", path=path) from None
+    if not isinstance(svg, se.SVG):
+        raise FormatError("has no <svg> element in the SVG namespace "
+                          "(xmlns=\"http://www.w3.org/2000/svg\")", path=path)
+    return svg
+
+
+_LENGTH = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([a-zA-Z]*)\s*$")
+_CSS_UNITS = {"": PX, "px": PX, "mm": 1e-3, "cm": 1e-2, "q": 2.5e-4, "in": 0.0254,
+              "pt": 0.0254 / 72, "pc": 0.0254 / 6}
+
+
+def _css_length(text) -> float | None:
+    """A CSS length in metres (``100mm``, ``4in``, ``300`` px); None for %, em or nothing."""
+    if text is None:
+        return None
+    match = _LENGTH.match(str(text))
+    if not match or match.group(2).lower() not in _CSS_UNITS:
+        return None
+    value = float(match.group(1)) * _CSS_UNITS[match.group(2).lower()]
+    return value if value > 0 and np.isfinite(value) else None
+
+
+def _metres_per_user_unit(svg) -> float | None:
+    """Metres per user unit from the root's width/height and viewBox (exact CSS factors);
+    without a viewBox a user unit is a px; None when the file gives no physical size."""
+    box = svg.viewbox
+    width, height = _css_length(svg.values.get("width")), _css_length(svg.values.get("height"))
+    if box is None or not (box.width and box.height):
+        return PX if (width or height) else None
+    scales = [s for s in (width and width / box.width, height and height / box.height) if s]
+    return min(scales) if scales else None
+
+
+def _outlines(svg, path: str, scale: float) -> tuple[list[Outline], int]:
+    import svgelements as se
+
+    outlines: list[Outline] = []
+    skipped = 0
+    count = 0
+    try:
+        elements = list(svg.elements())
+    except Exception as error:  # noqa: BLE001
+        raise FormatError(f"cannot be read as SVG: {error}", path=path) from None
+    for element in elements:  # per element
+        if not isinstance(element, se.Shape) or isinstance(element, se.Text):
+            continue
+        count += 1
+        ident = element.id
+        kind = type(element).__name__.lower()
+        name = f"{kind} {ident!r}" if ident else f"{kind} {count}"
+        try:
+            segments = list(abs(se.Path(element)))
+        except Exception as error:  # noqa: BLE001
+            raise FormatError(f"{name}: cannot be read ({error})", path=path) from None
+        open_shape = isinstance(element, (se.SimpleLine, se.Polyline))
+        found, was_open = _subpaths(segments, name, path, scale, allow_open=open_shape)
+        skipped += was_open
+        for k, (ring, error, approx) in enumerate(found):
+            label = name if len(found) == 1 else f"{name} (subpath {k + 1})"
+            outlines.append(Outline(ring, label, ident or None, error, approx))
+    return outlines, skipped
+
+
+def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
+    """Closed rings of one element's path: (ring, area error m², approximation) each."""
+    import svgelements as se
+
+    rings = []
+    skipped = 0
+    points: list[np.ndarray] = []
+    bulges: list[float] = []
+    controls: list[np.ndarray] = []
+    error = 0.0
+    approx: str | None = None
+    start = None
+    nan = np.full((2, 2), np.nan)
+
+    def xy(point) -> np.ndarray:
+        return np.array([float(point.x), float(point.y)]) * scale
+
+    def finish(closed: bool, end) -> None:
+        nonlocal points, bulges, controls, error, approx, skipped
+        if points:
+            first = points[0]
+            gap = float(np.linalg.norm(end - first)) if end is not None else 0.0
+            size = float(np.ptp(np.array(points), axis=0).max()) if len(points) > 1 else 0.0
+            if not closed and gap > 1e-9 * max(size, gap):
+                if allow_open:
+                    skipped += 1
+                else:
+                    k = len(rings) + 1
+                    raise GeometryError(
+                        f"{name} (subpath {k}) never closes: it ends at {fmt_point(end / scale)}, "
+                        f"not at its start {fmt_point(first / scale)}; close it with Z",
+                        path=path)
+            else:
+                rings.append((Ring(np.array(points), np.array(bulges), np.array(controls)),
+                              error, approx))
+        points, bulges, controls, error, approx = [], [], [], 0.0, None
+
+    end = None
+    for seg in segments:  # per segment of one element
+        if isinstance(seg, se.Move):
+            finish(False, end)
+            start = xy(seg.end)
+            end = start
+            continue
+        if seg.start is None or seg.end is None:
+            continue
+        p0, p1 = xy(seg.start), xy(seg.end)
+        if start is None:
+            start = p0
+        if isinstance(seg, se.Close):
+            if np.linalg.norm(p1 - p0) > 0:
+                points.append(p0), bulges.append(0.0), controls.append(nan)
+            finish(True, p1)
+            start, end = None, p1
+            continue
+        if np.array_equal(p0, p1) and not isinstance(seg, se.Arc):
+            if isinstance(seg, se.CubicBezier | se.QuadraticBezier):
+                pass  # a closed loop in one Bézier: keep it (area between its controls)
+            else:
+                continue
+        if isinstance(seg, se.Line):
+            points.append(p0), bulges.append(0.0), controls.append(nan)
+        elif isinstance(seg, se.QuadraticBezier):
+            q = xy(seg.control)
+            points.append(p0), bulges.append(0.0)
+            controls.append(np.array([p0 + 2 / 3 * (q - p0), p1 + 2 / 3 * (q - p1)]))
+        elif isinstance(seg, se.CubicBezier):
+            points.append(p0), bulges.append(0.0)
+            controls.append(np.array([xy(seg.control1), xy(seg.control2)]))
+        elif isinstance(seg, se.Arc):
+            e, a = _arc(seg, p0, p1, xy, points, bulges, controls)
+            error += e
+            approx = approx or a
+        else:
+            raise FormatError(f"{name}: unsupported path segment {type(seg).__name__}", path=path)
+        end = p1
+    finish(False, end)
+    return rings, skipped
+
+
+def _arc(seg, p0, p1, xy, points, bulges, controls) -> tuple[float, str | None]:
+    """Append an SVG arc: exact bulges when circular, else cubic pieces; returns the area
+    error bound (m²) and a description of any approximation."""
+    centre = xy(seg.center)
+    u = xy(seg.prx) - centre
+    v = xy(seg.pry) - centre
+    basis = np.column_stack((u, v))
+    if np.linalg.norm(p1 - p0) == 0 or abs(np.linalg.det(basis)) <= 1e-15 * np.sum(basis**2):
+        if np.linalg.norm(p1 - p0) > 0:  # a degenerate ellipse: SVG says draw a line
+            points.append(p0), bulges.append(0.0), controls.append(np.full((2, 2), np.nan))
+        return 0.0, None
+    t0 = np.arctan2(*np.linalg.solve(basis, p0 - centre)[::-1])
+    t1 = np.arctan2(*np.linalg.solve(basis, p1 - centre)[::-1])
+    delta = (t1 - t0) % (2 * np.pi)
+    mid = xy(seg.point(0.5))
+    candidates = (delta, delta - 2 * np.pi)
+    sweep = min(candidates, key=lambda s: np.linalg.norm(
+        centre + np.cos(t0 + s / 2) * u + np.sin(t0 + s / 2) * v - mid))
+    nan = np.full((2, 2), np.nan)
+    ru, rv = np.linalg.norm(u), np.linalg.norm(v)
+    if abs(ru - rv) <= 1e-9 * max(ru, rv) and abs(u @ v) <= 1e-9 * ru * rv:
+        geometric = sweep * np.sign(np.linalg.det(basis))  # counter-clockwise positive
+        start = np.arctan2(*(p0 - centre)[::-1])
+        starts, bulge = arc_bulges(centre, (ru + rv) / 2, start, geometric)
+        starts[0] = p0  # keep the path's own point exactly
+        for s, b in zip(starts, bulge):
+            points.append(s), bulges.append(float(b)), controls.append(nan)
+        return 0.0, None
+    ends, ctrl, error = elliptic_arc_cubics(centre, u, v, t0, sweep)
+    ends[0] = p0
+    for s, c in zip(ends[:-1], ctrl):
+        points.append(s), bulges.append(0.0), controls.append(c)
+    return error, "elliptical arcs as cubic Béziers (error below 1e-10 of their size)"

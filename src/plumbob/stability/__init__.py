@@ -1,0 +1,1 @@
+"""Stability: support polygons, verdicts, tilt limits and resting poses."""

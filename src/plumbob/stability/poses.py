@@ -1,0 +1,904 @@
+"""Resting poses: where a body can come to rest, and how likely each landing is.
+
+The model is the quasi-static one of Baktash, Sharp, Zhou, Crane and Jacobson,
+"Putting Rigid Bodies to Rest" (SIGGRAPH 2025). Over all down directions ``u``
+(unit vectors in the body's frame) the height of the centre of mass ``c`` above
+the plane the body rests on is the support function of its convex hull,
+
+    h(u) = max over hull vertices v of (v − c)·u,
+
+and a body dropped without momentum rolls downhill on ``h`` until it rests.
+On the sphere of directions (the Gauss map of the hull):
+
+* a face's normal is a point; the face is a **stable pose** — a minimum of ``h``
+  — when the foot of the centre of mass lies strictly inside it;
+* an edge is an arc between its two faces' normals; it holds a **saddle** where
+  the direction from ``c`` square to the edge's line falls within the arc and
+  the foot lies inside the edge;
+* a vertex ``v`` owns a spherical polygon, on which the body pivots about ``v``:
+  directions move along great circles away from ``w = (v − c)/|v − c|``; a vertex
+  whose ``w`` lies in its own polygon is a **maximum** (balanced on that tip).
+
+A pose's probability is the area of its basin — the directions that roll into
+it — divided by 4π. Basins are bounded by the curves that flow into saddles,
+traced back uphill, region by region, to maxima; each basin's area is the
+exact sum of signed spherical triangles fanned from its face's normal over its
+boundary. Every step is vectorised over all saddles at once. The areas are
+checked to add up to 4π; should a degenerate hull defeat the tracing, the
+probabilities come instead from descending a deterministic Fibonacci lattice of
+directions (and the result says so). Probabilities always add up to 1.
+
+Faces of the hull are physical faces: coplanar triangles (within the
+tolerance) are merged, and vertices lying on an edge between two faces are
+dropped. For a lamina the same holds one dimension down: the hull's edges are
+the poses, the circle of directions is cut into arcs, and the basins are exact
+arcs.
+
+For bodies with curved surfaces (sampled hulls) neighbouring facets of a
+rolling surface — a cylinder's side, a sphere — are all stable with barriers
+no higher than the sampling's sagitta; poses joined by such saddles are merged
+into one *neutral* pose (a body that rolls), whose probability is their sum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import GeometryError, StabilityError
+from .support import body_dim, body_size, hull_points
+from .verdict import STANDARD_GRAVITY
+
+__all__ = ["Pose", "Poses", "resting_poses", "poses_from_points", "FALLBACK_SAMPLES"]
+
+FALLBACK_SAMPLES = 200_000  # Fibonacci directions when the exact basins cannot be traced
+_AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
+_THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are its own arc
+_RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
+
+
+@dataclass(frozen=True)
+class Pose:
+    """One stable resting pose.
+
+    down: unit vector (dim,) in the body's frame: the outward normal of the face it
+        rests on, pointing to the ground.
+    com_height: height of the centre of mass above the ground, m.
+    probability: quasi-static probability of landing in this pose from a random drop.
+    critical_tilt_deg: least tilt of the ground, over every direction, that topples it
+        out of this pose, degrees (0 for a neutral pose: it rolls).
+    energy_barrier: energy to leave the pose over the lowest saddle of its basin's
+        boundary, J; None when it is the only pose.
+    face: (k, dim) the vertices of the face it rests on, m, body frame.
+    neutral: True when the pose is a rolling family (a cylinder on its side, a sphere)
+        merged from neighbouring sampled facets.
+    members: how many hull faces the pose stands for.
+    """
+
+    down: np.ndarray
+    com_height: float
+    probability: float
+    critical_tilt_deg: float
+    energy_barrier: float | None
+    face: np.ndarray
+    neutral: bool = False
+    members: int = 1
+
+
+@dataclass(frozen=True)
+class Poses:
+    """All stable resting poses of a body, most probable first.
+
+    poses: the poses; their probabilities add up to 1.
+    mass: kg. g: m/s². center_of_mass: (dim,) m.
+    method: ``"exact"`` (basin areas traced exactly) or ``"sampled"`` (the fallback:
+        a descent from a Fibonacci lattice of directions).
+    hull_faces: faces of the hull after merging coplanar triangles.
+    saddles: how many saddles (3D) or maxima (2D) bound the basins.
+    area_error: |Σ basin areas − 4π| / 4π (2π for a lamina) before normalising.
+    notes: what a reader should know (merged families, fallbacks).
+    """
+
+    poses: tuple[Pose, ...]
+    mass: float
+    g: float
+    center_of_mass: np.ndarray
+    method: str
+    hull_faces: int
+    saddles: int
+    area_error: float
+    notes: tuple[str, ...] = field(default=())
+
+    def __len__(self) -> int:
+        return len(self.poses)
+
+    def __getitem__(self, index: int) -> Pose:
+        return self.poses[index]
+
+    @property
+    def probabilities(self) -> np.ndarray:
+        return np.array([p.probability for p in self.poses])
+
+
+# ====================================================================== helpers
+def _unit(v: np.ndarray) -> np.ndarray:
+    norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(norm > 0, norm, 1.0)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross products of (…, 3) arrays (faster than ``np.cross`` for many small vectors)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.einsum("...i,...i->...", a, b)
+
+
+def _solid_angle(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Signed area of the spherical triangles (a, b, c) of unit vectors (…, 3), sr
+    (Van Oosterom and Strackee); positive when a → b → c turns counter-clockwise
+    seen from outside."""
+    num = _dot(a, _cross(b, c))
+    den = 1.0 + _dot(a, b) + _dot(b, c) + _dot(c, a)
+    return 2.0 * np.arctan2(num, den)
+
+
+def _group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    """For each group ``0..n-1`` of ``keys``, the index (into keys) of its least value
+    (−1 for an empty group)."""
+    order = np.lexsort((values, keys))
+    first = np.full(n, -1, dtype=np.int64)
+    k = keys[order]
+    starts = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
+    first[k[starts]] = order[starts]
+    return first
+
+
+def _expand(counts: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Ragged expansion: for each row ``i``, indices ``starts[i] .. starts[i]+counts[i]-1``.
+    Returns (row of each item, item index)."""
+    total = int(counts.sum())
+    rows = np.repeat(np.arange(len(counts)), counts)
+    offsets = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    return rows, np.repeat(starts, counts) + offsets
+
+
+def _pointer_sinks(nxt: np.ndarray) -> np.ndarray:
+    """Follow ``nxt`` (a forest whose roots point to themselves) to the roots."""
+    ptr = nxt.copy()
+    for _ in range(64):
+        jumped = ptr[ptr]
+        if np.array_equal(jumped, ptr):
+            return ptr
+        ptr = jumped
+    raise StabilityError("the resting poses could not be resolved: the rolling graph has a "
+                         "cycle (a degenerate hull?)")
+
+
+def _fibonacci_sphere(n: int) -> np.ndarray:
+    i = np.arange(n) + 0.5
+    z = 1.0 - 2.0 * i / n
+    phi = np.pi * (3.0 - np.sqrt(5.0)) * i
+    r = np.sqrt(np.maximum(0.0, 1.0 - z * z))
+    return np.stack((r * np.cos(phi), r * np.sin(phi), z), axis=1)
+
+
+# ================================================================= the 3D hull
+@dataclass(frozen=True)
+class _Hull3:
+    """The exact convex hull, relative to the centre of mass (at the origin).
+
+    X: (n, 3) hull points (only those with out-edges are vertices).
+    normals, heights, areas: per face (F, 3), (F,), (F,): outward unit normal, h(normal)
+        and area. Faces are exactly coplanar groups of qhull's triangles.
+    ea, eb, ef, eg: (E,) directed edges a → b with face ef on the left (counter-clockwise
+        about its normal) and eg on the right. Sorted by ``ea``.
+    start, degree: per point, its out-edges are ``start .. start + degree``.
+    twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
+    """
+
+    X: np.ndarray
+    normals: np.ndarray
+    heights: np.ndarray
+    areas: np.ndarray
+    ea: np.ndarray
+    eb: np.ndarray
+    ef: np.ndarray
+    eg: np.ndarray
+    start: np.ndarray
+    degree: np.ndarray
+    twin: np.ndarray
+    und: np.ndarray
+
+
+def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray
+                      ) -> np.ndarray:
+    """Area-weighted unit normals of groups."""
+    out = np.zeros((nfaces, normals.shape[1]))
+    np.add.at(out, comp, normals * area[:, None])
+    bad = np.linalg.norm(out, axis=1) == 0
+    if bad.any():  # zero-area groups: the plain normals
+        np.add.at(out, comp, normals * (bad[comp])[:, None])
+    return _unit(out)
+
+
+def _split_bent(comp: np.ndarray, nfaces: int, corners: np.ndarray, owner: np.ndarray,
+                X: np.ndarray, normals: np.ndarray, tol: float
+                ) -> tuple[np.ndarray, np.ndarray, int]:
+    """Groups whose corners stray more than ``tol`` from the group's plane go back to their
+    parts (a chain of nearly coplanar slivers can bend). ``corners`` are point indices,
+    ``owner`` the part each belongs to; returns (comp, bent mask of old groups, nfaces)."""
+    level = _dot(X[corners], normals[comp[owner]])
+    hi = np.full(nfaces, -np.inf)
+    lo = np.full(nfaces, np.inf)
+    np.maximum.at(hi, comp[owner], level)
+    np.minimum.at(lo, comp[owner], level)
+    bent = hi - lo > tol
+    if bent.any():
+        comp = np.where(bent[comp], nfaces + np.arange(len(comp)), comp)
+        _, comp = np.unique(comp, return_inverse=True)
+        nfaces = int(comp.max()) + 1
+    return comp, bent, nfaces
+
+
+def _build_hull3(X: np.ndarray, eps: float) -> _Hull3:
+    """The hull with qhull's triangles merged into faces where coplanar within ``eps``."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(X)
+    except QhullError as exc:
+        raise GeometryError("the body is flat or degenerate: its points span no volume, so "
+                            "it has no resting poses as a solid") from exc
+    tri = hull.simplices.astype(np.int64).copy()
+    eq = hull.equations
+    tn = eq[:, :3] / np.linalg.norm(eq[:, :3], axis=1)[:, None]
+    toff = -eq[:, 3] / np.linalg.norm(eq[:, :3], axis=1)
+    cr = _cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]])
+    flip = _dot(cr, tn) < 0
+    tri[flip] = tri[flip][:, [0, 2, 1]]
+    area = 0.5 * np.linalg.norm(cr, axis=1)
+    m = len(tri)
+
+    # --- exactly coplanar neighbours (qhull's own triangulated facets) make one face
+    i = np.repeat(np.arange(m), 3)
+    j = hull.neighbors.ravel().astype(np.int64)
+    pair = i < j
+    i, j = i[pair], j[pair]
+    dij = np.abs(np.einsum("kvc,kc->kv", X[tri[j]], tn[i]) - toff[i][:, None]).max(axis=1)
+    dji = np.abs(np.einsum("kvc,kc->kv", X[tri[i]], tn[j]) - toff[j][:, None]).max(axis=1)
+    same = (dij <= eps) & (dji <= eps) & (_dot(tn[i], tn[j]) > 0)
+    graph = coo_matrix((np.ones(int(same.sum())), (i[same], j[same])), shape=(m, m))
+    nfaces, comp = connected_components(graph, directed=False)
+    normals = _weighted_normals(comp, nfaces, tn, area)
+    comp, bent, nfaces = _split_bent(comp, nfaces, tri.ravel(), np.repeat(np.arange(m), 3),
+                                     X, normals, eps)
+    if bent.any():
+        normals = _weighted_normals(comp, nfaces, tn, area)
+    areas = np.bincount(comp, weights=area, minlength=nfaces)
+
+    # --- half-edges, twins, face boundaries
+    n = len(X)
+    frm = tri.ravel()
+    to = tri[:, [1, 2, 0]].ravel()
+    face = np.repeat(comp, 3)
+    key = frm * n + to
+    order = np.argsort(key)
+    pos = np.searchsorted(key[order], to * n + frm)
+    twin = order[np.minimum(pos, len(order) - 1)]
+    if not np.array_equal(key[twin], to * n + frm):
+        raise GeometryError("the convex hull is not a closed surface (qhull failure)")
+    bnd = face != face[twin]
+    bf, bt, bF, bG = frm[bnd], to[bnd], face[bnd], face[twin][bnd]
+    real = np.bincount(bf, minlength=n) >= 3
+    key2 = bF * n + bf
+    order2 = np.argsort(key2)
+    pos2 = np.searchsorted(key2[order2], bF * n + bt)
+    nxt = order2[np.minimum(pos2, len(order2) - 1)]
+    if not np.array_equal(key2[order2][np.minimum(pos2, len(order2) - 1)], bF * n + bt):
+        raise GeometryError("a face of the hull is not a simple polygon (degenerate hull)")
+    term = real[bt]
+    ptr = np.where(term, np.arange(len(bt)), nxt)
+    for _ in range(64):
+        if term[ptr].all():
+            break
+        ptr = np.where(term[ptr], ptr, ptr[ptr])
+    else:
+        raise GeometryError("a face of the hull has no corners (degenerate hull)")
+    sel = real[bf]
+    ea, eb, ef, eg = bf[sel], bt[ptr[sel]], bF[sel], bG[sel]
+    order3 = np.lexsort((eb, ea))
+    ea, eb, ef, eg = ea[order3], eb[order3], ef[order3], eg[order3]
+    degree = np.bincount(ea, minlength=n)
+    start = np.cumsum(degree) - degree
+    key3 = ea * n + eb
+    pos3 = np.minimum(np.searchsorted(key3, eb * n + ea), len(key3) - 1)
+    if not np.array_equal(key3[pos3], eb * n + ea):
+        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
+    und = np.minimum(np.arange(len(ea)), pos3)
+    heights = np.full(nfaces, -np.inf)
+    np.maximum.at(heights, ef, _dot(X[ea], normals[ef]))
+    return _Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, pos3, und)
+
+
+def _physical_faces(h: _Hull3, tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Exact faces grouped into physical ones: neighbours coplanar within ``tol`` (m).
+
+    Returns the group of each face, and per group its unit normal and height h(normal).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    nF = len(h.normals)
+    # a face's extent bounds how far its corners stray from a neighbour's plane
+    ext = np.zeros(nF)
+    np.maximum.at(ext, h.ef, np.linalg.norm(h.X[h.ea] - h.X[h.eb], axis=1))
+    f, g = h.ef, h.eg
+    pair = f < g
+    f, g = f[pair], g[pair]
+    cos = np.clip(_dot(h.normals[f], h.normals[g]), -1.0, 1.0)
+    sin = np.sqrt(np.maximum(0.0, 1.0 - cos * cos))
+    same = (cos > 0) & (sin * np.maximum(ext[f], ext[g]) <= tol)
+    if not same.any():
+        return np.arange(nF), h.normals, h.heights
+    graph = coo_matrix((np.ones(int(same.sum())), (f[same], g[same])), shape=(nF, nF))
+    ngroups, group = connected_components(graph, directed=False)
+    normals = _weighted_normals(group, ngroups, h.normals, h.areas)
+    group, bent, ngroups = _split_bent(group, ngroups, h.ea, h.ef, h.X, normals, tol)
+    if bent.any():
+        normals = _weighted_normals(group, ngroups, h.normals, h.areas)
+    heights = np.full(ngroups, -np.inf)
+    np.maximum.at(heights, group[h.ef], _dot(h.X[h.ea], normals[group[h.ef]]))
+    return group, normals, heights
+
+
+def _group_margin3(pts: np.ndarray, normal: np.ndarray) -> tuple[float, np.ndarray]:
+    """Signed distance from the foot of the centre (the origin) to the boundary of the
+    physical face with corners ``pts`` (k, 3) (positive inside), m, and its corners
+    counter-clockwise about ``normal``."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    seed = np.array([1.0, 0.0, 0.0]) if abs(normal[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = _unit(seed - (seed @ normal) * normal)
+    e2 = _cross(normal, e1)
+    q = np.stack((pts @ e1, pts @ e2), axis=1)  # the foot h·normal is at the origin
+    try:
+        ring = ConvexHull(q).vertices
+    except QhullError:
+        return 0.0, pts
+    v = q[ring]
+    d = np.roll(v, -1, axis=0) - v
+    out = np.stack((d[:, 1], -d[:, 0]), axis=1) / np.linalg.norm(d, axis=1)[:, None]
+    return float(_dot(v, out).min()), pts[ring]
+
+
+# ============================================================ 3D basin tracing
+@dataclass(frozen=True)
+class _Edges3:
+    """Per directed edge: geometry for the Gauss-map flow."""
+
+    pole: np.ndarray  # (E, 3) unit edge direction: the arc n_F → n_G turns about it
+    t: np.ndarray  # (E,) foot of c on the edge's line, as a fraction from a to b
+    saddle: np.ndarray  # (E,) bool: the arc holds a saddle
+    spoint: np.ndarray  # (E, 3) unit direction from c square to the edge line
+    sheight: np.ndarray  # (E,) |c to the edge line|, m
+
+
+def _edge_geometry(h: _Hull3) -> _Edges3:
+    A, B = h.X[h.ea], h.X[h.eb]
+    D = B - A
+    L2 = _dot(D, D)
+    t = -_dot(A, D) / L2
+    pole = D / np.sqrt(L2)[:, None]
+    p = A + t[:, None] * D
+    sheight = np.linalg.norm(p, axis=1)
+    s = p / sheight[:, None]
+    nf, ng = h.normals[h.ef], h.normals[h.eg]
+    in_arc = (_dot(_cross(nf, s), pole) >= 0) & (_dot(_cross(s, ng), pole) >= 0)
+    saddle = (t > 0) & (t < 1) & in_arc
+    return _Edges3(pole, t, saddle, s, sheight)
+
+
+def _arc_hits(h: _Hull3, eg3: _Edges3, rows: np.ndarray, cand: np.ndarray, p: np.ndarray,
+              tang: np.ndarray, limit: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where the great circle ``cos θ p + sin θ tang`` (θ > 0) first meets each candidate arc.
+
+    rows: trace of each candidate; cand: directed edge id; p, tang: per trace.
+    Returns θ (inf when the great circle is not met before ``limit``), how far outside
+    the arc the meeting point lies (0 inside; sines of angles) and the meeting points.
+    """
+    k = eg3.pole[cand]
+    pr, tr = p[rows], tang[rows]
+    a, b = _dot(pr, k), _dot(tr, k)
+    theta = np.arctan2(-a, b)
+    theta = np.where(theta <= _THETA_EPS, theta + np.pi, theta)
+    q = np.cos(theta)[:, None] * pr + np.sin(theta)[:, None] * tr
+    nf, ng = h.normals[h.ef[cand]], h.normals[h.eg[cand]]
+    miss = np.maximum(0.0, -np.minimum(_dot(_cross(nf, q), k), _dot(_cross(q, ng), k)))
+    ok = (theta > _THETA_EPS) & (theta <= limit[rows] + 1e-12)
+    return np.where(ok, theta, np.inf), miss, q
+
+
+def _step(h: _Hull3, eg3: _Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
+          limit: np.ndarray, exclude: np.ndarray, want: np.ndarray, face: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """For traces at vertices ``v`` from points ``p`` along ``tang``: the first arc of
+    the vertex's region met, among out-edges selected by the mask ``want`` (per edge),
+    leaving out the undirected edge ``exclude`` and the arcs ending at the face ``face``
+    (≥ 0 for a trace starting at that face's normal, a corner of the region);
+    returns (edge id or −1, meeting point)."""
+    rows, cand = _expand(h.degree[v], h.start[v])
+    theta, miss, q = _arc_hits(h, eg3, rows, cand, p, tang, limit)
+    fr = face[rows]
+    keep = want[cand] & (h.und[cand] != exclude[rows]) & np.isfinite(theta)
+    keep &= (fr < 0) | ((h.ef[cand] != fr) & (h.eg[cand] != fr))
+    # the first arc met inside; failing that (a point a rounding error outside its
+    # region), the arc met least far outside
+    score = np.where(keep & (miss <= 1e-12), theta,
+                     np.where(keep & (miss <= _RELAXED), 10.0 + miss, np.inf))
+    best = _group_first(rows, score, len(v))
+    found = (best >= 0) & np.isfinite(score[np.maximum(best, 0)])
+    edge = np.where(found, cand[np.maximum(best, 0)], -1)
+    point = np.where(found[:, None], q[np.maximum(best, 0)], p)
+    return edge, _unit(point)
+
+
+class _Roller:
+    """The quasi-static roll downhill: which faces are stable, and where anything ends."""
+
+    def __init__(self, h: _Hull3, eg3: _Edges3, W: np.ndarray, tol: float) -> None:
+        self.h, self.eg3, self.W, self.tol = h, eg3, W, tol
+        nF = len(h.normals)
+        A, B = h.X[h.ea], h.X[h.eb]
+        D = B - A
+        self.length = np.sqrt(_dot(D, D))
+        n = h.normals[h.ef]
+        self.foot = h.heights[h.ef][:, None] * n
+        s = _dot(_cross(D, self.foot - A), n) / self.length  # signed, positive inside
+        self.margin = np.full(nF, np.inf)
+        np.minimum.at(self.margin, h.ef, s)
+        self.stable = self.margin > tol
+        self.by_face = np.argsort(h.ef, kind="stable")
+        self.face_start = np.searchsorted(h.ef[self.by_face], np.arange(nF + 1))
+
+    def _tip(self, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """For unstable faces: the edge nearest the foot, and where along it (m)."""
+        h = self.h
+        counts = self.face_start[faces + 1] - self.face_start[faces]
+        rows, idx = _expand(counts, self.face_start[faces])
+        e = self.by_face[idx]
+        A, D = h.X[h.ea[e]], h.X[h.eb[e]] - h.X[h.ea[e]]
+        L = self.length[e]
+        tau = np.clip(_dot(self.foot[e] - A, D) / (L * L), 0.0, 1.0)
+        dist = np.linalg.norm(A + tau[:, None] * D - self.foot[e], axis=1)
+        best = _group_first(rows, dist, len(faces))
+        return e[best], (tau * L)[best]
+
+    def roll(self, face: np.ndarray | None = None, vertex: np.ndarray | None = None,
+             point: np.ndarray | None = None) -> np.ndarray:
+        """The stable face each trace ends on: traces start at faces (their normals) or at
+        directions ``point`` (k, 3) in the regions of ``vertex``. −1 where a roll is lost.
+
+        One loop advances every trace by one move — over a face's edge, from a face into
+        the region of the corner it pivots about, across a region — so the loop runs as
+        long as the longest roll, not the sum of them.
+        """
+        h, eg3, tol = self.h, self.eg3, self.tol
+        if face is not None:
+            k = len(face)
+            cur = np.asarray(face, dtype=np.int64).copy()
+            v = np.zeros(k, dtype=np.int64)
+            p = np.zeros((k, 3))
+            in_region = np.zeros(k, dtype=bool)
+        else:
+            k = len(vertex)
+            cur = np.full(k, -1, dtype=np.int64)
+            v = np.asarray(vertex, dtype=np.int64).copy()
+            p = _unit(np.asarray(point, dtype=float).copy())
+            in_region = np.ones(k, dtype=bool)
+        start_face = np.full(k, -1, dtype=np.int64)  # the face a region move started at
+        exclude = np.full(k, -1, dtype=np.int64)
+        result = np.full(k, -1, dtype=np.int64)
+        alive = np.ones(k, dtype=bool)
+        far = eg3.t > 0
+        for _ in range(4 * len(h.normals) + 16):
+            at_face = np.flatnonzero(alive & ~in_region)
+            if len(at_face):
+                f = cur[at_face]
+                done = self.stable[f]
+                result[at_face[done]] = f[done]
+                alive[at_face[done]] = False
+                moving, f = at_face[~done], f[~done]
+                if len(moving):
+                    e, along = self._tip(f)
+                    interior = (along > tol) & (along < self.length[e] - tol)
+                    cur[moving[interior]] = h.eg[e[interior]]  # over the edge
+                    piv = moving[~interior]  # over a corner: pivot about it
+                    ep = e[~interior]
+                    v[piv] = np.where(along[~interior] <= tol, h.ea[ep], h.eb[ep])
+                    p[piv] = h.normals[f[~interior]]
+                    start_face[piv] = f[~interior]
+                    exclude[piv] = -1
+                    in_region[piv] = True
+            rolling = np.flatnonzero(alive & in_region)
+            if len(rolling) == 0:
+                if not alive.any():
+                    return result
+                continue
+            va, pa = v[rolling], p[rolling]
+            w = self.W[va]
+            tang = _unit(_dot(w, pa)[:, None] * pa - w)
+            edge, q = _step(h, eg3, va, pa, tang, np.full(len(rolling), np.pi),
+                            exclude[rolling], far, start_face[rolling])
+            lost = edge < 0
+            from_face = start_face[rolling]
+            # lost leaving a corner along its own arc: over the face's nearest edge
+            rescue = lost & (from_face >= 0)
+            if rescue.any():
+                e_r, _ = self._tip(from_face[rescue])
+                cur[rolling[rescue]] = h.eg[e_r]
+                in_region[rolling[rescue]] = False
+            gone = lost & (from_face < 0)
+            alive[rolling[gone]] = False
+            e = np.maximum(edge, 0)
+            sliding = ~lost & (eg3.t[e] < 1)
+            # on a sliding arc: to the side of its saddle, or to its lower end
+            fa, ga = h.ef[e], h.eg[e]
+            towards_f = np.where(eg3.saddle[e],
+                                 _dot(_cross(q, eg3.spoint[e]), eg3.pole[e]) > 0,
+                                 h.heights[fa] <= h.heights[ga])
+            slid = rolling[sliding]
+            cur[slid] = np.where(towards_f, fa, ga)[sliding]
+            in_region[slid] = False
+            crossing = ~lost & ~sliding
+            cr = rolling[crossing]
+            v[cr], p[cr], exclude[cr] = h.eb[e[crossing]], q[crossing], h.und[e[crossing]]
+            start_face[rolling[~lost]] = -1
+        raise StabilityError("the resting poses could not be resolved: a roll never ends "
+                             "(a degenerate hull?)")
+
+    def sinks(self, faces: np.ndarray) -> np.ndarray:
+        """The stable face each of ``faces`` ends up on (remembered once rolled)."""
+        faces = np.asarray(faces, dtype=np.int64)
+        if not hasattr(self, "_memo"):
+            self._memo = np.where(self.stable, np.arange(len(self.stable)), -1)
+        todo = np.unique(faces[self._memo[faces] < 0])
+        if len(todo):
+            out = self.roll(face=todo)
+            if np.any(out < 0):
+                raise StabilityError("a roll from a face of the hull was lost "
+                                     "(degenerate hull)")
+            self._memo[todo] = out
+        return self._memo[faces]
+
+
+def _trace_basins(h: _Hull3, eg3: _Edges3, W: np.ndarray, roller: _Roller
+                  ) -> tuple[np.ndarray, bool]:
+    """Basin areas (per face, sr) from the separatrices traced back from every saddle."""
+    nF = len(h.normals)
+    area = np.zeros(nF)
+    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
+    if len(sad) == 0:
+        return area, False
+    s = eg3.spoint[sad]
+    # two traces per saddle: into the regions of both its ends
+    v = np.concatenate((h.ea[sad], h.eb[sad]))
+    p = np.concatenate((s, s))
+    edge = np.concatenate((sad, sad))
+    exclude = h.und[edge]
+    ends = roller.sinks(np.concatenate((h.ef[edge], h.eg[edge])))
+    f, g = ends[:len(edge)], ends[len(edge):]
+    w0 = W[v]
+    side = _dot(_cross(p, w0), h.normals[h.ef[edge]]) > 0
+    left, right = np.where(side, f, g), np.where(side, g, f)
+    nl, nr = h.normals[left], h.normals[right]
+    near = eg3.t < 0  # arcs a region's flow leaves: traced back through them
+    ismax = np.ones(len(h.X), dtype=bool)
+    np.logical_and.at(ismax, h.ea, eg3.t >= 0)
+    alive = np.arange(len(v))
+    ok = True
+    for _ in range(len(h.X) + 8):
+        if len(alive) == 0:
+            break
+        va, pa = v[alive], p[alive]
+        w = W[va]
+        done = ismax[va]
+        if done.any():
+            d = alive[done]
+            area_l = _solid_angle(nl[d], pa[done], w[done])
+            area_r = _solid_angle(nr[d], w[done], pa[done])
+            np.add.at(area, left[d], area_l)
+            np.add.at(area, right[d], area_r)
+            alive, va, pa, w = alive[~done], va[~done], pa[~done], w[~done]
+            if len(alive) == 0:
+                break
+        tang = _unit(w - _dot(w, pa)[:, None] * pa)
+        limit = np.arccos(np.clip(_dot(pa, w), -1.0, 1.0))
+        e, q = _step(h, eg3, va, pa, tang, limit, exclude[alive], near,
+                     np.full(len(alive), -1))
+        lost = e < 0
+        if lost.any():  # passes through a corner, or numerically lost: end it at w
+            ok = False
+            d = alive[lost]
+            np.add.at(area, left[d], _solid_angle(nl[d], pa[lost], w[lost]))
+            np.add.at(area, right[d], _solid_angle(nr[d], w[lost], pa[lost]))
+        go = ~lost
+        d = alive[go]
+        np.add.at(area, left[d], _solid_angle(nl[d], pa[go], q[go]))
+        np.add.at(area, right[d], _solid_angle(nr[d], q[go], pa[go]))
+        v[d], p[d], exclude[d] = h.eb[e[go]], q[go], h.und[e[go]]
+        alive = d
+    else:
+        ok = False
+    return np.mod(area, 4 * np.pi), ok
+
+
+def _sampled_basins(h: _Hull3, roller: _Roller, samples: int) -> np.ndarray:
+    """Basin areas from rolling a Fibonacci lattice of directions downhill."""
+    u = _fibonacci_sphere(samples)
+    area = np.zeros(len(h.normals))
+    real = np.flatnonzero(h.degree > 0)
+    for chunk in np.array_split(np.arange(samples), max(1, samples // 20000)):
+        start = real[np.argmax(u[chunk] @ h.X[real].T, axis=1)]
+        face = roller.roll(vertex=start, point=u[chunk])
+        np.add.at(area, face[face >= 0], 4 * np.pi / samples)
+    return area
+
+
+@dataclass(frozen=True)
+class _Landscape:
+    """The height function's landscape over physical faces (3D) or edges (2D).
+
+    normals, heights: (G, dim), (G,) per physical face.
+    area: (G,) area of its basin (sr, or rad for a lamina); stable: (G,) it is a minimum.
+    sa, sb, sh: saddles (maxima for a lamina) between the basins of sa and sb, at height sh.
+    margin: ``margin(g) -> (signed margin m, face corners (k, dim))``.
+    """
+
+    normals: np.ndarray
+    heights: np.ndarray
+    area: np.ndarray
+    stable: np.ndarray
+    sa: np.ndarray
+    sb: np.ndarray
+    sh: np.ndarray
+    margin: object
+    method: str
+    error: float
+
+
+def _landscape3(X: np.ndarray, tol: float, samples: int) -> _Landscape:
+    size = float(np.linalg.norm(np.ptp(X, axis=0)))
+    eps = 1e-12 * size
+    h = _build_hull3(X, eps)
+    inside = float(h.heights.min())
+    if not inside > tol:
+        where = "outside" if inside < -tol else "on the surface of"
+        raise StabilityError(
+            f"the centre of mass lies {where} the body's convex hull "
+            f"(by {abs(inside):.3g} m), so the body cannot rest on any face: is the mesh "
+            "open or inside out, or a density negative?")
+    eg3 = _edge_geometry(h)
+    W = _unit(h.X)
+    roller = _Roller(h, eg3, W, eps)
+    stable = roller.stable
+    if not stable.any():
+        raise StabilityError("no face of the hull is stable (degenerate hull)")
+    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
+    if len(sad) == 0:  # one basin: the whole sphere
+        area = np.where(stable, 4 * np.pi / np.count_nonzero(stable), 0.0)
+        ok = np.count_nonzero(stable) == 1
+    else:
+        area, ok = _trace_basins(h, eg3, W, roller)
+    error = abs(area.sum() - 4 * np.pi) / (4 * np.pi)
+    method = "exact"
+    if not ok or error > _AREA_CHECK or np.any(area[stable] <= 0):
+        area = _sampled_basins(h, roller, samples)
+        method = "sampled"
+    group, gnormals, gheights = _physical_faces(h, tol)
+    ng = len(gnormals)
+    garea = np.bincount(group, weights=area, minlength=ng)
+    gstable = np.bincount(group, weights=stable.astype(float), minlength=ng) > 0
+    fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
+
+    by_group = np.argsort(group[h.ef], kind="stable")
+    bounds = np.searchsorted(group[h.ef][by_group], np.arange(ng + 1))
+
+    def margin(gid: int) -> tuple[float, np.ndarray]:
+        corners = np.unique(h.ea[by_group[bounds[gid]:bounds[gid + 1]]])
+        return _group_margin3(h.X[corners], gnormals[gid])
+
+    return _Landscape(gnormals, gheights, garea, gstable & (garea > 0), group[fa], group[fb],
+                      eg3.sheight[sad], margin, method, float(error))
+
+
+# ================================================================== the 2D hull
+def _landscape2(X: np.ndarray, tol: float) -> _Landscape:
+    """2D: hull edges are the poses; basins are arcs of the circle of directions."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(X)
+    except QhullError as exc:
+        raise GeometryError("the lamina is degenerate: its points span no area") from exc
+    V = X[hull.vertices]  # counter-clockwise
+    for _ in range(len(V)):  # drop corners lying on the line between their neighbours
+        prev, nxt = np.roll(V, 1, axis=0), np.roll(V, -1, axis=0)
+        d = nxt - prev
+        off = np.abs(d[:, 0] * (V - prev)[:, 1] - d[:, 1] * (V - prev)[:, 0])
+        off /= np.linalg.norm(d, axis=1)
+        flat = off <= tol
+        if not flat.any() or len(V) - flat.sum() < 3:
+            break
+        V = V[~(flat & ~np.roll(flat, 1))]  # the first of each run: neighbours change
+    m = len(V)
+    A, B = V, np.roll(V, -1, axis=0)
+    D = B - A
+    L = np.linalg.norm(D, axis=1)
+    normals = np.stack((D[:, 1], -D[:, 0]), axis=1) / L[:, None]
+    heights = _dot(A, normals)
+    if not heights.min() > tol:
+        raise StabilityError(
+            "the centre of mass lies outside (or on) the lamina's convex hull: it cannot "
+            "rest on any edge — is a density negative?")
+    foot = heights[:, None] * normals
+    along = _dot(foot - A, D) / L
+    margins = np.minimum(along, L - along)
+    stable = margins > tol
+    # unstable edges tip over the end the foot lies beyond
+    idx = np.arange(m)
+    nxt = np.where(stable, idx, np.where(along >= L / 2, (idx + 1) % m, (idx - 1) % m))
+    sink = _pointer_sinks(nxt)
+    # vertex i lies between edge i-1 (normal angle a0) and edge i
+    ang = np.arctan2(normals[:, 1], normals[:, 0])
+    a0 = np.roll(ang, 1)
+    width = np.mod(ang - a0, 2 * np.pi)
+    into = np.mod(np.arctan2(V[:, 1], V[:, 0]) - a0, 2 * np.pi)
+    is_max = into < width
+    prev_edge = (idx - 1) % m
+    arc = np.zeros(m)
+    # a maximum splits its arc; otherwise the whole arc flows to its lower end
+    np.add.at(arc, sink[prev_edge[is_max]], into[is_max])
+    np.add.at(arc, sink[idx[is_max]], (width - into)[is_max])
+    lower = np.where(heights[prev_edge] <= heights, prev_edge, idx)
+    np.add.at(arc, sink[lower[~is_max]], width[~is_max])
+    error = abs(arc.sum() - 2 * np.pi) / (2 * np.pi)
+
+    def margin(gid: int) -> tuple[float, np.ndarray]:
+        return float(margins[gid]), np.array([V[gid], V[(gid + 1) % m]])
+
+    sad = np.flatnonzero(is_max)
+    return _Landscape(normals, heights, arc, stable & (arc > 0), sink[prev_edge[sad]],
+                      sink[sad], np.linalg.norm(V[sad], axis=1), margin, "exact", float(error))
+
+
+# ================================================================= assembling
+def _families(land: _Landscape, neutral_height: float) -> np.ndarray:
+    """Per physical face, a family label: stable faces joined by saddles no higher than
+    ``neutral_height`` above them share one."""
+    n = len(land.normals)
+    if not (neutral_height > 0 and len(land.sh)):
+        return np.arange(n)
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rise = land.sh - np.maximum(land.heights[land.sa], land.heights[land.sb])
+    low = (land.sa != land.sb) & (rise <= neutral_height)
+    graph = coo_matrix((np.ones(int(low.sum())), (land.sa[low], land.sb[low])), shape=(n, n))
+    return connected_components(graph, directed=False)[1]
+
+
+def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
+              neutral_height: float, notes: list[str]) -> Poses:
+    ids = np.flatnonzero(land.stable)
+    family = _families(land, neutral_height)
+    total = land.area[ids].sum()
+    weight = mass * g
+    roots, members_of = np.unique(family[ids], return_inverse=True)
+    fam_a, fam_b = family[land.sa], family[land.sb]
+    poses = []
+    for k, root in enumerate(roots.tolist()):
+        members = ids[members_of == k]
+        p = float(land.area[members].sum() / total)
+        rep = int(members[np.argmax(land.area[members])])
+        neutral = len(members) > 1
+        cross = (fam_a != fam_b) & ((fam_a == root) | (fam_b == root))
+        barrier = None
+        if cross.any():
+            barrier = float(weight * max(0.0, float(np.min(land.sh[cross])) - land.heights[rep]))
+        margin, face = land.margin(rep)
+        tilt = 0.0 if neutral else float(np.degrees(np.arctan2(max(margin, 0.0),
+                                                               land.heights[rep])))
+        poses.append(Pose(land.normals[rep].copy(), float(land.heights[rep]), p, tilt, barrier,
+                          face + com, neutral, len(members)))
+    poses.sort(key=lambda q: (-q.probability, q.com_height))
+    neutral_poses = [q for q in poses if q.neutral]
+    if neutral_poses:
+        notes.append(f"{sum(q.members for q in neutral_poses)} hull faces of rolling surfaces "
+                     f"were merged into {len(neutral_poses)} neutral pose(s)")
+    if land.method == "sampled":
+        notes.append("the basins could not be traced exactly (degenerate hull): probabilities "
+                     f"come from rolling {FALLBACK_SAMPLES} directions downhill")
+    return Poses(tuple(poses), mass, g, com.copy(), land.method, len(land.normals),
+                 int(len(land.sh)), land.error, tuple(notes))
+
+
+def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
+                      g: float = STANDARD_GRAVITY, tolerance: float | None = None,
+                      neutral_height: float = 0.0, samples: int = FALLBACK_SAMPLES,
+                      notes: tuple[str, ...] = ()) -> Poses:
+    """Resting poses of the convex hull of ``points`` (n, 2 or 3) m, with its centre of mass
+    at ``center_of_mass``.
+
+    tolerance: faces coplanar within it (m) are one physical face; default 1e-6 of the
+        points' size. Basins are traced on the exact hull either way.
+    neutral_height: stable faces joined by saddles at most this much higher (m) are one
+        neutral (rolling) pose; 0 merges nothing.
+
+    A cube: six poses of 1/6.
+
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    >>> ps = poses_from_points(cube, [0.5, 0.5, 0.5])
+    >>> len(ps), ps.method, np.round(ps.probabilities, 12).tolist() == [1 / 6] * 6
+    (6, 'exact', True)
+    """
+    X = np.asarray(points, dtype=float)
+    com = np.asarray(center_of_mass, dtype=float).reshape(-1)
+    if X.ndim != 2 or X.shape[1] not in (2, 3) or com.shape != (X.shape[1],):
+        raise GeometryError("poses need points (n, 2) or (n, 3) and a centre of the same size")
+    if not (np.all(np.isfinite(X)) and np.all(np.isfinite(com))):
+        raise GeometryError("a point or the centre of mass is not a finite number")
+    if len(X) < X.shape[1] + 1:
+        raise GeometryError(f"a hull in {X.shape[1]}D needs at least {X.shape[1] + 1} points")
+    size = float(np.linalg.norm(np.ptp(X, axis=0)))
+    tol = 1e-6 * size if tolerance is None else float(tolerance)
+    if not (size > 0 and tol > 0):
+        raise GeometryError("the points have no extent, or the tolerance is not positive")
+    X = X - com
+    land = _landscape2(X, tol) if X.shape[1] == 2 else _landscape3(X, tol, samples)
+    return _assemble(land, com, float(mass), float(g), float(neutral_height), list(notes))
+
+
+def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None = None,
+                  hull_tolerance: float | None = None, neutral_height: float | None = None,
+                  props=None) -> Poses:
+    """All stable resting poses of ``body`` and their probabilities.
+
+    body: a solid (poses on faces of its hull) or a lamina (on edges of its hull, in its
+        own plane).
+    g: m/s², for the energy barriers.
+    tolerance: faces coplanar within it are one physical face, m (default 1e-6 of the
+        body's size).
+    hull_tolerance: how closely curved surfaces are sampled, m (default 1e-4 of the size).
+    neutral_height: poses joined by saddles at most this high above them are merged into
+        one neutral (rolling) pose, m; default: for a body with curved surfaces, twice the
+        hull tolerance (the ridges sampling leaves on a rolling surface); for a polytope, 0.
+
+    Raises :class:`StabilityError` when the centre of mass is not strictly inside the
+    hull (an open mesh) — it never hangs.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> [round(p.probability, 4) for p in resting_poses(box(1, 1, 4))]
+    [0.2406, 0.2406, 0.2406, 0.2406, 0.0187, 0.0187]
+    """
+    props = body.mass_properties() if props is None else props
+    dim = body_dim(body, props)
+    size = body_size(body)
+    htol = 1e-4 * size if hull_tolerance is None else float(hull_tolerance)
+    pts = hull_points(body, htol)
+    if neutral_height is None:  # sampled (curved) hulls change with the tolerance
+        neutral_height = 0.0 if len(hull_points(body, htol / 4)) == len(pts) else 2.0 * htol
+    com = np.asarray(props.center_of_mass, dtype=float)
+    if com.size < dim:
+        com = np.pad(com, (0, dim - com.size))
+    if pts.shape[1] != dim:
+        pts = pts[:, :dim]
+    return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
+                             neutral_height=float(neutral_height))

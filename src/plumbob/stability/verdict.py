@@ -1,0 +1,284 @@
+"""Will it stand? The toppling condition, stability margins and tilt limits.
+
+The seed's toppling condition (section 2.2): a body on a horizontal plane
+topples if and only if its centre of mass is not vertically above its base —
+here, the support polygon (:mod:`plumbob.stability.support`). On top of the
+yes/no answer:
+
+* the **static stability margin** (McGhee and Frank): the distance from the foot
+  of the centre of mass to the support boundary, negative outside;
+* per support edge, the **tipping angle** ``atan(d/h)`` — how far the plane may
+  tilt toward that edge before the body goes over it — and the **energy** to tip
+  it over the edge, ``Mg(√(d² + h²) − h)`` (Messuri and Klein's energy stability
+  margin is the least of these), ``d`` the edge's distance from the foot and
+  ``h`` the height of the centre of mass;
+* the **critical tilt**: the least tipping angle over every direction, and the
+  direction it is reached in (the outward normal of the nearest edge);
+* on a plane tilted by θ toward a direction: does it topple (θ above the tipping
+  angle in that direction), and with friction coefficient μ does it slide first
+  (``μ < s/h``, ``s`` the distance to the boundary along that direction)?
+* a design check over every direction, as product-safety standards require
+  (IEC 62368-1 and IEC 60065: no overturning when tilted 10° in any direction).
+
+Verdicts: ``"stands"`` (margin above the contact tolerance), ``"topples"``
+(below minus the tolerance), ``"neutral"`` (the centre of mass over the
+support's boundary: a cylinder on its side in the rolling direction, a sphere,
+a box balanced on an edge; whether a curved body then rocks back or rolls away
+depends on its curvature, which this verdict does not judge).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..massprops import MassProperties
+from .support import Support, support
+
+__all__ = [
+    "STANDARD_GRAVITY",
+    "TippingEdge",
+    "SlopeCheck",
+    "Verdict",
+    "check",
+    "verdict_from_support",
+]
+
+STANDARD_GRAVITY = 9.81  # m/s², the seed's value
+
+
+@dataclass(frozen=True)
+class TippingEdge:
+    """One edge of the support boundary a body can tip over.
+
+    start, end: the edge's ends, points of the plane in the body frame (dim,) m
+        (equal for the end of a segment or of a lamina's interval).
+    normal: outward horizontal unit normal, body frame (dim,).
+    distance: signed distance from the foot of the centre of mass to the edge's line, m.
+    tipping_angle_deg: ``atan(distance / h)``, degrees.
+    energy: ``Mg(√(d² + h²) − h)``, J (0 for an edge the centre of mass is already beyond).
+    """
+
+    start: np.ndarray
+    end: np.ndarray
+    normal: np.ndarray
+    distance: float
+    tipping_angle_deg: float
+    energy: float
+
+
+@dataclass(frozen=True)
+class SlopeCheck:
+    """The body on a plane tilted by ``tilt_deg`` toward ``direction``.
+
+    toward_deg: the direction's angle in the ground plane from e1 toward e2, degrees.
+    direction: horizontal unit vector (body frame) the plane descends toward.
+    tipping_angle_deg: the tilt at which it goes over in that direction, degrees.
+    topples: whether it goes over at ``tilt_deg``.
+    friction: the friction coefficient, or None.
+    slides: whether it slides at ``tilt_deg`` (``tan θ > μ``), or None without friction.
+    slides_first: whether, tilting ever further that way, it slides before it topples.
+    """
+
+    tilt_deg: float
+    toward_deg: float
+    direction: np.ndarray
+    tipping_angle_deg: float
+    topples: bool
+    friction: float | None = None
+    slides: bool | None = None
+    slides_first: bool | None = None
+
+    @property
+    def verdict(self) -> str:
+        if self.topples:
+            return "topples"
+        if self.slides:
+            return "slides"
+        return "stands"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Whether a body stands on a horizontal plane, and how far from toppling it is.
+
+    verdict: ``"stands"``, ``"topples"`` or ``"neutral"``.
+    margin: static stability margin (McGhee and Frank), m, negative when the foot of
+        the centre of mass lies outside the support.
+    critical_tilt_deg: the least tilt of the plane, over every direction, that topples
+        it, degrees; 0 when neutral, negative when it topples already.
+    critical_direction: the horizontal unit vector (body frame) it topples toward
+        first — or the way it falls when it topples.
+    energy_to_topple: the least energy to tip it over an edge, J (Messuri and Klein).
+    com_height: height of the centre of mass above the plane, m.
+    center_of_mass: (dim,) m, body frame.
+    mass: kg. g: m/s².
+    support: the support polygon and its edges.
+    edges: per edge, the tipping angle and energy.
+    slope: the check on a tilted plane, when asked for.
+    friction: the friction coefficient, when given.
+    slides_first: with friction, whether it slides before it topples whichever way
+        the plane is tilted (``μ < margin / h``) — or along the slope's direction.
+    required_tilt_deg, passes: the design check — it passes when it stands and its
+        critical tilt is at least the required one (which checks every direction).
+    """
+
+    verdict: str
+    margin: float
+    critical_tilt_deg: float
+    critical_direction: np.ndarray
+    energy_to_topple: float
+    com_height: float
+    center_of_mass: np.ndarray
+    mass: float
+    g: float
+    support: Support
+    edges: tuple[TippingEdge, ...]
+    slope: SlopeCheck | None = None
+    friction: float | None = None
+    slides_first: bool | None = None
+    required_tilt_deg: float | None = None
+    passes: bool | None = None
+
+    @property
+    def stands(self) -> bool:
+        return self.verdict == "stands"
+
+    @property
+    def down(self) -> np.ndarray:
+        return self.support.frame.down
+
+    def tipping_angle_deg(self, direction) -> float:
+        """The tilt, degrees, that topples the body when the plane descends toward the
+        horizontal ``direction`` (body frame, (dim,)); ≤ 0 when it does not stand."""
+        frame = self.support.frame
+        d = frame.to_ground(np.asarray(direction, dtype=float))
+        d = d / np.linalg.norm(d)
+        s = self.support.ray_distance(d)
+        if self.verdict != "stands":
+            s = min(s, self.margin)
+        return float(np.degrees(np.arctan2(s, self.com_height)))
+
+
+def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
+    d = np.maximum(np.asarray(d, dtype=float), 0.0)
+    # √(d² + h²) − h without cancellation: d² / (√(d² + h²) + h)
+    return weight * d * d / (np.hypot(d, h) + h)
+
+
+def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY, *,
+                         tilt_deg: float | None = None, toward_deg: float | None = None,
+                         friction: float | None = None,
+                         require_tilt_deg: float | None = None) -> Verdict:
+    """The verdict for a body of ``mass`` kg with support ``sup`` (see :func:`check`)."""
+    h, tol = sup.com_height, sup.tolerance
+    frame = sup.frame
+    distances = sup.edge_distances
+    inside = len(distances) > 0 and bool(np.all(distances >= -tol))
+    if inside:
+        k = int(np.argmin(distances))
+        margin = float(distances[k])
+        direction = frame.from_ground(sup.edge_normals[k])
+    else:
+        margin = -sup.distance_to_boundary()
+        nearest = sup.nearest_point()
+        away = -nearest
+        norm = np.linalg.norm(away)
+        if norm > 0:
+            direction = frame.from_ground(away / norm)
+        else:  # a point support right below the centre: every direction alike
+            direction = frame.axes[0].copy()
+    if margin > tol:
+        verdict = "stands"
+    elif margin < -tol:
+        verdict = "topples"
+    else:
+        verdict = "neutral"
+    weight = mass * g
+    angle = float(np.degrees(np.arctan2(margin, h))) if verdict != "neutral" else 0.0
+    angles = np.degrees(np.arctan2(distances, h))
+    energies = _energy(weight, distances, h)
+    edges = tuple(
+        TippingEdge(sup.to_body(a), sup.to_body(b), frame.from_ground(n), float(d), float(t),
+                    float(e))
+        for a, b, n, d, t, e in zip(sup.edge_starts, sup.edge_ends, sup.edge_normals,
+                                    distances, angles, energies))
+    energy = float(_energy(weight, margin, h)) if verdict == "stands" else 0.0
+    result = Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass, g,
+                     sup, edges)
+    slope = None
+    if tilt_deg is not None or toward_deg is not None:
+        slope = _slope(result, 0.0 if tilt_deg is None else tilt_deg,
+                       None if toward_deg is None else toward_deg, friction)
+    slides_first = None
+    if friction is not None:
+        if friction < 0 or not np.isfinite(friction):
+            from ..errors import StabilityError
+
+            raise StabilityError(f"a friction coefficient must be ≥ 0, not {friction:g}")
+        slides_first = (slope.slides_first if slope is not None
+                        else bool(verdict == "stands" and friction * h < margin))
+    passes = None
+    if require_tilt_deg is not None:
+        passes = bool(verdict == "stands" and angle >= float(require_tilt_deg))
+    from dataclasses import replace
+
+    return replace(result, slope=slope, friction=friction, slides_first=slides_first,
+                   required_tilt_deg=require_tilt_deg, passes=passes)
+
+
+def _slope(result: Verdict, tilt_deg: float, toward_deg: float | None,
+           friction: float | None) -> SlopeCheck:
+    from ..errors import StabilityError
+
+    tilt = float(tilt_deg)
+    if not (np.isfinite(tilt) and 0 <= tilt < 90):
+        raise StabilityError(f"a tilt must be between 0° and 90°, not {tilt:g}°")
+    frame = result.support.frame
+    if toward_deg is None:  # the worst way
+        direction = result.critical_direction
+        g = frame.to_ground(direction)
+        toward = float(np.degrees(np.arctan2(g[1], g[0]))) if frame.dim == 3 else (
+            0.0 if g[0] > 0 else 180.0)
+    else:
+        toward = float(toward_deg)
+        direction = frame.direction(toward)
+    limit = result.tipping_angle_deg(direction)
+    topples = bool(tilt > limit) if result.verdict == "stands" else (
+        result.verdict == "topples" or tilt > 0)
+    slides = slides_first = None
+    if friction is not None:
+        slides = bool(np.tan(np.radians(tilt)) > friction)
+        s = np.tan(np.radians(limit)) * result.com_height
+        slides_first = bool(result.verdict == "stands" and friction * result.com_height < s)
+    return SlopeCheck(tilt, toward, direction, limit, topples, friction, slides, slides_first)
+
+
+def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | None = None,
+          toward_deg: float | None = None, friction: float | None = None,
+          require_tilt_deg: float | None = None, tolerance: float | None = None,
+          props: MassProperties | None = None) -> Verdict:
+    """Will ``body`` stand on a horizontal plane with gravity along ``down``?
+
+    body: any plumbob body.
+    down: (dim,) the direction of gravity in the body's frame; default −z for solids,
+        −y for a lamina (in its own plane).
+    g: gravitational acceleration, m/s².
+    tilt_deg, toward_deg: also check it on a plane tilted by ``tilt_deg`` degrees,
+        descending toward ``toward_deg`` (in the ground plane, from e1 toward e2 — for
+        ``down = −z`` from +x toward +y); without ``toward_deg`` the worst direction.
+    friction: friction coefficient μ: does it slide (tan θ > μ) before it topples?
+    require_tilt_deg: the design check: it must not topple when tilted this much in
+        any direction (IEC 62368-1: 10°).
+    tolerance: contact tolerance, m (default 1e-6 of the body's size).
+
+    >>> from plumbob.bodies.primitives import box
+    >>> v = check(box(1, 1, 4, density=1000.0))
+    >>> v.verdict, round(v.critical_tilt_deg, 2), round(v.energy_to_topple / (4000 * 9.81), 6)
+    ('stands', 14.04, 0.061553)
+    """
+    props = body.mass_properties() if props is None else props
+    sup = support(body, down, tolerance=tolerance, props=props)
+    return verdict_from_support(sup, props.mass, g, tilt_deg=tilt_deg, toward_deg=toward_deg,
+                                friction=friction, require_tilt_deg=require_tilt_deg)

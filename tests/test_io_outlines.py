@@ -1,0 +1,296 @@
+"""Laminas from SVG, DXF, GeoJSON, WKT, WKB and CSV, checked against closed forms."""
+
+import json
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from conftest import rel
+
+from plumbob.bodies.csg import Assembly
+from plumbob.bodies.lamina import Lamina
+from plumbob.errors import FormatError, GeometryError
+from plumbob.io import read
+
+SVG = '<svg xmlns="http://www.w3.org/2000/svg"{attrs}>{body}</svg>'
+
+
+def svg_file(tmp_path, body, attrs="", name="d.svg") -> str:
+    path = tmp_path / name
+    path.write_text(SVG.format(attrs=attrs, body=body))
+    return str(path)
+
+
+def dxf_file(tmp_path, build, units=6, name="d.dxf") -> str:
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = units
+    build(doc, doc.modelspace())
+    path = tmp_path / name
+    doc.saveas(path)
+    return str(path)
+
+
+def semicircle_props(a: float):
+    """Area, centroid height and inertia (σ = 1) of the half disc y ≥ 0 of radius a."""
+    area = np.pi * a * a / 2
+    cy = 4 * a / (3 * np.pi)
+    ixx = np.pi * a**4 / 8 - area * cy * cy
+    iyy = np.pi * a**4 / 8
+    return area, cy, np.diag([ixx, iyy, ixx + iyy])
+
+
+def assert_semicircle(props, a):
+    area, cy, inertia = semicircle_props(a)
+    assert props.exact
+    assert props.area == pytest.approx(area, rel=1e-14)
+    assert abs(props.center_of_mass[1] - cy) <= 1e-12 * cy
+    assert abs(props.center_of_mass[0]) <= 1e-15 * a
+    assert rel(props.inertia, inertia) < 1e-12
+
+
+# ------------------------------------------------------------------ exact curves
+def test_semicircle_as_svg_arc_is_exact(tmp_path):
+    a = 1.5
+    path = svg_file(tmp_path, f'<path d="M {a} 0 A {a} {a} 0 0 1 -{a} 0 Z"/>')
+    assert_semicircle(read(path, units="m").body.mass_properties(), a)
+
+
+def test_semicircle_as_dxf_bulge_arc_and_line_is_exact(tmp_path):
+    a = 1.5
+
+    def bulge(doc, msp):
+        msp.add_lwpolyline([(a, 0, 1.0), (-a, 0, 0.0)], format="xyb", close=True)
+
+    def arc(doc, msp):
+        msp.add_arc((0, 0), a, 0, 180)
+        msp.add_line((-a, 0), (a, 0))
+
+    for build in (bulge, arc):
+        reading = read(dxf_file(tmp_path, build, name=f"{build.__name__}.dxf"))
+        assert_semicircle(reading.body.mass_properties(), a)
+        assert "units: meter (from the file)" in reading.notices
+
+
+def test_quadratic_bezier_is_raised_exactly(tmp_path):
+    # y = 1 - x² over [-1, 1]: area 4/3, centroid height 2/5, ∫y² dA = 32/105
+    props = read(svg_file(tmp_path, '<path d="M -1 0 Q 0 2 1 0 Z"/>'), units="m").body \
+        .mass_properties()
+    assert props.exact
+    assert props.area == pytest.approx(4 / 3, rel=1e-14)
+    assert props.center_of_mass == pytest.approx([0.0, 0.4], rel=1e-14, abs=1e-15)
+    assert props.inertia[0, 0] == pytest.approx(32 / 105 - 4 / 3 * 0.16, rel=1e-13)
+
+
+def test_cubic_bezier_from_svg_and_dxf_spline(tmp_path):
+    # x = 3t² − 2t³, y = 3t(1 − t): area under it 18 ∫ t²(1−t)² dt = 3/5
+    svg = read(svg_file(tmp_path, '<path d="M 0 0 C 0 1 1 1 1 0 Z"/>'), units="m").body
+
+    def spline(doc, msp):
+        msp.add_open_spline([(0, 0), (0, 1), (1, 1), (1, 0)], degree=3)
+        msp.add_line((1, 0), (0, 0))
+
+    dxf = read(dxf_file(tmp_path, spline)).body
+    for body in (svg, dxf):
+        props = body.mass_properties()
+        assert props.exact
+        assert props.area == pytest.approx(0.6, rel=1e-14)
+        assert props.center_of_mass[0] == pytest.approx(0.5, rel=1e-14)
+
+
+def test_rounded_rect_and_mirrored_circle(tmp_path):
+    body = '<rect x="0" y="0" width="4" height="2" rx="0.5"/>' \
+           '<circle cx="1" cy="2" r="1" transform="translate(10 0) scale(1,-1)"/>'
+    reading = read(svg_file(tmp_path, body), units="m")
+    parts = reading.body.parts
+    rect, circle = (p.mass_properties() for p in parts)
+    assert rect.exact and circle.exact
+    assert rect.area == pytest.approx(8 - (4 - np.pi) * 0.25, rel=1e-14)
+    assert rect.center_of_mass == pytest.approx([2.0, 1.0], rel=1e-14)
+    assert circle.area == pytest.approx(np.pi, rel=1e-14)
+    assert circle.center_of_mass == pytest.approx([11.0, -2.0], rel=1e-14)
+
+
+def test_elliptical_arcs_are_close_and_say_so(tmp_path):
+    body = '<ellipse cx="0" cy="0" rx="3" ry="1" transform="rotate(20)"/>'
+    props = read(svg_file(tmp_path, body), units="m").body.mass_properties()
+    error = abs(props.area - 3 * np.pi) / (3 * np.pi)
+    assert not props.exact
+    assert error < 1e-10
+    assert error <= props.relative_error < 1e-9
+    assert any("elliptical arcs" in n for n in props.notes)
+    # a circle squashed by a transform is an ellipse too
+    squashed = read(svg_file(tmp_path, '<circle r="1" transform="scale(2 1)"/>', name="s.svg"),
+                    units="m").body.mass_properties()
+    assert squashed.area == pytest.approx(2 * np.pi, rel=1e-10) and not squashed.exact
+
+
+# ------------------------------------------------------------------ SVG units and nesting
+def test_svg_units_from_width_and_viewbox(tmp_path):
+    square = '<rect x="10" y="10" width="10" height="10"/>'
+    mm = svg_file(tmp_path, square, ' width="100mm" height="100mm" viewBox="0 0 100 100"')
+    reading = read(mm)
+    assert reading.body.mass_properties().area == pytest.approx(1e-4, rel=1e-14)
+    assert any("one user unit is 1 mm" in n for n in reading.notices)
+    inches = svg_file(tmp_path, square, ' width="2in" viewBox="0 0 200 200"', name="in.svg")
+    assert read(inches).body.mass_properties().area == pytest.approx((0.254e-3 * 10) ** 2,
+                                                                      rel=1e-14)
+    bare = svg_file(tmp_path, square, name="bare.svg")
+    reading = read(bare)
+    assert reading.body.mass_properties().area == pytest.approx((10 * 0.0254 / 96) ** 2,
+                                                                 rel=1e-14)
+    assert any("no physical size" in n for n in reading.notices)
+    assert read(mm, units="cm").body.mass_properties().area == pytest.approx(1e-2, rel=1e-14)
+
+
+def test_even_odd_nesting_makes_holes_and_islands(tmp_path):
+    body = ('<rect id="plate" x="0" y="0" width="10" height="10"/>'
+            '<circle cx="5" cy="5" r="3"/>'
+            '<rect id="island" x="4" y="4" width="2" height="2"/>')
+    reading = read(svg_file(tmp_path, body), units="m")
+    assert isinstance(reading.body, Assembly)
+    parts = {p.name: p.mass_properties() for p in reading.body.parts}
+    assert parts["plate"].area == pytest.approx(100 - 9 * np.pi, rel=1e-14)
+    assert parts["plate"].center_of_mass == pytest.approx([5.0, 5.0], rel=1e-14)
+    assert parts["island"].area == pytest.approx(4.0, rel=1e-14)
+
+
+def test_subpaths_with_holes_in_one_path(tmp_path):
+    d = "M 0 0 H 4 V 4 H 0 Z M 1 1 V 3 H 3 V 1 Z"  # the hole runs either way
+    props = read(svg_file(tmp_path, f'<path d="{d}"/>'), units="m").body.mass_properties()
+    assert props.area == pytest.approx(12.0, rel=1e-15)
+
+
+# ------------------------------------------------------------------ DXF
+def test_dxf_entities_and_units(tmp_path):
+    def build(doc, msp):
+        msp.add_circle((1, 2), 2)  # exact: two bulge arcs
+        msp.add_line((10, 0), (14, 0))  # a stadium from lines and arcs
+        msp.add_arc((14, 1), 1, 270, 90)
+        msp.add_line((14, 2), (10, 2))
+        msp.add_arc((10, 1), 1, 90, 270)
+        msp.add_ellipse((30, 0), major_axis=(3, 0), ratio=0.5)
+
+    reading = read(dxf_file(tmp_path, build, units=4))
+    assert "units: millimeter (from the file)" in reading.notices
+    circle, stadium, ellipse = sorted((p.mass_properties() for p in reading.body.parts),
+                                      key=lambda m: m.center_of_mass[0])
+    assert circle.exact and circle.area == pytest.approx(4 * np.pi * 1e-6, rel=1e-15)
+    assert circle.center_of_mass == pytest.approx([1e-3, 2e-3], rel=1e-15)
+    assert stadium.exact and stadium.area == pytest.approx((8 + np.pi) * 1e-6, rel=1e-14)
+    assert stadium.center_of_mass == pytest.approx([12e-3, 1e-3], rel=1e-14)
+    assert not ellipse.exact
+    assert ellipse.area == pytest.approx(np.pi * 3 * 1.5 * 1e-6, rel=1e-10)
+
+
+def test_dxf_mirrored_ocs_blocks_duplicates_and_leftovers(tmp_path):
+    def build(doc, msp):
+        msp.add_circle((2, 0), 1, dxfattribs={"extrusion": (0, 0, -1)})  # at x = −2 in WCS
+        msp.add_lwpolyline([(0, 5, 0.5), (2, 5, 0), (2, 7, 0), (0, 7, 0)], format="xyb",
+                           close=True, dxfattribs={"extrusion": (0, 0, -1)})
+        block = doc.blocks.new("DISC")
+        block.add_circle((0, 0), 1)
+        msp.add_blockref("DISC", (10, 10))
+        msp.add_circle((20, 0), 1)
+        msp.add_circle((20, 0), 1)  # drawn twice
+        msp.add_line((30, 0), (31, 1))  # a construction line
+
+    reading = read(dxf_file(tmp_path, build))
+    parts = [p.mass_properties() for p in reading.body.parts]
+    centres = sorted(tuple(np.round(p.center_of_mass, 12)) for p in parts)
+    assert (-2.0, 0.0) in centres and (10.0, 10.0) in centres and (20.0, 0.0) in centres
+    assert len(parts) == 4
+    mirrored = next(p for p in parts if p.center_of_mass[1] > 4)
+    # a square whose bottom edge bulges outward (bulge 0.5 ⇒ sweep 4·atan 0.5)
+    sweep = 4 * np.arctan(0.5)
+    r = 1 / np.sin(sweep / 2)
+    segment = r * r / 2 * (sweep - np.sin(sweep))
+    assert mirrored.area == pytest.approx(4 + segment, rel=1e-14)
+    assert mirrored.center_of_mass[0] < 0  # x mirrored into WCS
+    assert any("duplicate" in n for n in reading.notices)
+    assert any("ignored 1 open piece" in n for n in reading.notices)
+
+
+def test_dxf_rational_spline_is_flattened_with_a_bound(tmp_path):
+    def build(doc, msp):  # a quarter circle as a rational quadratic, closed by two lines
+        w = np.sqrt(0.5)
+        msp.add_rational_spline([(1, 0), (1, 1), (0, 1)], weights=[1, w, 1], degree=2)
+        msp.add_line((0, 1), (0, 0))
+        msp.add_line((0, 0), (1, 0))
+
+    props = read(dxf_file(tmp_path, build)).body.mass_properties()
+    assert not props.exact
+    error = abs(props.area - np.pi / 4) / (np.pi / 4)
+    assert error <= props.relative_error < 1e-6
+
+
+# ------------------------------------------------------------------ polygon formats
+def test_geojson_features_holes_and_names(tmp_path):
+    doc = {"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"name": "house"}, "geometry": {
+            "type": "Polygon", "coordinates": [[[0, 0], [10, 0], [10, 10], [0, 10], [0, 0]],
+                                               [[2, 2], [2, 4], [4, 4], [4, 2], [2, 2]]]}},
+        {"type": "Feature", "id": "sheds", "properties": {}, "geometry": {
+            "type": "MultiPolygon", "coordinates": [[[[20, 0], [22, 0], [22, 1], [20, 1]]],
+                                                    [[[30, 0], [31, 0], [31, 3], [30, 3]]]]}},
+        {"type": "Feature", "properties": {}, "geometry": {
+            "type": "LineString", "coordinates": [[0, 0], [1, 1]]}},
+    ]}
+    path = tmp_path / "site.geojson"
+    path.write_text(json.dumps(doc))
+    reading = read(str(path), units="ft")
+    body = reading.body
+    assert isinstance(body, Assembly)
+    parts = {p.name: p.mass_properties() for p in body.parts}
+    ft2 = 0.3048**2
+    assert parts["house"].area == pytest.approx(96 * ft2, rel=1e-14)
+    assert parts["house"].center_of_mass == pytest.approx(
+        (np.array([5, 5]) * 100 - np.array([3, 3]) * 4) / 96 * 0.3048, rel=1e-14)
+    assert parts["sheds"].area == pytest.approx(5 * ft2, rel=1e-14)
+    assert any("ignored geometries without area (1 LineString)" in n for n in reading.notices)
+
+
+def test_geojson_in_degrees_draws_a_notice(tmp_path):
+    ring = [[13.4, 52.5], [13.4001, 52.5], [13.4001, 52.5001], [13.4, 52.5001], [13.4, 52.5]]
+    path = tmp_path / "lonlat.geojson"
+    path.write_text(json.dumps({"type": "Polygon", "coordinates": [ring]}))
+    assert any("longitude/latitude" in n for n in read(str(path)).notices)
+
+
+def test_wkt_wkb_and_hex_wkb_agree(tmp_path):
+    polygon = shapely.from_wkt("POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0), (1 1, 1 2, 2 2, 2 1, 1 1))")
+    (tmp_path / "p.wkt").write_text(polygon.wkt)
+    (tmp_path / "p.wkb").write_bytes(polygon.wkb)
+    (tmp_path / "h.wkb").write_text(polygon.wkb_hex)
+    for name in ("p.wkt", "p.wkb", "h.wkb"):
+        props = read(str(tmp_path / name), units="mm").body.mass_properties()
+        assert props.area == pytest.approx(11e-6, rel=1e-14)
+        assert props.center_of_mass == pytest.approx(
+            (np.array([2, 1.5]) * 12 - np.array([1.5, 1.5])) / 11 * 1e-3, rel=1e-14)
+
+
+def test_wkt_without_area_is_refused(tmp_path):
+    (tmp_path / "l.wkt").write_text("LINESTRING (0 0, 1 1)")
+    with pytest.raises(FormatError, match="LINESTRING, which has no area"):
+        read(str(tmp_path / "l.wkt"))
+
+
+@pytest.mark.parametrize("text", [
+    "x,y\n0,0\n4,0\n4,4\n0,4\n\n1,1\n1,3\n3,3\n3,1\n",
+    "0;0\r\n4;0\r\n4;4\r\n0;4\r\n\r\n1;1\r\n1;3\r\n3;3\r\n3;1\r\n",
+    "X\tY\n0\t0\n4\t0\n4\t4\n0\t4\n  \n1 1\n1 3\n3 3\n3 1",
+])
+def test_csv_rings_with_a_hole(tmp_path, text):
+    path = tmp_path / "ring.csv"
+    path.write_text(text)
+    body = read(str(path)).body
+    assert isinstance(body, Lamina)
+    props = body.mass_properties()
+    assert props.area == 12.0
+    assert props.center_of_mass == pytest.approx([2.0, 2.0], rel=1e-15)
+
+
+def test_touching_hole_and_self_crossing_ring(tmp_path):
+    (tmp_path / "bow.csv").write_text("0,0\n3,3\n3,0\n0,3\n")
+    with pytest.raises(GeometryError, match=r"crosses itself at \(1.5, 1.5\)"):
+        read(str(tmp_path / "bow.csv"))
