@@ -214,3 +214,44 @@ def test_expression_errors_are_spec_errors():
     assert issubclass(ExpressionError, SpecError)
     with pytest.raises(SpecError):
         build_spec({"part": [{"type": "disc", "radius": "sqrt(-1)"}]})
+
+
+def test_density_field_is_in_the_spec_frame_and_sees_parameters(tmp_path):
+    path = write(tmp_path, """
+[parameters]
+k = 0.5
+[shape]
+density = "1 + k*x"
+[[part]]
+type = "rectangle"
+width = 1
+height = 1
+at = [1, 0]
+[[part]]
+op = "subtract"
+type = "rectangle"
+width = 0.5
+height = 0.5
+at = [1.5, 0.25]
+""")
+    props = load_spec(path).body.mass_properties()
+    # ∫ over [1,2]×[0,1] minus [1.5,2]×[0.25,0.75] of 1 + x/2
+    mass = (1 + 0.5 * 1.5) - 0.5 * (0.5 + 0.5 * (2**2 - 1.5**2) / 2)
+    first = (1.5 + 0.5 * 7 / 3) - 0.5 * ((2**2 - 1.5**2) / 2 + 0.5 * (2**3 - 1.5**3) / 3)
+    assert props.mass == pytest.approx(mass, rel=1e-12)
+    assert props.center_of_mass[0] == pytest.approx(first / mass, rel=1e-12)
+
+
+def test_nested_group_is_placed_as_one(tmp_path):
+    path = write(tmp_path, """
+[[part]]
+at = [10, 0]
+[[part.part]]
+type = "square"
+side = 1
+[[part.part]]
+type = "square"
+side = 1
+at = [1, 0]
+""")
+    assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx([11, 0.5])

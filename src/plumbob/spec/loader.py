@@ -385,16 +385,12 @@ def _material(spec: _Spec, table: dict, where: str, inherited: _Material) -> _Ma
 
 
 def _apply_material(spec: _Spec, body: Body, mat: _Material, where: str) -> Body:
+    """A part's uniform density (a density field is applied after placement)."""
     from dataclasses import replace
 
     if mat.thickness is not None and body.dim != 2:
         raise spec.error(where, "a thickness applies only to a lamina (2D shape)")
-    if isinstance(mat.density, Expression):
-        from ..bodies.graded import DensityField, with_density_field
-
-        scale = mat.thickness if (mat.thickness is not None and body.dim == 2) else 1.0
-        field = DensityField.from_expression(mat.density, scale=scale)
-        return with_density_field(body, field)
+    density = None if isinstance(mat.density, Expression) else mat.density
     if isinstance(body, Lamina):
         if mat.label is not None and mat.thickness is None:
             raise spec.error(
@@ -402,10 +398,26 @@ def _apply_material(spec: _Spec, body: Body, mat: _Material, where: str) -> Body
                 f"a lamina of {mat.label} needs a thickness (m) to turn the "
                 "material's kg/m³ into kg/m²",
             )
-        return replace(body, density=mat.density, thickness=mat.thickness)
-    if mat.density is None:
-        return body
-    return body.with_default_density(mat.density)
+        return replace(body, density=density, thickness=mat.thickness)
+    return body if density is None else body.with_default_density(density)
+
+
+def _apply_field(spec: _Spec, body: Body, mat: _Material, where: str) -> Body:
+    """A density field over ``body`` in the spec's frame (x, y, z after placement)."""
+    from ..bodies.graded import DensityField, with_density_field
+
+    scale = mat.thickness if (mat.thickness is not None and body.dim == 2) else 1.0
+    try:
+        field = DensityField.from_expression(mat.density, scale=scale, constants=dict(spec.names))
+        return with_density_field(body, field)
+    except SpecError:
+        raise
+    except PlumbobError as exc:
+        raise spec.error(f"{where}.density", exc.message) from None
+
+
+def _own_field(mat: _Material, inherited: _Material) -> bool:
+    return isinstance(mat.density, Expression) and mat.density is not inherited.density
 
 
 def _build_part(
@@ -437,8 +449,8 @@ def _build_part(
         box = body.mass_properties().center_of_mass
         body = body.translated(-box)
     mat = _material(spec, table, where, inherited)
-    body = _apply_material(spec, body, mat, where)
-    return _placement(spec, body, table, where)
+    body = _placement(spec, _apply_material(spec, body, mat, where), table, where)
+    return _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
 
 
 def _build_group(
@@ -464,17 +476,18 @@ def _build_group(
             raise spec.error(f"{label}.op", f"unknown op {op!r}; use add, subtract or intersect")
         if i == 0 and op != "add":
             raise spec.error(label, 'the first part must be added (op = "add")')
-        body = (
-            _build_group(spec, part, label, want_dim, mat)
-            if "part" in part
-            else _build_part(spec, part, label, want_dim, mat)
-        )
+        if "part" in part:
+            _check_keys(spec, part, (PART_KEYS - {"type"}) | {"part"}, label)
+            body = _build_group(spec, part, label, want_dim, mat)
+        else:
+            body = _build_part(spec, part, label, want_dim, mat)
         body = _named(body, part.get("name"))
         built.append((op, body, label))
     dims = {b.dim for _, b, _ in built}
     if len(dims) > 1:
         raise spec.error(where, "all parts must be 2D (a lamina) or all 3D (a solid)")
-    return _combine(spec, built)
+    body = _placement(spec, _combine(spec, built), table, where)
+    return _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
 
 
 def _combine(spec: _Spec, built: list[tuple[str, Body, str]]) -> Body:
@@ -602,6 +615,8 @@ def build_spec(data: dict, path: str = "<spec>") -> Reading:
     else:
         inherited = _material(spec, shape, "shape", _Material())
         body = _build_group(spec, {"part": data["part"]}, "shape", None, inherited)
+        if isinstance(inherited.density, Expression):
+            body = _apply_field(spec, body, inherited, "shape")
     expected = shape.get("kind")
     if expected is not None and expected != body.kind:
         raise spec.error("shape.kind", f"the parts make a {body.kind}, not a {expected}")
