@@ -36,13 +36,15 @@ def obj_text(v, f) -> bytes:
 
 
 def off_text(v, f) -> bytes:
-    return (f"OFF\n{len(v)} {len(f)} 0\n" + "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+    return (f"OFF\n{len(v)} {len(f)} 0\n"
+            + "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
             + "".join(f"3 {a} {b} {c}\n" for a, b, c in f.tolist())).encode()
 
 
 def ply_text(v, f) -> bytes:
-    head = (f"ply\nformat ascii 1.0\nelement vertex {len(v)}\nproperty double x\nproperty double y\n"
-            f"property double z\nelement face {len(f)}\nproperty list uchar int vertex_indices\n"
+    head = (f"ply\nformat ascii 1.0\nelement vertex {len(v)}\n"
+            "property double x\nproperty double y\nproperty double z"
+            f"\nelement face {len(f)}\nproperty list uchar int vertex_indices\n"
             "end_header\n")
     return (head + "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
             + "".join(f"3 {a} {b} {c}\n" for a, b, c in f.tolist())).encode()
@@ -159,3 +161,14 @@ def test_open_obj_is_reported_like_an_stl(tmp_path):
         read(path)
     repaired = read(path, repair=True)
     assert repaired.body.mass_properties().volume == pytest.approx(1.0, rel=1e-12)
+
+
+def test_gltf_with_an_external_buffer(tmp_path):
+    mesh = trimesh.creation.box([1.0, 2.0, 3.0])
+    files = trimesh.Scene([mesh]).export(file_type="gltf")  # {name: bytes}
+    for name, data in files.items():
+        (tmp_path / name).write_bytes(data)
+    gltf = next(n for n in files if n.endswith(".gltf"))
+    assert any(not n.endswith(".gltf") for n in files)  # the buffer is a file of its own
+    props = read(str(tmp_path / gltf)).body.mass_properties()
+    assert props.volume == pytest.approx(6.0, rel=1e-6)

@@ -294,3 +294,21 @@ def test_touching_hole_and_self_crossing_ring(tmp_path):
     (tmp_path / "bow.csv").write_text("0,0\n3,3\n3,0\n0,3\n")
     with pytest.raises(GeometryError, match=r"crosses itself at \(1.5, 1.5\)"):
         read(str(tmp_path / "bow.csv"))
+
+
+def test_dxf_polyline_bulges_and_a_half_ellipse_chain(tmp_path):
+    def build(doc, msp):
+        square = msp.add_polyline2d([(0, 0), (2, 0), (2, 2), (0, 2)], close=True)
+        list(square.vertices)[-1].dxf.bulge = 1.0  # the closing edge: a half circle outward
+        msp.add_ellipse((10, 0), major_axis=(2, 0), ratio=0.5, start_param=0, end_param=np.pi)
+        msp.add_line((8, 0), (12, 0))
+
+    parts = sorted((p.mass_properties() for p in read(dxf_file(tmp_path, build)).body.parts),
+                   key=lambda m: m.center_of_mass[0])
+    square, half = parts
+    assert square.exact and square.area == pytest.approx(4 + np.pi / 2, rel=1e-14)
+    assert square.center_of_mass[0] == pytest.approx((4 * 1 - np.pi / 2 * 4 / (3 * np.pi))
+                                                     / (4 + np.pi / 2), rel=1e-13)
+    assert not half.exact
+    assert half.area == pytest.approx(np.pi, rel=1e-10)
+    assert half.center_of_mass[1] == pytest.approx(4 * 1 / (3 * np.pi), rel=1e-9)

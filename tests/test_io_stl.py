@@ -68,7 +68,7 @@ def test_binary_chunks_do_not_matter(tmp_path, monkeypatch, chunk):
     monkeypatch.setattr(stl_module, "CHUNK", chunk)
     loaded = load_stl(path)
     assert np.array_equal(loaded.solids[0].triangles, tri.astype(np.float32))
-    assert np.array_equal(loaded.lo, [0, 0, 0]) and np.array_equal(loaded.hi, [1, 2, 3])
+    assert loaded.reach == 3.0 and loaded.binary
 
 
 @pytest.mark.parametrize("block", [64, 300, 4096])
@@ -128,6 +128,8 @@ def test_names_from_binary_header_and_file(tmp_path):
     assert isinstance(body, MeshSolid) and body.name == "widget"
     data[:80] = b"COLOR=\xff\x00\x00\x00".ljust(80, b"\0")
     assert read(write(tmp_path / "colour.stl", bytes(data))).body.name == "colour"
+    data[:80] = b"Exported by SomeCAD 2024".ljust(80, b" ")
+    assert read(write(tmp_path / "banner.stl", bytes(data))).body.name == "banner"
 
 
 def test_missing_endsolid_is_a_notice(tmp_path):

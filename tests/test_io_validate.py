@@ -44,6 +44,19 @@ def test_connected_components_match_scipy(n, edges):
     assert len(pairs) == count
 
 
+@given(st.integers(0, 5000), st.integers(0, 2**32 - 1))
+def test_block_bounds_match_a_plain_reduction(n, seed):
+    points = np.random.default_rng(seed).normal(size=(n, 3)).astype(np.float32)
+    lo, hi = validate.block_bounds(points)
+    if n:
+        assert np.array_equal(lo, points.min(axis=0)) and np.array_equal(hi, points.max(axis=0))
+    else:
+        assert np.all(lo == np.inf) and np.all(hi == -np.inf)
+    if n > 1:
+        points[n // 2, 1] = np.nan
+        assert np.isnan(validate.block_bounds(points)[0][1])
+
+
 def test_topology_of_a_cube():
     topo = mesh_topology(cube(2).astype(np.float32))
     assert len(topo.vertices) == 26  # 8 corners, 12 edge midpoints, 6 face centres
@@ -119,8 +132,8 @@ def test_t_junctions_close_geometrically():
     tri = cube()
     top = np.isclose(tri[:, :, 2], 1.0).all(axis=1)
     m = [0.5, 0.0, 1.0]
-    fan = np.array([[[0, 0, 1], m, [0, 1, 1]], [m, [1, 1, 1], [0, 1, 1]], [m, [1, 0, 1], [1, 1, 1]]],
-                   dtype=float)
+    fan = np.array([[[0, 0, 1], m, [0, 1, 1]], [m, [1, 1, 1], [0, 1, 1]],
+                    [m, [1, 0, 1], [1, 1, 1]]], dtype=float)
     tri = np.concatenate((tri[~top], fan))
     body, notices = check_solid(tri)
     assert body.mass_properties().volume == pytest.approx(1.0, rel=1e-15)

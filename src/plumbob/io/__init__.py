@@ -21,7 +21,7 @@ import os
 from dataclasses import dataclass
 
 from ..bodies.base import Body
-from ..errors import InputFileError
+from ..errors import InputFileError, PlumbobError
 
 __all__ = ["Reading", "read", "SUFFIXES"]
 
@@ -72,6 +72,10 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
         raise InputFileError("is empty (0 bytes): nothing to read", path=path)
     try:
         return _dispatch(kind, path, units, repair)
+    except PlumbobError as error:
+        if error.path is None:  # raised below the readers (a body's own check): name the file
+            raise type(error)(error.message, path=path) from None
+        raise
     except MemoryError:
         raise InputFileError("is too large to read into memory", path=path) from None
     except (OSError, UnicodeError) as error:

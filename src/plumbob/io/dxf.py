@@ -25,10 +25,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..bodies.region import Ring
-from ..errors import FormatError
+from ..errors import FormatError, GeometryError, PlumbobError
 from . import Reading
 from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
-from .validate import FILE_UNITS, fmt_point, units_scale
+from .validate import ABSURD_COORDINATE, FILE_UNITS, fmt_point, units_scale
 
 __all__ = ["read_dxf", "INSUNITS"]
 
@@ -74,8 +74,8 @@ def read_dxf(path: str, units: str | None = None) -> Reading:
     counts: dict[str, int] = {}
     try:
         for entity in doc.modelspace():  # per entity
-            _collect(entity, pieces, counts, 0)
-    except FormatError:
+            _collect(entity, pieces, counts, 0, ABSURD_COORDINATE / scale, path)
+    except PlumbobError:
         raise
     except Exception as error:  # noqa: BLE001 - ezdxf raises every kind on corrupt entities
         raise FormatError(f"has an entity ezdxf cannot interpret: {type(error).__name__}: "
@@ -119,13 +119,16 @@ def _open(path: str):
 
 
 # ------------------------------------------------------------------ entities
-def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int) -> None:
+def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, limit: float,
+             path: str) -> None:
+    """Add the outline pieces of ``entity`` (expanding blocks); ``limit``: the largest
+    plausible coordinate in file units."""
     kind = entity.dxftype()
     if kind == "INSERT":
         if depth >= MAX_BLOCK_DEPTH:
-            raise FormatError(f"nests block references deeper than {MAX_BLOCK_DEPTH}")
+            raise FormatError(f"nests block references deeper than {MAX_BLOCK_DEPTH}", path=path)
         for sub in entity.virtual_entities():
-            _collect(sub, pieces, counts, depth + 1)
+            _collect(sub, pieces, counts, depth + 1, limit, path)
         return
     maker = _MAKERS.get(kind)
     if maker is None:
@@ -142,9 +145,15 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int) -
     handle = entity.dxf.get("handle", "?")
     layer = entity.dxf.get("layer", "0")
     label = f"{kind} #{handle} (layer {layer!r})"
-    piece = maker(entity, label, layer)
+    with np.errstate(all="ignore"):
+        piece = maker(entity, label, f"{kind} #{handle}")
     if piece is None:
         return
+    if not (np.isfinite(piece.points).all() and np.abs(piece.points).max() <= limit
+            and np.isfinite(piece.bulges).all()
+            and np.all(np.isnan(piece.controls) | (np.abs(piece.controls) <= limit))):
+        raise GeometryError(f"{label} has a coordinate that is not a finite number of plausible "
+                            "size", path=path)
     if extrusion[2] < 0:  # OCS mirrored: x ↦ −x, arcs turn the other way
         piece.points = piece.points * np.array([-1.0, 1.0])
         piece.controls = piece.controls * np.array([-1.0, 1.0])

@@ -101,7 +101,10 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
     elif file_type in ("glb", "gltf"):
         file_units = "meter"  # glTF's unit, by its specification
     if file_units is not None and file_units.lower() not in FILE_UNITS:
-        raise FormatError(f"declares the unknown unit {file_units!r}", path=path)
+        if units is None:
+            raise FormatError(f"declares the unknown unit {file_units!r}; pass --units",
+                              path=path)
+        file_units = None
     scale, notices = units_scale(units, file_units, FILE_UNITS.get(str(file_units).lower()))
     notices = list(notices)
     meshes, skipped = _load(path, file_type)
@@ -148,6 +151,9 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
                 continue
             vertices = np.asarray(geometry.vertices, dtype=float)
             faces = np.asarray(geometry.faces, dtype=np.int64)
+            if vertices.ndim != 2 or vertices.shape[1] != 3:
+                raise FormatError(f"mesh {node!r} has vertices that are not 3D points",
+                                  path=path)
             if faces.ndim != 2 or faces.shape[1] != 3 or faces.min() < 0 or \
                     faces.max() >= len(vertices):
                 raise FormatError(f"mesh {node!r} has a face referring to a vertex it does not "

@@ -204,7 +204,10 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     if not outlines:
         raise FormatError("has no closed outline", path=path)
     notices: list[str] = []
-    pts = np.concatenate([o.ring.vertices for o in outlines])
+    pts = [o.ring.vertices for o in outlines]
+    pts += [o.ring.controls[~np.isnan(o.ring.controls)].reshape(-1, 2)
+            for o in outlines if o.ring.controls is not None]
+    pts = np.concatenate(pts)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     notices += check_extent(lo, hi, path=path)
     size = float(np.linalg.norm(hi - lo))
@@ -212,7 +215,11 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     areas = np.array([_ring_area(o.ring) for o in outlines])
     polygons = []
     for outline, area in zip(outlines, areas):  # per outline
-        polygon = shapely.Polygon(outline.ring.flattened(tol))
+        flat = outline.ring.flattened(tol)
+        if len(flat) < 3:
+            raise GeometryError(f"{outline.label} has zero area: it has fewer than three "
+                                "distinct points", path=path)
+        polygon = shapely.Polygon(flat)
         error = validity_error(polygon, outline.label, path, scale)
         if error is not None:
             raise error
@@ -265,9 +272,10 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
 
     if not named:
         raise FormatError("has no Polygon or MultiPolygon", path=path)
-    geometries = [shapely.transform(g, lambda c: c * scale) if scale != 1.0 else g
-                  for _, g in named]
-    bounds = np.array([shapely.bounds(g) for g in geometries])
+    with np.errstate(over="ignore", invalid="ignore"):
+        geometries = [shapely.transform(g, lambda c: c * scale) if scale != 1.0 else g
+                      for _, g in named]
+        bounds = np.array([shapely.bounds(g) for g in geometries])
     if not np.isfinite(bounds).all():
         raise GeometryError("a coordinate is not a finite number (NaN or infinity)", path=path)
     notices = check_extent(bounds[:, :2].min(axis=0), bounds[:, 2:].max(axis=0), path=path)
@@ -430,24 +438,20 @@ def _csv_outlines(data: bytes, path: str, scale: float) -> list[Outline]:
     """Rings of ``x,y`` lines (comma, semicolon, tab or space separated), blank lines between
     rings, an optional header line."""
     text = _text(data, path, "CSV").replace("\r\n", "\n").replace("\r", "\n")
-    lines_before = 0
     outlines = []
-    blocks = re.split(r"\n[ \t]*\n", text.strip("\n"))
-    first_line = len(text) - len(text.lstrip("\n"))
-    lines_before = first_line
-    for b, block in enumerate(blocks):  # per ring
-        rows = block.strip("\n").split("\n")
-        start_line = lines_before + 1
-        lines_before += block.count("\n") + 2
-        if b == 0 and rows and re.search(r"[A-Za-df-z_]", rows[0]):
+    blocks = re.finditer(r"(?:[^\n]*\S[^\n]*(?:\n|$))+", text)  # runs of non-blank lines
+    for b, match in enumerate(blocks):  # per ring
+        rows = match.group().rstrip("\n").split("\n")
+        start_line = text.count("\n", 0, match.start()) + 1
+        if b == 0 and re.search(r"[A-Za-df-z_]", rows[0]):
             rows, start_line = rows[1:], start_line + 1  # a header
-        if not rows or not "".join(rows).strip():
+        if not rows:
             continue
         flat = re.sub(r"[,;\t]", " ", "\n".join(rows))
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                values = np.fromstring(flat, sep=" ") if flat.strip() else np.zeros(0)
+                values = np.fromstring(flat, sep=" ")
         except ValueError:  # numpy ≥ 2.3 raises on text that is not numbers
             values = None
         if values is None or len(values) != 2 * len(rows):
@@ -458,9 +462,11 @@ def _csv_outlines(data: bytes, path: str, scale: float) -> list[Outline]:
             raise GeometryError(f"line {start_line + bad}: a coordinate is not a finite number",
                                 path=path)
         if len(xy) < 3:
-            raise GeometryError(f"ring {b + 1} (line {start_line}) has only {len(xy)} points; "
-                                "an outline needs at least three", path=path)
-        outlines.append(Outline(Ring(xy * scale), f"ring {b + 1} (line {start_line})"))
+            raise GeometryError(f"ring {len(outlines) + 1} (line {start_line}) has only "
+                                f"{len(xy)} points; an outline needs at least three", path=path)
+        with np.errstate(over="ignore"):
+            ring = Ring(xy * scale)
+        outlines.append(Outline(ring, f"ring {len(outlines) + 1} (line {start_line})"))
     if not outlines:
         raise FormatError("holds no x,y rows", path=path)
     return outlines

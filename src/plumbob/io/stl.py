@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import FormatError, InputFileError
-from .validate import check_extent, raise_nonfinite, units_scale
+from .validate import check_extent, check_reach, raise_nonfinite, units_scale
 
 if TYPE_CHECKING:
     from . import Reading
@@ -50,13 +50,15 @@ class StlSolid:
 
 @dataclass(frozen=True, eq=False)
 class StlFile:
-    """What an STL file holds: solids, whether it was binary, its bounding box
-    (``lo``, ``hi``, file units) and notices about the file itself."""
+    """What an STL file holds: solids, whether it was binary, the largest coordinate
+    magnitude (``reach``, file units), the bounding box when it was found while
+    parsing (``lo``, ``hi``; ASCII only) and notices about the file itself."""
 
     solids: tuple[StlSolid, ...]
     binary: bool
-    lo: np.ndarray
-    hi: np.ndarray
+    reach: float
+    lo: np.ndarray | None = None
+    hi: np.ndarray | None = None
     notices: tuple[str, ...] = ()
 
     @property
@@ -109,56 +111,43 @@ def _length_mismatch(path: str, count: int, size: int) -> None:
 
 def _load_binary(path: str, count: int) -> StlFile:
     triangles = np.empty((count, 3, 3), dtype=np.float32)
-    lo = np.full(3, np.inf, dtype=np.float32)
-    hi = np.full(3, -np.inf, dtype=np.float32)
+    reach = 0.0
     records = np.empty(min(count, CHUNK), dtype=STL_RECORD)
     raw = records.view(np.uint8)
-    # On a little-endian machine the records' vertex bytes are the float32s we want.
-    as_bytes = triangles.reshape(count, 9).view(np.uint8) if sys.byteorder == "little" else None
+    # On a little-endian machine each record's 36 vertex bytes are the float32s we want:
+    # copy them as opaque 36-byte items (one memcpy each), not field by field.
+    item = np.dtype((np.void, 36))
+    little = sys.byteorder == "little"
+    target = triangles.reshape(count, 9).view(item).reshape(count) if little else None
+    source = np.ndarray((len(records),), dtype=item, buffer=raw, offset=12, strides=(50,))
     with open(path, "rb") as f:
         header = f.read(84)
         for start in range(0, count, CHUNK):
             k = min(CHUNK, count - start)
             if f.readinto(raw[: 50 * k]) != 50 * k:
                 raise InputFileError("ended while being read (was it being written?)", path=path)
-            if as_bytes is not None:
-                as_bytes[start:start + k] = raw[: 50 * k].reshape(k, 50)[:, 12:48]
+            if little:
+                target[start:start + k] = source[:k]
             else:
                 triangles[start:start + k] = records["tri"][:k]
             block = triangles[start:start + k]
-            blo, bhi = _block_bounds(block)
-            if not (np.isfinite(blo).all() and np.isfinite(bhi).all()):
+            low, high = float(block.min()), float(block.max())  # NaN propagates
+            if not (np.isfinite(low) and np.isfinite(high)):
                 raise_nonfinite(block, start, path=path, what="triangle")
-            np.minimum(lo, blo, out=lo)
-            np.maximum(hi, bhi, out=hi)
+            reach = max(reach, -low, high)
     name = _header_name(header[:80])
-    return StlFile((StlSolid(name, triangles),), True, lo.astype(float), hi.astype(float))
-
-
-def _block_bounds(block: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per-axis min and max of triangles (k, 3, 3); NaN propagates.
-
-    Reducing rows of 256 vertices at a time keeps numpy's inner loop long
-    (a reduction over (3k, 3) along axis 0 is ten times slower).
-    """
-    main = len(block) // 256 * 256
-    parts = []
-    if main:
-        wide = block[:main].reshape(-1, 768)
-        parts.append((wide.min(axis=0).reshape(-1, 3).min(axis=0),
-                      wide.max(axis=0).reshape(-1, 3).max(axis=0)))
-    if main < len(block):
-        rest = block[main:].reshape(-1, 3)
-        parts.append((rest.min(axis=0), rest.max(axis=0)))
-    return (np.minimum.reduce([p[0] for p in parts]), np.maximum.reduce([p[1] for p in parts]))
+    # The bounding box comes with the closure test (one float64 pass in check_solid).
+    return StlFile((StlSolid(name, triangles),), True, reach)
 
 
 def _header_name(header: bytes) -> str | None:
-    """A binary STL's header text when it is a plain name (``solid NAME`` or text)."""
+    """The name in a binary STL header of the form ``solid NAME`` (many exporters write
+    it); other header text (an exporter's banner, ``COLOR=…``) names nothing."""
     text = header.split(b"\0", 1)[0].strip()
-    if text[:5].lower() == b"solid":
-        text = text[5:].strip()
-    if not text or not all(32 <= c < 127 for c in text) or b"=" in text:
+    if text[:6].lower() != b"solid ":
+        return None
+    text = text[6:].strip()
+    if not text or not all(32 <= c < 127 for c in text):
         return None
     return text.decode("ascii")
 
@@ -306,7 +295,8 @@ def _load_ascii(path: str, size: int) -> StlFile | None:
             if not np.isfinite(s.triangles).all():
                 raise_nonfinite(s.triangles, offset, path=path, what="facet")
             offset += len(s.triangles)
-    return StlFile(tuple(solids), False, lo, hi, tuple(notices))
+    reach = float(max(np.abs(lo).max(), np.abs(hi).max()))
+    return StlFile(tuple(solids), False, reach, lo, hi, tuple(notices))
 
 
 # ------------------------------------------------------------------ bodies
@@ -320,7 +310,10 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     stl = load_stl(path)
     scale, notices = units_scale(units)
     notices = list(notices) + list(stl.notices)
-    notices += check_extent(stl.lo * scale, stl.hi * scale, path=path)
+    if stl.lo is not None:
+        notices += check_extent(stl.lo * scale, stl.hi * scale, path=path)
+    else:
+        check_reach(stl.reach * scale, path=path)
     stem = os.path.splitext(os.path.basename(path))[0]
     several = len(stl.solids) > 1
     parts = []
@@ -328,7 +321,7 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
                            for i, s in enumerate(stl.solids)])
     for solid, name in zip(stl.solids, names):
         tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float) * scale
-        body, more = check_solid(tri, path=path, name=name, repair=repair,
+        body, more = check_solid(tri, path=path, name=name, repair=repair, extent=stl.lo is None,
                                  label=f"solid {name!r}" if several else None, scale=scale)
         parts.append(body)
         notices.extend(more)

@@ -27,7 +27,7 @@ from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError
 from . import Reading
 from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
-from .validate import fmt_point, units_scale
+from .validate import ABSURD_COORDINATE, fmt_point, units_scale
 
 __all__ = ["read_svg", "PX"]
 
@@ -40,7 +40,15 @@ def read_svg(path: str, units: str | None = None) -> Reading:
     import svgelements as se
 
     svg = _parse(path, None)
-    viewport = se.Matrix(svg.viewbox_transform) if svg.viewbox_transform else se.Matrix()
+    try:
+        text = svg.viewbox_transform
+        viewport = se.Matrix(text) if text else se.Matrix()
+        det = viewport.a * viewport.d - viewport.b * viewport.c
+    except (ArithmeticError, ValueError, TypeError):
+        det = np.nan
+    if not (np.isfinite(det) and det != 0 and np.isfinite([viewport.e, viewport.f]).all()):
+        raise FormatError("has a degenerate size or viewBox (zero, infinite or not a number)",
+                          path=path)
     per_unit = _metres_per_user_unit(svg)
     if not viewport.is_identity():  # read coordinates in user units, not svgelements' px
         inverse = ~viewport
@@ -129,9 +137,11 @@ def _metres_per_user_unit(svg) -> float | None:
     without a viewBox a user unit is a px; None when the file gives no physical size."""
     box = svg.viewbox
     width, height = _css_length(svg.values.get("width")), _css_length(svg.values.get("height"))
-    if box is None or not (box.width and box.height):
+    if box is None:
         return PX if (width or height) else None
-    scales = [s for s in (width and width / box.width, height and height / box.height) if s]
+    bw, bh = float(box.width or 0), float(box.height or 0)
+    scales = [s for s in (width and bw > 0 and width / bw, height and bh > 0 and height / bh)
+              if s and np.isfinite(s)]
     return min(scales) if scales else None
 
 
@@ -180,7 +190,12 @@ def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
     nan = np.full((2, 2), np.nan)
 
     def xy(point) -> np.ndarray:
-        return np.array([float(point.x), float(point.y)]) * scale
+        with np.errstate(over="ignore", invalid="ignore"):
+            p = np.array([float(point.x), float(point.y)]) * scale
+        if not (np.isfinite(p).all() and np.abs(p).max() <= ABSURD_COORDINATE):
+            raise GeometryError(f"{name}: the coordinate {fmt_point(p / scale)} is not a finite "
+                                "number of plausible size", path=path)
+        return p
 
     def finish(closed: bool, end) -> None:
         nonlocal points, bulges, controls, error, approx, skipped

@@ -33,6 +33,8 @@ __all__ = [
     "units_scale",
     "fmt_point",
     "check_extent",
+    "check_reach",
+    "block_bounds",
     "finite_bounds",
     "SurfaceSummary",
     "surface_summary",
@@ -56,6 +58,8 @@ MAX_SHELLS_CHECKED = 64
 ZERO_VOLUME = 1e-9
 #: triangles per pass in the chunked kernels
 CHUNK = 1 << 16
+#: triangles per pass of the closure test: its float64 temporaries stay in cache
+SUMMARY_CHUNK = 1 << 13
 
 UNITS_ASSUMED = "units: none in file; metres assumed (use --units)"
 
@@ -105,14 +109,7 @@ def check_extent(lo: np.ndarray, hi: np.ndarray, *, path: str | None) -> tuple[s
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
-    reach = float(max(np.abs(lo).max(), np.abs(hi).max()))
-    if not np.isfinite(reach):
-        raise GeometryError("a coordinate is not a finite number (NaN or infinity)", path=path)
-    if reach > ABSURD_COORDINATE:
-        raise GeometryError(
-            f"coordinates reach {reach:.3g} m, far beyond any real object "
-            f"(limit {ABSURD_COORDINATE:g} m): the file is corrupt or in other units "
-            "(use --units)", path=path)
+    check_reach(float(max(np.abs(lo).max(), np.abs(hi).max())), path=path)
     size = float(np.linalg.norm(hi - lo))
     small, large = PLAUSIBLE_SIZE
     if size > large:
@@ -122,6 +119,37 @@ def check_extent(lo: np.ndarray, hi: np.ndarray, *, path: str | None) -> tuple[s
         return (f"size: the model is only {size:.3g} m across, implausible for its units; "
                 "pass --units to say what the file's lengths are in",)
     return ()
+
+
+def check_reach(reach: float, *, path: str | None) -> None:
+    """Reject a largest coordinate magnitude ``reach`` (m) that is not finite or absurd."""
+    if not np.isfinite(reach):
+        raise GeometryError("a coordinate is not a finite number (NaN or infinity)", path=path)
+    if reach > ABSURD_COORDINATE:
+        raise GeometryError(
+            f"coordinates reach {reach:.3g} m, far beyond any real object "
+            f"(limit {ABSURD_COORDINATE:g} m): the file is corrupt or in other units "
+            "(use --units)", path=path)
+
+
+def block_bounds(block: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per-axis min and max of points (…, 3), NaN propagating.
+
+    Reduces rows of 1024 points at a time, keeping numpy's inner loop long (a
+    reduction of (m, 3) along axis 0 is ten times slower).
+    """
+    flat = block.reshape(-1, 3)
+    main = len(flat) // 1024 * 1024
+    parts = []
+    if main:
+        wide = flat[:main].reshape(-1, 3072)
+        parts.append((wide.min(axis=0).reshape(-1, 3).min(axis=0),
+                      wide.max(axis=0).reshape(-1, 3).max(axis=0)))
+    if main < len(flat) or not parts:
+        rest = flat[main:]
+        parts.append((rest.min(axis=0), rest.max(axis=0)) if len(rest) else
+                     (np.full(3, np.inf), np.full(3, -np.inf)))
+    return (np.minimum.reduce([p[0] for p in parts]), np.maximum.reduce([p[1] for p in parts]))
 
 
 def finite_bounds(points: np.ndarray, *, path: str | None, what: str = "triangle",
@@ -167,12 +195,15 @@ class SurfaceSummary:
     volume: signed enclosed volume, m³ (meaningful only when closed).
     vector_area: (3,) m², zero on a closed surface.
     area: m².
+    lo, hi: (3,) m, the bounding box.
     """
 
     origin: np.ndarray
     volume: float
     vector_area: np.ndarray
     area: float
+    lo: np.ndarray
+    hi: np.ndarray
 
     @property
     def closed(self) -> bool:
@@ -183,22 +214,38 @@ class SurfaceSummary:
         return abs(self.volume) <= ZERO_VOLUME * self.area ** 1.5
 
 
-def surface_summary(triangles: np.ndarray, chunk: int = CHUNK) -> SurfaceSummary:
-    """Volume, vector area and area of ``triangles`` (n, 3, 3), in chunks (float64 per chunk)."""
+def surface_summary(triangles: np.ndarray, chunk: int = SUMMARY_CHUNK) -> SurfaceSummary:
+    """Volume, vector area, area and bounding box of ``triangles`` (n, 3, 3), in chunks.
+
+    Each chunk is copied once, component-major and in float64 relative to a local
+    origin, so every later operation runs over contiguous rows of triangles.
+    """
     n = len(triangles)
     origin = (triangles[: min(n, 1024)].reshape(-1, 3).mean(axis=0, dtype=float)
               if n else np.zeros(3))
     volume = 0.0
     area = 0.0
     vector_area = np.zeros(3)
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
     for start in range(0, n, chunk):
-        t = triangles[start:start + chunk].astype(float, copy=False)
-        a = t[:, 0] - origin
-        normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-        volume += float(np.einsum("ij,ij->", a, normal))
-        vector_area += normal.sum(axis=0)
-        area += float(np.sqrt(np.einsum("ij,ij->i", normal, normal)).sum())
-    return SurfaceSummary(origin, volume / 6, vector_area / 2, area / 2)
+        block = triangles[start:start + chunk]
+        corners = np.empty((3, 3, len(block)))  # corners[i, j]: coordinate j of corner i
+        np.subtract(block.transpose(1, 2, 0), origin[None, :, None], out=corners)
+        a, b, c = corners
+        u, v = b - a, c - a
+        normal = np.empty_like(u)
+        np.multiply(u[1], v[2], out=normal[0])
+        normal[0] -= u[2] * v[1]
+        np.multiply(u[2], v[0], out=normal[1])
+        normal[1] -= u[0] * v[2]
+        np.multiply(u[0], v[1], out=normal[2])
+        normal[2] -= u[1] * v[0]
+        volume += float(a[0] @ normal[0] + a[1] @ normal[1] + a[2] @ normal[2])
+        vector_area += normal.sum(axis=1)
+        area += float(np.sqrt(np.einsum("ij,ij->j", normal, normal)).sum())
+        lo = np.minimum(lo, corners.min(axis=(0, 2)) + origin)
+        hi = np.maximum(hi, corners.max(axis=(0, 2)) + origin)
+    return SurfaceSummary(origin, volume / 6, vector_area / 2, area / 2, lo, hi)
 
 
 # ---------------------------------------------------------------- topology
@@ -508,8 +555,8 @@ def _resolve_shells(vertices, faces, shell, shells, *, path, label):
 
 # ---------------------------------------------------------------- the check
 def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | None = None,
-                repair: bool = False, label: str | None = None,
-                scale: float = 1.0) -> tuple[MeshSolid, tuple[str, ...]]:
+                repair: bool = False, label: str | None = None, scale: float = 1.0,
+                extent: bool = False) -> tuple[MeshSolid, tuple[str, ...]]:
     """A :class:`MeshSolid` from a triangle soup (n, 3, 3) in metres, checked and fixed.
 
     Raises :class:`GeometryError` for an empty, flat, open (unless ``repair``
@@ -517,7 +564,8 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
     inside-out mesh or inconsistently wound faces (with a notice) and unites
     overlapping shells (with a notice). ``label`` names the body in messages
     when a file holds several; ``scale`` (metres per file unit) puts the points
-    that messages name in the file's own coordinates.
+    that messages name in the file's own coordinates; ``extent`` adds the
+    implausible-size check on the mesh's bounding box (see :func:`check_extent`).
     """
     prefix = f"{label}: " if label else ""
     n = len(triangles)
@@ -527,7 +575,7 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
     if not summary.area > 0:
         raise GeometryError(f"{prefix}all {n} triangles have zero area: there is no surface",
                             path=path)
-    notices: list[str] = []
+    notices: list[str] = list(check_extent(summary.lo, summary.hi, path=path)) if extent else []
     full = repair or not summary.closed or n <= FULL_CHECK_LIMIT
     if not full:
         if summary.flat:

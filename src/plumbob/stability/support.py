@@ -44,9 +44,10 @@ __all__ = [
     "Support",
     "default_down",
     "ground_frame",
-    "support",
+    "support_polygon",
     "body_size",
     "hull_points",
+    "is_polytope",
     "support_points",
     "unit_vector",
 ]
@@ -233,7 +234,7 @@ class Support:
         return self.frame.dim
 
     def to_body(self, ground: np.ndarray) -> np.ndarray:
-        """Points of the plane (…, dim) in the body frame from ground coordinates (…, dim − 1)."""
+        """Points of the plane (…, dim), body frame, from ground coordinates (…, dim − 1)."""
         return self.plane_point + self.frame.from_ground(ground)
 
     @property
@@ -325,6 +326,54 @@ def _edges(kind: str, v: np.ndarray, dim: int):
     return starts, ends, normals
 
 
+def is_polytope(body, size: float) -> bool:
+    """Whether the body's hull points are exact: meshes, polygons, boxes, particles and
+    their placements and unions — no curved surface. Known kinds of body are answered
+    from their structure; any other is exact when its hull points do not change with
+    the sampling tolerance."""
+    from ..bodies.base import Transformed
+    from ..bodies.csg import Assembly, Composite
+    from ..bodies.lamina import Lamina
+    from ..bodies.particles import ParticleSystem
+    from ..bodies.solid import Extrusion, MeshSolid, Revolution
+
+    if isinstance(body, (MeshSolid, ParticleSystem)):
+        return True
+    if isinstance(body, Revolution):
+        return False
+    if isinstance(body, Lamina):
+        return not body.region.is_curved
+    if isinstance(body, Extrusion):
+        return not body.profile.is_curved
+    if isinstance(body, Transformed):
+        return is_polytope(body.body, size)
+    if isinstance(body, (Composite, Assembly)):
+        return all(is_polytope(part, size) for part in body.parts)
+    base = getattr(body, "base", None)  # a graded body: its geometry's
+    if isinstance(base, Body):
+        return is_polytope(base, size)
+    coarse = hull_points(body, 1e-3 * size)
+    return len(coarse) == len(hull_points(body, 2.5e-4 * size))
+
+
+def _curved_extent(body, frame: GroundFrame, com: np.ndarray, normal: np.ndarray,
+                   tol: float, size: float) -> float | None:
+    """The true contact's extent along the ground ``normal`` (from the foot), m, when the
+    lowest point rolls with the tilt as on a smooth curved surface; None otherwise.
+
+    A smooth surface moves its lowest point by ρε for a tilt ε: the moves over
+    (ε, ε/2) and (ε/2, ε/4) are in the ratio 2, and a Richardson step removes them.
+    Jumps between a fine mesh's vertices are not in that ratio and are left alone.
+    """
+    probe_tol = max(tol, 1e-3 * size)  # exact points come with any tolerance
+    s1, s2, s4 = (_probe(body, frame, com, normal, _PROBE_ANGLE / k, probe_tol)
+                  for k in (1, 2, 4))
+    near, far = s2 - s4, s1 - s2
+    if not (far > tol and near > 0 and 1.6 <= far / near <= 2.4):
+        return None
+    return _snap(2.0 * s4 - s2, tol)
+
+
 def _probe(body, frame: GroundFrame, com: np.ndarray, normal: np.ndarray,
            angle: float, tolerance: float) -> float:
     """Offset along the ground ``normal`` (from the foot) of the body's lowest point when
@@ -336,8 +385,8 @@ def _probe(body, frame: GroundFrame, com: np.ndarray, normal: np.ndarray,
     return float((lowest_point - com) @ n)
 
 
-def support(body, down=None, *, tolerance: float | None = None,
-            props: MassProperties | None = None) -> Support:
+def support_polygon(body, down=None, *, tolerance: float | None = None,
+                    props: MassProperties | None = None) -> Support:
     """The support of ``body`` resting on a horizontal plane below it.
 
     body: any plumbob body (or particle system).
@@ -349,7 +398,7 @@ def support(body, down=None, *, tolerance: float | None = None,
     Raises :class:`StabilityError` when the centre of mass is not above the plane.
 
     >>> from plumbob.bodies.primitives import box
-    >>> s = support(box(1, 1, 4))
+    >>> s = support_polygon(box(1, 1, 4))
     >>> s.kind, s.com_height, s.edge_distances.round(12).tolist()
     ('polygon', 2.0, [0.5, 0.5, 0.5, 0.5])
     """
@@ -370,7 +419,12 @@ def support(body, down=None, *, tolerance: float | None = None,
     pts = support_points(body, down, tol)
     depth = pts @ down
     height = float(depth.max() - com @ down)
-    if not height > tol:
+    if abs(height) <= tol:
+        raise StabilityError(
+            "the body lies flat in the plane it rests on (its centre of mass is at the "
+            "plane's height), so it has nothing to stand or topple on: give another down "
+            "direction")
+    if height < 0:
         raise StabilityError(
             "the centre of mass is not above the plane the body rests on "
             f"(its height is {height:.3g} m): it lies outside the body's hull — "
@@ -386,12 +440,13 @@ def support(body, down=None, *, tolerance: float | None = None,
         kind, vertices = _hull_2d(q, tol)
     starts, ends, normals = _edges(kind, vertices, dim)
     distances = _distances(starts, normals)
-    exact = _remeasure(body, frame, com, normals, distances, tol, size)
-    if np.any(exact < distances):  # curved contact: cut the sampling's widening away
-        kind, vertices = _clip(kind, vertices, normals, exact, dim, tol)
-        starts, ends, normals = _edges(kind, vertices, dim)
-        distances = _distances(starts, normals)
-    distances = _refine_critical(body, frame, com, normals, distances, tol, size)
+    if not is_polytope(body, size):  # sampled curved surfaces: their true contact
+        exact = _remeasure(body, frame, com, normals, distances, tol, size)
+        if np.any(exact < distances):  # cut the sampling's widening away
+            kind, vertices = _clip(kind, vertices, normals, exact, dim, tol)
+            starts, ends, normals = _edges(kind, vertices, dim)
+            distances = _distances(starts, normals)
+        distances = _refine_critical(body, frame, com, normals, distances, tol, size)
     return Support(kind, frame, com, height, vertices, foot, starts, ends, normals,
                    distances, tol, pts)
 
@@ -442,12 +497,10 @@ def _refine_critical(body, frame: GroundFrame, com: np.ndarray, normals: np.ndar
     k = int(np.argmin(distances))
     if not distances[k] > tol:
         return distances
-    probe_tol = max(tol, 1e-3 * size)
-    s1 = _probe(body, frame, com, normals[k], _PROBE_ANGLE, probe_tol)
-    s2 = _probe(body, frame, com, normals[k], _PROBE_ANGLE / 2, probe_tol)
-    if abs(s1 - s2) > tol:  # a curved contact (a torus lying flat): its exact extent
+    extent = _curved_extent(body, frame, com, normals[k], tol, size)
+    if extent is not None:  # a curved contact (a torus lying flat): its exact extent
         distances = distances.copy()
-        distances[k] = min(distances[k], 2.0 * s2 - s1)
+        distances[k] = min(distances[k], extent)
     return distances
 
 
@@ -465,11 +518,14 @@ def _remeasure(body, frame: GroundFrame, com: np.ndarray, normals: np.ndarray,
         spread = near[np.argsort(angles, kind="stable")]
         picks = spread[np.linspace(0, len(spread) - 1, _PROBE_LIMIT - 1).astype(int)]
         near = np.unique(np.append(picks, near[np.argmin(np.abs(distances[near]))]))
-    probe_tol = max(tol, 1e-3 * size)  # exact points come with any tolerance
     out = distances.copy()
     for i in near:
-        s1 = _probe(body, frame, com, normals[i], _PROBE_ANGLE, probe_tol)
-        s2 = _probe(body, frame, com, normals[i], _PROBE_ANGLE / 2, probe_tol)
-        if abs(s1 - s2) > tol:  # the lowest point rolls with the tilt: a curved contact
-            out[i] = min(out[i], 2.0 * s2 - s1)
+        extent = _curved_extent(body, frame, com, normals[i], tol, size)
+        if extent is not None:  # the lowest point rolls with the tilt: a curved contact
+            out[i] = min(out[i], extent)
     return out
+
+
+def _snap(distance: float, tol: float) -> float:
+    """A re-measured distance within the tolerance of the foot is the foot itself: 0."""
+    return 0.0 if abs(distance) <= tol else distance

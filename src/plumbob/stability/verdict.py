@@ -29,12 +29,13 @@ depends on its curvature, which this verdict does not judge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..errors import StabilityError
 from ..massprops import MassProperties
-from .support import Support, support
+from .support import Support, support_polygon
 
 __all__ = [
     "STANDARD_GRAVITY",
@@ -214,24 +215,18 @@ def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY,
     slides_first = None
     if friction is not None:
         if friction < 0 or not np.isfinite(friction):
-            from ..errors import StabilityError
-
             raise StabilityError(f"a friction coefficient must be ≥ 0, not {friction:g}")
         slides_first = (slope.slides_first if slope is not None
                         else bool(verdict == "stands" and friction * h < margin))
     passes = None
     if require_tilt_deg is not None:
         passes = bool(verdict == "stands" and angle >= float(require_tilt_deg))
-    from dataclasses import replace
-
     return replace(result, slope=slope, friction=friction, slides_first=slides_first,
                    required_tilt_deg=require_tilt_deg, passes=passes)
 
 
 def _slope(result: Verdict, tilt_deg: float, toward_deg: float | None,
            friction: float | None) -> SlopeCheck:
-    from ..errors import StabilityError
-
     tilt = float(tilt_deg)
     if not (np.isfinite(tilt) and 0 <= tilt < 90):
         raise StabilityError(f"a tilt must be between 0° and 90°, not {tilt:g}°")
@@ -279,6 +274,6 @@ def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | Non
     ('stands', 14.04, 0.061553)
     """
     props = body.mass_properties() if props is None else props
-    sup = support(body, down, tolerance=tolerance, props=props)
+    sup = support_polygon(body, down, tolerance=tolerance, props=props)
     return verdict_from_support(sup, props.mass, g, tilt_deg=tilt_deg, toward_deg=toward_deg,
                                 friction=friction, require_tilt_deg=require_tilt_deg)

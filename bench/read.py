@@ -1,0 +1,130 @@
+"""Benchmark plumbob's binary STL reader.
+
+    python bench/read.py [TRIANGLES]
+
+Writes a closed torus of at least TRIANGLES (default 1 048 576) triangles as a
+binary STL in a temporary folder, then times (best of several, file in the page
+cache):
+
+* ``numpy.fromfile`` of the same bytes — the floor;
+* ``plumbob.io.stl.load_stl`` — parsing: triangles, bounds, NaN check;
+* ``plumbob.io.stl.read_stl`` — the whole read: units, the closure and sign
+  test, the body;
+* ``trimesh.load`` — for comparison.
+
+Targets (issue 4): load_stl ≤ 2 × fromfile; peak memory of load_stl ≤ 1.5 × the
+file size beyond the interpreter's baseline (measured with tracemalloc and, in a
+fresh process, with the resident-set high-water mark).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+
+import numpy as np
+
+RECORD = np.dtype([("normal", "<f4", (3,)), ("tri", "<f4", (3, 3)), ("attr", "<u2")])
+
+
+def torus_stl(path: str, triangles: int) -> int:
+    """Write a closed torus (R = 1 m, r = 0.3 m) of ≥ ``triangles`` triangles; return the count."""
+    n = int(np.ceil(np.sqrt(triangles / 2)))
+    u = 2 * np.pi * np.arange(n) / n
+    v = 2 * np.pi * np.arange(n) / n
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    points = np.stack(((1 + 0.3 * np.cos(vv)) * np.cos(uu), (1 + 0.3 * np.cos(vv)) * np.sin(uu),
+                       0.3 * np.sin(vv)), axis=-1)
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    i1, j1 = (i + 1) % n, (j + 1) % n
+    a, b, c, d = points[i, j], points[i1, j], points[i1, j1], points[i, j1]
+    tri = np.concatenate((np.stack((a, b, c), -2).reshape(-1, 3, 3),
+                          np.stack((a, c, d), -2).reshape(-1, 3, 3)))
+    records = np.zeros(len(tri), dtype=RECORD)
+    records["tri"] = tri
+    with open(path, "wb") as f:
+        f.write(b"plumbob benchmark torus".ljust(80, b" "))
+        f.write(np.uint32(len(tri)).tobytes())
+        records.tofile(f)
+    return len(tri)
+
+
+def best(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+_RSS = """
+import sys
+from plumbob.io.stl import load_stl
+
+def high_water():  # this process's peak resident set, bytes (VmHWM starts afresh at exec)
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) * 1024
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+base = high_water()
+stl = load_stl(sys.argv[1])
+print(high_water() - base)
+"""
+
+
+def main(triangles: int = 1 << 20) -> int:
+    from plumbob.io.stl import load_stl, read_stl
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "torus.stl")
+        count = torus_stl(path, triangles)
+        size = os.path.getsize(path)
+        print(f"binary STL: {count} triangles, {size / 1e6:.1f} MB")
+        np.fromfile(path, dtype=np.uint8)  # warm the page cache
+        # Interleaved, best of many: other processes on the machine add noise to both.
+        t_numpy, t_load = float("inf"), float("inf")
+        for _ in range(15):
+            t_numpy = min(t_numpy, best(lambda: np.fromfile(path, dtype=np.uint8), 1))
+            t_load = min(t_load, best(lambda: load_stl(path), 1))
+        t_read = best(lambda: read_stl(path), 3)
+        volume = read_stl(path).body.mass_properties().volume
+        tracemalloc.start()
+        load_stl(path)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        rss = int(subprocess.run([sys.executable, "-c", _RSS, path], capture_output=True,
+                                 text=True, check=True).stdout.strip())
+        try:
+            import trimesh
+
+            t_trimesh = best(lambda: trimesh.load(path), 1)
+            t_trimesh_raw = best(lambda: trimesh.load(path, process=False), 2)
+        except ImportError:  # pragma: no cover
+            t_trimesh = t_trimesh_raw = float("nan")
+    print(f"  numpy.fromfile              {t_numpy * 1e3:8.1f} ms")
+    print(f"  plumbob load_stl (parse)    {t_load * 1e3:8.1f} ms   "
+          f"{t_load / t_numpy:5.2f} × fromfile")
+    print(f"  plumbob read_stl (checked)  {t_read * 1e3:8.1f} ms   "
+          f"{t_read / t_numpy:5.2f} × fromfile")
+    print(f"  trimesh.load                {t_trimesh * 1e3:8.1f} ms   "
+          f"{t_trimesh / t_load:5.1f} × load_stl")
+    print(f"  trimesh.load(process=False) {t_trimesh_raw * 1e3:8.1f} ms   "
+          f"{t_trimesh_raw / t_load:5.1f} × load_stl")
+    print(f"  peak memory of load_stl: {peak / 1e6:.1f} MB traced = {peak / size:.2f} × file; "
+          f"{rss / 1e6:.1f} MB resident in a fresh process = {rss / size:.2f} × file")
+    print(f"  torus volume {volume:.9f} m³ (exact {2 * np.pi**2 * 0.09:.9f} for the smooth torus)")
+    ok = t_load <= 2 * t_numpy and peak <= 1.5 * size and rss <= 1.5 * size
+    print("targets (≤ 2 × fromfile, ≤ 1.5 × file size):", "met" if ok else "NOT met")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(int(sys.argv[1]) if len(sys.argv) > 1 else 1 << 20))

@@ -1,0 +1,270 @@
+"""``plumbob check PATH``: will it stand, how far can it tilt, does it pass a tilt test.
+
+Exit status 0 with the report; 1 when ``--require-tilt`` is given and the design
+fails it (so the command can gate a pipeline); 2 on bad input (handled by the CLI).
+Only the standard library is imported here; numpy and plumbob's stability code
+load when the command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from ._common import add_body_arguments, load_body, parse_vector, print_notices
+
+__all__ = ["register", "run", "add_stability_arguments", "open_body", "positive",
+           "non_negative", "to_json", "clean", "header"]
+
+DESCRIPTION = """\
+Will the body stand on a horizontal plane? Reports the verdict (stands, topples,
+neutral), the static stability margin (distance from the foot of the centre of mass
+to the support boundary, negative outside), the critical tilt and its direction, the
+energy to tip it over, and per support edge the tipping angle and energy. Directions
+in the ground plane are angles from +x toward +y (for the default down, -z). A lamina
+stands in its own plane on its lowest edge (down -y by default)."""
+
+
+# ------------------------------------------------------------ shared helpers
+def _number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
+
+
+def positive(text: str) -> float:
+    """An argparse type: a positive finite number."""
+    value = _number(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be positive, not {text}")
+    return value
+
+
+def non_negative(text: str) -> float:
+    """An argparse type: a finite number ≥ 0."""
+    value = _number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
+    return value
+
+
+def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
+    """The body arguments every command shares (PATH, --density/--material, --units,
+    --repair, --json) and --g."""
+    add_body_arguments(parser)
+    parser.add_argument("--g", type=positive, default=9.81, metavar="G",
+                        help="gravitational acceleration, m/s² (default 9.81)")
+
+
+def open_body(args) -> tuple:
+    """(reading, mass properties, notes) for ``args.path``: the reader's notices go to
+    stderr (and into the JSON), the body's own notes (assumed densities, faceted
+    booleans) start the report's notes."""
+    reading = load_body(args)
+    print_notices(reading)
+    props = reading.body.mass_properties()
+    return reading, props, list(props.notes)
+
+
+def clean(values, scale: float):
+    """Round-off far below ``scale`` shown as 0 in text reports (the JSON keeps every digit)."""
+    import numpy as np
+
+    values = np.asarray(values, dtype=float)
+    return np.where(np.abs(values) < 1e-9 * scale, 0.0, values)
+
+
+def header(reading, kind: str) -> dict:
+    """The keys every stability and energy report starts with."""
+    out = {}
+    if reading.path:
+        out["path"] = reading.path
+    name = getattr(reading.body, "name", None)
+    if name:
+        out["name"] = name
+    out["kind"] = kind
+    return out
+
+
+def to_json(obj: dict) -> None:
+    from ..report import dump_json
+
+    dump_json(obj)
+
+
+# ------------------------------------------------------------------ command
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "check", help="will it stand? stability margin, tilt limits, tilt test",
+        description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_stability_arguments(parser)
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
+                       help="direction of gravity in the body's frame (default -z; -y for a "
+                            "lamina); write --down=0,0,-1 when it starts with a minus")
+    where.add_argument("--pose", type=int, metavar="K",
+                       help="rest it in its K-th most probable resting pose (see 'plumbob "
+                            "poses')")
+    parser.add_argument("--tilt", type=non_negative, metavar="DEG",
+                        help="also check it on a plane tilted by DEG degrees")
+    parser.add_argument("--toward", type=_number, metavar="DEG",
+                        help="the tilted plane descends toward this direction, degrees from "
+                             "+x toward +y (default: the worst direction)")
+    parser.add_argument("--friction", type=non_negative, metavar="MU",
+                        help="friction coefficient: does it slide before it topples?")
+    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+                        help="design check: it must not topple when tilted DEG degrees in any "
+                             "direction (IEC 62368-1: 10); exit status 1 if it fails")
+    parser.add_argument("--tolerance", type=positive, metavar="M",
+                        help="contact tolerance, m (default 1e-6 of the body's size)")
+    parser.set_defaults(func=run)
+
+
+def _verdict_dict(v, start: dict) -> dict:
+    out = {
+        **start,
+        "verdict": v.verdict,
+        "stands": v.stands,
+        "margin": v.margin,
+        "critical_tilt_deg": v.critical_tilt_deg,
+        "critical_direction": v.critical_direction,
+        "energy_to_topple": v.energy_to_topple,
+        "com_height": v.com_height,
+        "center_of_mass": v.center_of_mass,
+        "mass": v.mass,
+        "g": v.g,
+        "down": v.down,
+        "support_kind": v.support.kind,
+        "support_polygon": v.support.polygon,
+        "tolerance": v.support.tolerance,
+        "edges": [
+            {"start": e.start, "end": e.end, "normal": e.normal, "distance": e.distance,
+             "tipping_angle_deg": e.tipping_angle_deg, "energy": e.energy}
+            for e in v.edges
+        ],
+    }
+    if v.slope is not None:
+        s = v.slope
+        out["slope"] = {
+            "tilt_deg": s.tilt_deg, "toward_deg": s.toward_deg, "direction": s.direction,
+            "tipping_angle_deg": s.tipping_angle_deg, "topples": s.topples,
+            "verdict": s.verdict,
+        }
+        if s.friction is not None:
+            out["slope"].update(slides=s.slides, slides_first=s.slides_first)
+    if v.friction is not None:
+        out["friction"] = v.friction
+        out["slides_first"] = v.slides_first
+    if v.required_tilt_deg is not None:
+        out["required_tilt_deg"] = v.required_tilt_deg
+        out["passes"] = v.passes
+    return out
+
+
+def _text(v, path: str, kind: str, notes: list[str]) -> str:
+    import numpy as np
+
+    from ..report import format_number, table
+    from ..report import format_vector as vector
+
+    scale = v.support.tolerance * 1e6  # the body's size
+
+    def num(value: float, digits: int = 6) -> str:
+        return format_number(float(clean(value, scale)), digits)
+
+    def vec(values, digits: int = 6) -> str:
+        return vector(clean(values, scale), digits)
+
+    s = v.support
+    if s.kind == "point":
+        where = f"a point, {vec(s.polygon[0])} m"
+    elif s.kind == "segment":
+        where = f"a segment from {vec(s.polygon[0])} to {vec(s.polygon[1])} m"
+    else:
+        where = f"a polygon of {len(s.vertices)} corners"
+    verdict = {"stands": "stands", "topples": "TOPPLES",
+               "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
+    rows = [
+        ("verdict", verdict),
+        ("mass", f"{num(v.mass)} kg"),
+        ("centre of mass", f"{vec(v.center_of_mass)} m"),
+        ("down", vec(v.down)),
+        ("height of centre", f"{num(v.com_height)} m"),
+        ("support", where),
+        ("stability margin", f"{num(v.margin)} m"),
+        ("critical tilt", f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"),
+        ("energy to topple", f"{num(v.energy_to_topple)} J"),
+    ]
+    lines = [table(rows, title=f"plumbob check {path} ({kind})")]
+    if v.edges:
+        lines.append("")
+        lines.append(f"{'tipping over':<34}{'distance m':>13}{'angle °':>10}{'energy J':>14}")
+        for e in v.edges:
+            where = vec(e.start, 4) if np.allclose(e.start, e.end) else \
+                f"{vec(e.start, 4)}-{vec(e.end, 4)}"
+            lines.append(f"{where:<34} {num(e.distance, 5):>12} {num(e.tipping_angle_deg, 4):>9}"
+                         f" {num(e.energy, 5):>13}")
+    if v.slope is not None:
+        sl = v.slope
+        lines.append("")
+        text = (f"on a plane tilted {num(sl.tilt_deg, 4)}° toward {num(sl.toward_deg, 4)}° "
+                f"{vec(sl.direction, 4)}: {sl.verdict} (it goes over at "
+                f"{num(sl.tipping_angle_deg, 4)}° that way)")
+        lines.append(text)
+        if sl.friction is not None:
+            first = "slides before it topples" if sl.slides_first else "topples before it slides"
+            at = "slides" if sl.slides else "does not slide"
+            lines.append(f"with friction {num(sl.friction)}: {at} at this tilt; tilted further "
+                         f"that way it {first}")
+    elif v.friction is not None:
+        lines.append("")
+        if v.slides_first:
+            lines.append(f"with friction {num(v.friction)}: it slides before it topples, "
+                         "whichever way the plane is tilted")
+        else:
+            lines.append(f"with friction {num(v.friction)}: tilted toward the critical "
+                         "direction it topples before it slides")
+    if v.required_tilt_deg is not None:
+        lines.append("")
+        status = "PASS" if v.passes else "FAIL"
+        lines.append(f"design check, no overturning at {num(v.required_tilt_deg, 4)}° in any "
+                     f"direction: {status} (critical tilt {num(v.critical_tilt_deg, 4)}°)")
+    for note in notes:
+        lines.append(f"note: {note}")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    from ..errors import StabilityError
+    from ..stability.poses import resting_poses
+    from ..stability.verdict import check
+
+    if args.toward is not None and args.tilt is None:
+        raise StabilityError("--toward needs --tilt DEG")
+    reading, props, notes = open_body(args)
+    body = reading.body
+    down = args.down
+    if args.pose is not None:
+        poses = resting_poses(body, g=args.g, props=props)
+        if not 1 <= args.pose <= len(poses):
+            raise StabilityError(f"--pose must be between 1 and {len(poses)} (the body has "
+                                 f"{len(poses)} resting poses)")
+        down = poses[args.pose - 1].down
+    v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
+              friction=args.friction, require_tilt_deg=args.require_tilt,
+              tolerance=args.tolerance, props=props)
+    kind = getattr(body, "kind", "solid")
+    if args.json:
+        out = _verdict_dict(v, header(reading, kind))
+        if notes:
+            out["notes"] = notes
+        if reading.notices:
+            out["notices"] = list(reading.notices)
+        to_json(out)
+    else:
+        print(_text(v, args.path, kind, notes))
+    return 1 if v.passes is False else 0

@@ -1,0 +1,94 @@
+"""``plumbob lift PATH``: the energy to raise a structure's material into place, and how
+long a crew takes to do it.
+
+Only the standard library is imported here; numpy and plumbob's energy code load
+when the command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from .check import add_stability_arguments, header, open_body, positive, to_json
+
+__all__ = ["register", "run"]
+
+DESCRIPTION = """\
+The lift (build) energy of a structure: the work to raise all its material from the
+ground datum to where it stands, M g z_G, z_G the height of its centre of mass above
+the datum (the seed's Great Pyramid: about 2.34e12 J). With --crew or --work-per-day,
+that work in days of labour; the default day of work is the seed's, lifting 1000 kg
+through 1 m (1000 g J)."""
+
+
+def _crew(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a crew is a whole number of people, not {text!r}") \
+            from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"a crew needs at least 1 person, not {value}")
+    return value
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "lift", help="energy to lift a structure's material into place, and crew time",
+        description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_stability_arguments(parser)
+    parser.add_argument("--datum", type=float, metavar="Z",
+                        help="height of the ground, m (default: the body's lowest point)")
+    parser.add_argument("--work-per-day", type=positive, metavar="J",
+                        help="work one person does in a day, J (default 1000 g: 1000 kg "
+                             "through 1 m)")
+    parser.add_argument("--crew", type=_crew, metavar="N", help="people working at once")
+    parser.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..energy import crew_time, lift_energy, seed_work_per_day
+    from ..report import format_number as num
+    from ..report import table
+
+    reading, props, notes = open_body(args)
+    body = reading.body
+    lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
+    out = {**header(reading, getattr(body, "kind", "solid")), "mass": lift.mass,
+           "center_of_mass": props.center_of_mass, "datum": lift.datum,
+           "com_height": lift.com_height, "lift_energy": lift.energy, "g": lift.g}
+    crew = None
+    if args.crew is not None or args.work_per_day is not None:
+        work = args.work_per_day
+        if work is None:
+            work = seed_work_per_day(args.g)
+            notes.append(f"work per person per day not given: 1000 kg lifted 1 m, "
+                         f"{work:g} J, assumed")
+        crew = crew_time(lift.energy, work, args.crew or 1)
+        out.update(work_per_day=crew.work_per_day, crew=crew.crew,
+                   person_days=crew.person_days, crew_days=crew.crew_days,
+                   crew_years=crew.crew_years)
+    if args.json:
+        if notes:
+            out["notes"] = notes
+        if reading.notices:
+            out["notices"] = list(reading.notices)
+        to_json(out)
+        return 0
+    rows = [
+        ("mass", f"{num(lift.mass)} kg"),
+        ("ground datum", f"{num(lift.datum)} m"),
+        ("centre of mass above it", f"{num(lift.com_height)} m"),
+        ("lift energy", f"{num(lift.energy)} J"),
+    ]
+    if crew is not None:
+        rows += [
+            ("work per person per day", f"{num(crew.work_per_day)} J"),
+            ("person-days", num(crew.person_days)),
+            (f"days for a crew of {crew.crew}", num(crew.crew_days)),
+            ("years", num(crew.crew_years, 4)),
+        ]
+    print(table(rows, title=f"plumbob lift {args.path}"))
+    for note in notes:
+        print(f"note: {note}")
+    return 0

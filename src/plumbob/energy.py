@@ -1,0 +1,225 @@
+"""Potential energy: the seed's ``Mgh`` of the centre of mass (section 2.4, equation 23).
+
+The potential energy of a system of particles, or of a rigid body, relative to a
+datum is that of a single particle of its whole mass at its centre of mass:
+``Σ mᵢ g zᵢ = M g z_G``. From it:
+
+* :func:`potential_energy` — ``Mg(h − datum)``, h the height of the centre of mass;
+* :func:`pose_energy_change` — the change between two resting poses, each
+  measured as the height of the centre of mass above the plane the body rests on
+  (a 1 × 1 × 4 block gains ``3Mgh/2`` going from lying to upright);
+* :func:`lift_energy` — the work to raise all the material of a structure from a
+  ground datum to where it stands, ``M g z_G`` (the Great Pyramid: about 2.34e12 J);
+* :func:`crew_time` — that work in days of labour, for a given work per person per
+  day and a crew size (1000 people each lifting 1000 kg through 1 m a day: about
+  652 years).
+
+Heights are along ``up``: +z for solids, +y for a lamina in its own plane.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import PlumbobError
+from .massprops import MassProperties
+
+__all__ = [
+    "STANDARD_GRAVITY",
+    "DAYS_PER_YEAR",
+    "PotentialEnergy",
+    "PoseChange",
+    "LiftEnergy",
+    "CrewTime",
+    "potential_energy",
+    "pose_energy_change",
+    "lift_energy",
+    "crew_time",
+    "seed_work_per_day",
+]
+
+STANDARD_GRAVITY = 9.81  # m/s², the seed's value
+DAYS_PER_YEAR = 365.25
+
+
+def seed_work_per_day(g: float = STANDARD_GRAVITY) -> float:
+    """The seed's day of work: lifting 1000 kg through 1 m, ``1000 g`` J.
+
+    >>> seed_work_per_day()
+    9810.0
+    """
+    return 1000.0 * g
+
+
+def _positive(value: float, what: str) -> float:
+    value = float(value)
+    if not (np.isfinite(value) and value > 0):
+        raise PlumbobError(f"{what} must be a positive number, not {value:g}")
+    return value
+
+
+def _props(body_or_props) -> MassProperties:
+    if isinstance(body_or_props, MassProperties):
+        return body_or_props
+    return body_or_props.mass_properties()
+
+
+def _up(dim: int, up) -> np.ndarray:
+    if up is None:
+        return np.array([0.0, 1.0]) if dim == 2 else np.array([0.0, 0.0, 1.0])
+    v = np.asarray(up, dtype=float).reshape(-1)
+    if dim == 2 and v.size == 3 and v[2] == 0:
+        v = v[:2]
+    norm = np.linalg.norm(v)
+    if v.size != dim or not np.isfinite(norm) or norm == 0:
+        raise PlumbobError(f"up must be a non-zero vector of {dim} components")
+    return v / norm
+
+
+@dataclass(frozen=True)
+class PotentialEnergy:
+    """``energy = mass · g · height``, J; height (m) of the centre of mass above ``datum``."""
+
+    energy: float
+    mass: float
+    height: float
+    datum: float
+    g: float
+
+
+def potential_energy(body_or_props, *, datum: float = 0.0, g: float = STANDARD_GRAVITY,
+                     up=None) -> PotentialEnergy:
+    """The potential energy ``Mg(h − datum)`` of a body (or its :class:`MassProperties`), J.
+
+    datum: height of the zero of potential energy along ``up``, m.
+    up: the upward direction (default +z, +y for a lamina).
+
+    >>> from plumbob.massprops import point_mass
+    >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=10.0).energy
+    60.0
+    """
+    props = _props(body_or_props)
+    g = _positive(g, "g")
+    u = _up(props.dim, up)
+    height = float(props.center_of_mass @ u) - float(datum)
+    return PotentialEnergy(props.mass * g * height, props.mass, height, float(datum), g)
+
+
+@dataclass(frozen=True)
+class PoseChange:
+    """From resting with ``down_from`` to resting with ``down_to`` (body-frame unit vectors).
+
+    height_from, height_to: heights of the centre of mass above the plane, m.
+    energy: ``Mg(height_to − height_from)``, J (positive: work must be done).
+    """
+
+    down_from: np.ndarray
+    down_to: np.ndarray
+    height_from: float
+    height_to: float
+    energy: float
+    mass: float
+    g: float
+
+
+def _rest_height(body, props: MassProperties, down) -> tuple[float, np.ndarray]:
+    """Height of the centre of mass above the plane the body rests on along ``down``."""
+    from .stability.support import body_size, support_points, unit_vector
+
+    d = unit_vector(down, props.dim)
+    tol = 1e-6 * body_size(body)
+    pts = support_points(body, d, tol)
+    return float(np.max(pts @ d) - props.center_of_mass @ d), d
+
+
+def pose_energy_change(body, down_from, down_to, *, g: float = STANDARD_GRAVITY,
+                       props: MassProperties | None = None) -> PoseChange:
+    """The change in potential energy from resting with gravity along ``down_from`` to resting
+    along ``down_to`` (both in the body's frame), J.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> block = box(1, 1, 4, density=1000.0)   # mass 4000 kg, h = 1 m
+    >>> change = pose_energy_change(block, [1, 0, 0], [0, 0, -1])   # lying → upright
+    >>> change.height_from, change.height_to, change.energy / (4000 * 9.81)
+    (0.5, 2.0, 1.5)
+    """
+    props = body.mass_properties() if props is None else props
+    g = _positive(g, "g")
+    h0, d0 = _rest_height(body, props, down_from)
+    h1, d1 = _rest_height(body, props, down_to)
+    return PoseChange(d0, d1, h0, h1, props.mass * g * (h1 - h0), props.mass, g)
+
+
+@dataclass(frozen=True)
+class LiftEnergy:
+    """The work to raise a structure's material from the ground datum to where it stands.
+
+    mass: kg. datum: height of the ground along ``up``, m.
+    com_height: height of the centre of mass above the datum, m.
+    energy: ``mass · g · com_height``, J. g: m/s².
+    """
+
+    mass: float
+    datum: float
+    com_height: float
+    energy: float
+    g: float
+
+
+def lift_energy(body, *, datum: float | None = None, g: float = STANDARD_GRAVITY, up=None,
+                props: MassProperties | None = None) -> LiftEnergy:
+    """The lift (build) energy ``M g z_G`` of a structure, J.
+
+    datum: the ground's height along ``up``, m; default the body's lowest point (the
+        ground it is built on).
+
+    >>> from plumbob.bodies.primitives import box
+    >>> lift_energy(box(2, 2, 10, density=1.0), g=10.0).energy   # 40 kg raised 5 m
+    2000.0
+    """
+    from .stability.support import hull_points
+
+    props = body.mass_properties() if props is None else props
+    g = _positive(g, "g")
+    u = _up(props.dim, up)
+    if datum is None:
+        datum = float(np.min(hull_points(body) @ u))
+    height = float(props.center_of_mass @ u) - float(datum)
+    return LiftEnergy(props.mass, float(datum), height, props.mass * g * height, g)
+
+
+@dataclass(frozen=True)
+class CrewTime:
+    """An amount of work in days of labour.
+
+    work_per_day: J one person does in a day. crew: people.
+    person_days: energy / work_per_day. crew_days: person_days / crew.
+    crew_years: crew_days / 365.25.
+    """
+
+    energy: float
+    work_per_day: float
+    crew: int
+    person_days: float
+    crew_days: float
+    crew_years: float
+
+
+def crew_time(energy: float, work_per_day: float, crew: int = 1) -> CrewTime:
+    """How long a crew takes to do ``energy`` J of work at ``work_per_day`` J per person.
+
+    >>> t = crew_time(2.34e12, seed_work_per_day(), 1000)
+    >>> round(t.crew_days, -3), round(t.crew_years)
+    (239000.0, 653)
+    """
+    work = _positive(work_per_day, "the work per person per day")
+    if int(crew) != crew or crew < 1:
+        raise PlumbobError(f"a crew is a whole number of people, at least 1, not {crew}")
+    energy = float(energy)
+    if not (np.isfinite(energy) and energy >= 0):
+        raise PlumbobError(f"the work to do must be a non-negative number, not {energy:g}")
+    person_days = energy / work
+    crew_days = person_days / int(crew)
+    return CrewTime(energy, work, int(crew), person_days, crew_days, crew_days / DAYS_PER_YEAR)

@@ -1,0 +1,373 @@
+"""Resting poses: closed forms, an independent Monte-Carlo descent, invariants, bad input."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_stability_support import SCULPTURE, A, H
+
+import plumbob.stability.poses as poses_module
+from plumbob.bodies.primitives import box, cylinder, polygon, pyramid, rectangle, sphere
+from plumbob.bodies.solid import MeshSolid
+from plumbob.errors import GeometryError, PlumbobError, StabilityError
+from plumbob.massprops import rotation_matrix
+from plumbob.stability import check, poses_from_points, resting_poses
+
+G = 9.81
+CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+TETRA = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=float)
+
+
+# ------------------------------------------------------------ independent references
+def monte_carlo_descent(points, com, n=3000, seed=0):
+    """Independent quasi-static descent of h(u) = max (v − c)·u from random directions:
+    steepest (min-norm) subgradient steps over the one or two points in contact, with
+    shrinking steps. Returns the final directions (n, 3)."""
+    rng = np.random.default_rng(seed)
+    Y = np.asarray(points, float) - com
+    u = rng.normal(size=(n, 3))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    rows = np.arange(n)
+    for eta, steps in ((1e-2, 400), (2e-3, 300), (4e-4, 200)):
+        for _ in range(steps):
+            s = u @ Y.T
+            top = np.argpartition(-s, 1, axis=1)[:, :2]
+            first = np.where(s[rows, top[:, 0]] >= s[rows, top[:, 1]], top[:, 0], top[:, 1])
+            second = np.where(first == top[:, 0], top[:, 1], top[:, 0])
+            gi = Y[first] - s[rows, first][:, None] * u
+            gj = Y[second] - s[rows, second][:, None] * u
+            band = s[rows, first] - s[rows, second] <= 2 * eta * np.linalg.norm(
+                Y[first] - Y[second], axis=1)
+            dg = gi - gj
+            lam = np.clip(-np.einsum("ij,ij->i", gj, dg)
+                          / np.maximum(np.einsum("ij,ij->i", dg, dg), 1e-300), 0, 1)
+            d = np.where(band[:, None], gj + lam[:, None] * dg, gi)
+            dn = np.linalg.norm(d, axis=1)[:, None]
+            u = u - eta * d / np.where(dn > 0, dn, 1)
+            u /= np.linalg.norm(u, axis=1)[:, None]
+    return u
+
+
+def lhuilier_fan(centre, ring):
+    """Area of a spherical polygon star-shaped about ``centre``: L'Huilier's theorem on the
+    triangles (centre, ring[i], ring[i+1]) — side lengths only, no signed formula."""
+    total = 0.0
+    for p, q in zip(ring, np.roll(ring, -1, axis=0)):
+        a = np.arccos(np.clip(p @ q, -1, 1))
+        b = np.arccos(np.clip(centre @ q, -1, 1))
+        c = np.arccos(np.clip(centre @ p, -1, 1))
+        s = (a + b + c) / 2
+        t = np.tan(s / 2) * np.tan((s - a) / 2) * np.tan((s - b) / 2) * np.tan((s - c) / 2)
+        total += 4 * np.arctan(np.sqrt(max(t, 0.0)))
+    return total
+
+
+def box_face_probability(half, axis):
+    """The +axis face of a box with half-sizes ``half``: its basin is bounded by the great
+    arcs from its four edges' saddles (square to each edge) to its four corners' maxima."""
+    i, j, k = axis, (axis + 1) % 3, (axis + 2) % 3
+    ring = []
+    for sj, sk in ((1, 1), (1, 0), (1, -1), (0, -1), (-1, -1), (-1, 0), (-1, 1), (0, 1)):
+        v = np.zeros(3)
+        v[i], v[j], v[k] = half[i], sj * half[j], sk * half[k]
+        ring.append(v / np.linalg.norm(v))
+    centre = np.zeros(3)
+    centre[i] = 1.0
+    return lhuilier_fan(centre, np.array(ring)) / (4 * np.pi)
+
+
+def foot_inside(pose, com) -> bool:
+    """Independent check that a pose is truly stable: the foot lies inside its face."""
+    n = pose.down
+    face = pose.face - com
+    foot = (face[0] @ n) * n
+    e1 = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(n, e1)
+    q = np.stack(((face - foot) @ e1, (face - foot) @ e2), axis=1)
+    d = np.roll(q, -1, axis=0) - q
+    cross = d[:, 0] * (-q[:, 1]) - d[:, 1] * (-q[:, 0])
+    return bool(np.all(cross > 0) or np.all(cross < 0))
+
+
+def random_body(seed, n=10):
+    """Random points and a centre of mass strictly inside their hull (a convex combination)."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(n, 3)) * [1.0, 0.7, 0.45]
+    com = rng.dirichlet(np.full(n, 4.0)) @ X
+    return X, com
+
+
+# ------------------------------------------------------------------- closed forms
+def test_cube_six_poses_of_one_sixth():
+    ps = poses_from_points(CUBE, [0.5, 0.5, 0.5], mass=2.0)
+    assert ps.method == "exact" and len(ps) == 6
+    assert np.allclose(ps.probabilities, 1 / 6, rtol=0, atol=1e-13)
+    for p in ps.poses:
+        assert p.com_height == pytest.approx(0.5)
+        assert p.critical_tilt_deg == pytest.approx(45.0)
+        assert p.energy_barrier == pytest.approx(2.0 * G * (np.sqrt(0.5) - 0.5))
+        assert len(p.face) == 4
+    assert sorted(map(tuple, np.array([p.down for p in ps.poses]).round(12))) == sorted(
+        map(tuple, np.vstack((np.eye(3), -np.eye(3)))))
+
+
+def test_regular_tetrahedron_four_poses_of_one_quarter():
+    ps = poses_from_points(TETRA, [0, 0, 0])
+    assert len(ps) == 4 and np.allclose(ps.probabilities, 0.25, rtol=0, atol=1e-13)
+    # foot at the face's centre: inradius of the face over inradius of the solid: atan √2
+    assert all(p.critical_tilt_deg == pytest.approx(np.degrees(np.arctan(np.sqrt(2))))
+               for p in ps.poses)
+
+
+@pytest.mark.parametrize("size", [(1, 2, 3), (1, 1, 4), (0.3, 2, 2.5)])
+def test_boxes_against_an_independent_spherical_area(size):
+    ps = resting_poses(box(*size))
+    half = np.array(size) / 2
+    for p in ps.poses:
+        axis = int(np.argmax(np.abs(p.down)))
+        assert p.probability == pytest.approx(box_face_probability(half, axis), abs=1e-12)
+    assert len(ps) == 6
+
+
+def test_rectangle_lamina_closed_form():
+    """A w × h lamina: each long side's basin is the arc between its corners' directions."""
+    ps = resting_poses(rectangle(3.0, 1.0))
+    assert len(ps) == 4 and ps.method == "exact"
+    long_sides = [p for p in ps.poses if abs(p.down[1]) > 0.5]
+    assert all(p.probability == pytest.approx(np.arctan(3.0) / np.pi, abs=1e-13)
+               for p in long_sides)
+    assert sum(ps.probabilities) == pytest.approx(1.0, abs=1e-14)
+
+
+def test_sculpture_poses_include_the_seeds():
+    ps = resting_poses(polygon(SCULPTURE))
+    assert len(ps) == 3
+    base = [p for p in ps.poses if np.allclose(p.down, [0, -1])]
+    assert len(base) == 1
+    assert base[0].com_height == pytest.approx(19 * H / 21)
+    assert base[0].critical_tilt_deg == pytest.approx(np.degrees(np.arctan(4 * A / (19 * H))))
+    # leaving it over the edge at O costs what the verdict says it costs to topple
+    v = check(polygon(SCULPTURE))
+    assert base[0].energy_barrier == pytest.approx(v.energy_to_topple, rel=1e-12)
+
+
+def test_pose_tilts_agree_with_the_verdict():
+    body = pyramid([(0, 0), (3.0, -0.4), (2.6, 2.2), (0.3, 1.7)], 2.5, apex=(1.9, 0.7))
+    for p in resting_poses(body).poses:
+        v = check(body, p.down)
+        assert v.verdict == "stands"
+        assert v.critical_tilt_deg == pytest.approx(p.critical_tilt_deg, rel=1e-9)
+        assert v.com_height == pytest.approx(p.com_height, rel=1e-12)
+
+
+# ----------------------------------------------------------- Monte-Carlo check
+@pytest.mark.parametrize("seed", [3, 11])
+def test_against_an_independent_monte_carlo_descent(seed):
+    X, com = random_body(seed)
+    ps = poses_from_points(X, com)
+    assert ps.method == "exact"
+    u = monte_carlo_descent(X, com)
+    downs = np.array([p.down for p in ps.poses])
+    landed = np.argmax(u @ downs.T, axis=1)
+    assert np.all(np.einsum("ij,ij->i", u, downs[landed]) > np.cos(0.01))  # all converged
+    frequency = np.bincount(landed, minlength=len(downs)) / len(u)
+    sigma = np.sqrt(ps.probabilities * (1 - ps.probabilities) / len(u))
+    assert np.all(np.abs(frequency - ps.probabilities) <= 4.5 * sigma + 1e-3)
+
+
+def test_box_against_monte_carlo():
+    size = np.array([1.0, 2.0, 3.0])
+    X = CUBE * size
+    ps = poses_from_points(X, size / 2)
+    u = monte_carlo_descent(X, size / 2, seed=5)
+    downs = np.array([p.down for p in ps.poses])
+    frequency = np.bincount(np.argmax(u @ downs.T, axis=1), minlength=6) / len(u)
+    assert np.allclose(frequency, ps.probabilities, atol=0.03)
+
+
+# -------------------------------------------------------------------- invariants
+seeds = st.integers(0, 10_000)
+
+
+@settings(max_examples=40)
+@given(seeds, st.integers(5, 40))
+def test_probabilities_sum_to_one_and_every_pose_is_truly_stable(seed, n):
+    X, com = random_body(seed, n)
+    ps = poses_from_points(X, com)
+    assert np.all(np.isfinite(ps.probabilities)) and np.all(ps.probabilities > 0)
+    assert ps.probabilities.sum() == pytest.approx(1.0, abs=1e-12)
+    assert ps.method == "exact" and ps.area_error < 1e-9
+    assert np.all(np.diff(ps.probabilities) <= 0)  # most probable first
+    for p in ps.poses:
+        assert foot_inside(p, com)
+        assert p.critical_tilt_deg > 0
+
+
+@settings(max_examples=25)
+@given(seeds, st.tuples(*[st.floats(-np.pi, np.pi)] * 3), st.tuples(*[st.floats(-20, 20)] * 3))
+def test_rigid_motions_turn_the_poses_with_the_body(seed, angles, offset):
+    X, com = random_body(seed, 14)
+    turn = (rotation_matrix([1, 0, 0], angles[0]) @ rotation_matrix([0, 1, 0], angles[1])
+            @ rotation_matrix([0, 0, 1], angles[2]))
+    before = poses_from_points(X, com)
+    after = poses_from_points(X @ turn.T + offset, turn @ com + offset)
+    assert len(after) == len(before)
+    for p in before.poses:
+        match = [q for q in after.poses if np.allclose(q.down, turn @ p.down, atol=1e-8)]
+        assert len(match) == 1
+        assert match[0].probability == pytest.approx(p.probability, abs=1e-10)
+        assert match[0].com_height == pytest.approx(p.com_height, rel=1e-10)
+
+
+@settings(max_examples=15)
+@given(seeds, st.floats(1e-3, 1e6))
+def test_mass_changes_barriers_not_poses(seed, mass):
+    X, com = random_body(seed)
+    light = poses_from_points(X, com, mass=1.0)
+    heavy = poses_from_points(X, com, mass=mass)
+    assert np.array_equal(light.probabilities, heavy.probabilities)
+    for p, q in zip(light.poses, heavy.poses):
+        assert np.array_equal(p.down, q.down)
+        if p.energy_barrier is not None:
+            assert q.energy_barrier == pytest.approx(mass * p.energy_barrier, rel=1e-12)
+
+
+# --------------------------------------------------------------- faces and slivers
+def subdivided_box_mesh(size, n, noise=0.0, seed=0):
+    """A box whose faces are n × n grids of triangles (float coordinates jittered)."""
+    rng = np.random.default_rng(seed)
+    tris = []
+    t = np.linspace(0, 1, n + 1)
+    for axis in range(3):
+        for side in (0, 1):
+            i, j = (axis + 1) % 3, (axis + 2) % 3
+            for a in range(n):
+                for b in range(n):
+                    quad = []
+                    for da, db in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = np.zeros(3)
+                        p[axis], p[i], p[j] = side, t[a + da], t[b + db]
+                        quad.append(p * size)
+                    q = np.array(quad)
+                    if side == 0:
+                        q = q[::-1]
+                    tris += [q[[0, 1, 2]], q[[0, 2, 3]]]
+    tris = np.array(tris)
+    verts, inverse = np.unique(tris.reshape(-1, 3), axis=0, return_inverse=True)
+    verts = verts + noise * rng.uniform(-1, 1, verts.shape)
+    return verts[inverse.reshape(-1, 3)]
+
+
+def test_coplanar_triangles_make_one_physical_face():
+    tris = subdivided_box_mesh(np.array([1.0, 2.0, 3.0]), 4, noise=1e-9)
+    body = MeshSolid(tris)
+    ps = resting_poses(body)
+    assert len(ps) == 6
+    reference = resting_poses(box(1, 2, 3)).probabilities
+    assert np.allclose(sorted(ps.probabilities), sorted(reference), atol=1e-6)
+
+
+def test_slivers_do_not_lose_probability():
+    """A box whose top is a fan of hundreds of sliver triangles (as STL exports make)."""
+    k = 300
+    x = np.linspace(0, 1, k + 1)
+    rim = np.vstack(([[0, 0, 1]], np.stack((x, np.zeros_like(x), np.ones_like(x)), 1),
+                     [[1, 1, 1], [0, 1, 1]]))
+    X = np.vstack((rim, CUBE))
+    ps = poses_from_points(X, [0.5, 0.5, 0.5])
+    assert len(ps) == 6 and np.allclose(ps.probabilities, 1 / 6, atol=1e-12)
+
+
+def test_the_sampled_fallback_agrees(monkeypatch):
+    X, com = random_body(7, 25)
+    exact = poses_from_points(X, com)
+    monkeypatch.setattr(poses_module, "_AREA_CHECK", -1.0)  # refuse the traced areas
+    sampled = poses_from_points(X, com, samples=40_000)
+    assert sampled.method == "sampled" and any("could not be traced" in n for n in sampled.notes)
+    assert np.allclose(sampled.probabilities, exact.probabilities, atol=0.01)
+    assert sampled.probabilities.sum() == pytest.approx(1.0)
+
+
+# ------------------------------------------------------------------ curved bodies
+def test_cylinder_two_ends_and_one_rolling_pose():
+    ps = resting_poses(cylinder(1.0, 2.0))
+    assert len(ps) == 3 and ps.probabilities.sum() == pytest.approx(1.0)
+    ends = [p for p in ps.poses if abs(p.down[2]) > 0.99]
+    side = [p for p in ps.poses if abs(p.down[2]) < 1e-9]
+    assert len(ends) == 2 and len(side) == 1
+    assert side[0].neutral and side[0].critical_tilt_deg == 0 and side[0].members > 10
+    assert ends[0].probability == pytest.approx(ends[1].probability, rel=1e-9)
+    assert all(p.critical_tilt_deg == pytest.approx(45.0, abs=0.05) for p in ends)
+    assert any("neutral" in n for n in ps.notes)
+
+
+def test_sphere_has_one_neutral_pose():
+    ps = resting_poses(sphere(1.0))
+    assert len(ps) == 1 and ps.poses[0].probability == 1.0 and ps.poses[0].neutral
+    assert ps.poses[0].energy_barrier is None
+
+
+def test_polytopes_are_never_merged_into_neutral_poses():
+    ps = resting_poses(box(1.0, 1.0, 1.0 + 1e-5))  # nearly a cube: six poses stay six
+    assert len(ps) == 6 and not any(p.neutral for p in ps.poses)
+
+
+# ------------------------------------------------------------------------ bad input
+def test_centre_outside_the_hull_is_a_clear_error_not_a_hang():
+    with pytest.raises(StabilityError, match="outside the body's convex hull"):
+        poses_from_points(CUBE, [0.5, 0.5, 1.5])
+    with pytest.raises(StabilityError, match="on the surface of"):
+        poses_from_points(CUBE, [0.5, 0.5, 1.0])
+    with pytest.raises(StabilityError, match="outside"):
+        poses_from_points(CUBE[:, :2][[0, 2, 4, 6]], [3.0, 0.5])
+
+
+def test_an_open_mesh_is_a_clear_error():
+    tris = subdivided_box_mesh(np.array([1.0, 1.0, 1.0]), 1)[:-1]  # one triangle missing
+    with pytest.raises(PlumbobError, match="not closed"):
+        resting_poses(MeshSolid(tris))
+
+
+@pytest.mark.parametrize("points", [np.zeros((5, 3)), CUBE[:4], np.eye(3)])
+def test_degenerate_point_sets(points):
+    with pytest.raises(GeometryError):
+        poses_from_points(points, points.mean(axis=0))
+
+
+def blob_mesh(n_lat=31, n_lon=60, seed=1):
+    """A closed, bumpy, non-symmetric blob on a latitude-longitude grid."""
+    rng = np.random.default_rng(seed)
+    theta = np.linspace(0, np.pi, n_lat + 1)[1:-1]
+    phi = np.linspace(0, 2 * np.pi, n_lon, endpoint=False)
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    d = np.stack((np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)), axis=-1)
+    r = np.ones_like(t)
+    for _ in range(5):
+        k = rng.normal(size=3)
+        k /= np.linalg.norm(k)
+        r += 0.1 * np.cos(rng.integers(2, 5) * np.arccos(np.clip(d @ k, -1, 1)))
+    verts = np.vstack(((d * r[..., None] * [1.0, 0.75, 0.55]).reshape(-1, 3),
+                       [[0, 0, 0.55], [0, 0, -0.55]]))
+    idx = np.arange(len(theta) * len(phi)).reshape(len(theta), len(phi))
+    a, b = idx[:-1], idx[1:]
+    a2, b2 = np.roll(a, -1, axis=1), np.roll(b, -1, axis=1)
+    top, bottom = len(verts) - 2, len(verts) - 1
+    faces = np.concatenate((np.stack((a, b, b2), -1).reshape(-1, 3),
+                            np.stack((a, b2, a2), -1).reshape(-1, 3),
+                            np.stack((np.full(len(phi), top), idx[0], np.roll(idx[0], -1)), 1),
+                            np.stack((np.full(len(phi), bottom), np.roll(idx[-1], -1), idx[-1]),
+                                     1)))
+    return verts[faces]
+
+
+def test_every_pose_of_a_fine_mesh_stands_where_it_rests():
+    """Regression: a fine mesh's vertices just below a face must not pass for a curved
+    surface when the verdict re-measures edges near the foot."""
+    body = MeshSolid(blob_mesh(), density=1000.0)
+    ps = resting_poses(body)
+    assert ps.method == "exact" and len(ps) > 3
+    for p in ps.poses:
+        v = check(body, p.down)
+        assert v.verdict == "stands" and v.support.kind == "polygon"
+        assert v.critical_tilt_deg == pytest.approx(p.critical_tilt_deg, rel=1e-6, abs=1e-9)
