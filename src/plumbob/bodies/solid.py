@@ -8,12 +8,12 @@ and a solid of revolution from the exact area moments of their profile
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import GeometryError
-from ..integrals.mesh import triangle_soup_moments
+from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
 from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
 from .lamina import lamina_mass_properties, second_moments_to_inertia
@@ -66,6 +66,8 @@ class MeshSolid(_UniformSolid):
 
     triangles: (n, 3, 3) m, any float dtype (float32 from binary STL is kept).
     density: kg/m³ or None (not given: 1).
+    moments: the triangles' volume moments if a reader already summed them (one
+        pass over a large file instead of two); dropped when the mesh moves.
     """
 
     triangles: np.ndarray
@@ -74,6 +76,7 @@ class MeshSolid(_UniformSolid):
     exact: bool = True
     relative_error: float = 0.0
     note: str | None = None
+    moments: VolumeMoments | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         tri = np.asarray(self.triangles)
@@ -87,7 +90,7 @@ class MeshSolid(_UniformSolid):
         object.__setattr__(self, "density", check_density(self.density))
 
     def mass_properties(self) -> MassProperties:
-        m = triangle_soup_moments(self.triangles)
+        m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)
         if not np.isfinite(m.m0):
             raise GeometryError("the mesh has a coordinate that is not a finite number")
         if np.linalg.norm(m.vector_area) > CLOSURE_TOLERANCE * max(m.area, 1e-300):
@@ -114,7 +117,7 @@ class MeshSolid(_UniformSolid):
         tri = self.triangles.astype(float) @ matrix.T + offset
         if np.linalg.det(matrix) < 0:
             tri = tri[:, ::-1]  # a mirror turns the winding inside out
-        return replace(self, triangles=tri)
+        return replace(self, triangles=tri, moments=None)
 
     def to_geometry(self, segments: int = 128):
         import manifold3d

@@ -32,8 +32,8 @@ class VolumeMoments:
 
     origin: (3,) m. m0: m³. m1: (3,) m⁴. m2: (3, 3) m⁵.
     vector_area: (3,) m², zero on a closed surface.
-    area: a measure of the surface's size, m²: the sum over triangles of the L1 norm
-        of their vector area (between 1 and √3 times the true area).
+    area: total surface area, m².
+    lower, upper: (3,) m, the bounding box of the vertices.
     triangles: how many triangles were summed.
     """
 
@@ -44,29 +44,13 @@ class VolumeMoments:
     vector_area: np.ndarray
     area: float
     triangles: int
-
-    def __add__(self, other: VolumeMoments) -> VolumeMoments:
-        shift = other.origin - self.origin
-        m1 = other.m1 + other.m0 * shift
-        m2 = (
-            other.m2
-            + np.outer(other.m1, shift)
-            + np.outer(shift, other.m1)
-            + other.m0 * np.outer(shift, shift)
-        )
-        return VolumeMoments(
-            self.origin,
-            self.m0 + other.m0,
-            self.m1 + m1,
-            self.m2 + m2,
-            self.vector_area + other.vector_area,
-            self.area + other.area,
-            self.triangles + other.triangles,
-        )
+    lower: np.ndarray
+    upper: np.ndarray
 
 
 def _chunk_moments(tri: np.ndarray, origin: np.ndarray) -> np.ndarray:
-    """Sums for one chunk (k, 3, 3) → flat array of 17 numbers.
+    """Sums for one chunk (k, 3, 3) → flat array of 23 numbers (the last six are
+    the chunk's bounding box relative to the origin).
 
     With a, b, c the corners relative to the origin, u = b − a, v = c − a and
     n = u × v (twice the triangle's vector area), the tetrahedron (0, a, b, c)
@@ -92,14 +76,19 @@ def _chunk_moments(tri: np.ndarray, origin: np.ndarray) -> np.ndarray:
     det += a[2] * n[2]
     np.add(a, b, out=corners[3])
     corners[3] += c
-    out = np.empty(17)
+    out = np.empty(23)
     out[0] = det.sum() / 6
     out[1:4] = corners[3] @ det / 24
     stacked = corners.transpose(1, 0, 2).reshape(3, -1)
     weights = np.tile(det, 4)
     out[4:13] = ((stacked * weights) @ stacked.T).reshape(-1) / 120
     out[13:16] = n.sum(axis=1) / 2
-    out[16] = np.abs(n).sum() / 2  # L1 size of the surface: the scale closure is judged by
+    np.multiply(n, n, out=u)
+    out[16] = np.sqrt(u.sum(axis=0)).sum() / 2
+    lows = corners[:3].min(axis=(0, 2))
+    highs = corners[:3].max(axis=(0, 2))
+    out[17:20] = lows
+    out[20:23] = highs
     return out
 
 
@@ -129,15 +118,14 @@ def triangle_soup_moments(
         )
     origin = np.asarray(origin, dtype=float)
     total = np.zeros(17)
+    lower, upper = np.full(3, np.inf), np.full(3, -np.inf)
     for start in range(0, n, chunk):
-        total += _chunk_moments(triangles[start : start + chunk].astype(float, copy=False), origin)
+        sums = _chunk_moments(triangles[start : start + chunk], origin)
+        total += sums[:17]
+        np.minimum(lower, sums[17:20], out=lower)
+        np.maximum(upper, sums[20:23], out=upper)
     m2 = total[4:13].reshape(3, 3)
     return VolumeMoments(
-        origin,
-        float(total[0]),
-        total[1:4].copy(),
-        (m2 + m2.T) / 2,
-        total[13:16].copy(),
-        float(total[16]),
-        n,
+        origin, float(total[0]), total[1:4].copy(), (m2 + m2.T) / 2, total[13:16].copy(),
+        float(total[16]), n, lower + origin, upper + origin,
     )

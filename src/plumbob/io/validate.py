@@ -22,6 +22,7 @@ import numpy as np
 
 from ..bodies.solid import CLOSURE_TOLERANCE, MeshSolid
 from ..errors import GeometryError, PlumbobError
+from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..units import length_scale
 
 __all__ = [
@@ -59,7 +60,6 @@ ZERO_VOLUME = 1e-9
 #: triangles per pass in the chunked kernels
 CHUNK = 1 << 16
 #: triangles per pass of the closure test: its float64 temporaries stay in cache
-SUMMARY_CHUNK = 1 << 13
 
 UNITS_ASSUMED = "units: none in file; metres assumed (use --units)"
 
@@ -204,6 +204,7 @@ class SurfaceSummary:
     area: float
     lo: np.ndarray
     hi: np.ndarray
+    moments: VolumeMoments | None = None
 
     @property
     def closed(self) -> bool:
@@ -214,38 +215,11 @@ class SurfaceSummary:
         return abs(self.volume) <= ZERO_VOLUME * self.area ** 1.5
 
 
-def surface_summary(triangles: np.ndarray, chunk: int = SUMMARY_CHUNK) -> SurfaceSummary:
-    """Volume, vector area, area and bounding box of ``triangles`` (n, 3, 3), in chunks.
-
-    Each chunk is copied once, component-major and in float64 relative to a local
-    origin, so every later operation runs over contiguous rows of triangles.
-    """
-    n = len(triangles)
-    origin = (triangles[: min(n, 1024)].reshape(-1, 3).mean(axis=0, dtype=float)
-              if n else np.zeros(3))
-    volume = 0.0
-    area = 0.0
-    vector_area = np.zeros(3)
-    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
-    for start in range(0, n, chunk):
-        block = triangles[start:start + chunk]
-        corners = np.empty((3, 3, len(block)))  # corners[i, j]: coordinate j of corner i
-        np.subtract(block.transpose(1, 2, 0), origin[None, :, None], out=corners)
-        a, b, c = corners
-        u, v = b - a, c - a
-        normal = np.empty_like(u)
-        np.multiply(u[1], v[2], out=normal[0])
-        normal[0] -= u[2] * v[1]
-        np.multiply(u[2], v[0], out=normal[1])
-        normal[1] -= u[0] * v[2]
-        np.multiply(u[0], v[1], out=normal[2])
-        normal[2] -= u[1] * v[0]
-        volume += float(a[0] @ normal[0] + a[1] @ normal[1] + a[2] @ normal[2])
-        vector_area += normal.sum(axis=1)
-        area += float(np.sqrt(np.einsum("ij,ij->j", normal, normal)).sum())
-        lo = np.minimum(lo, corners.min(axis=(0, 2)) + origin)
-        hi = np.maximum(hi, corners.max(axis=(0, 2)) + origin)
-    return SurfaceSummary(origin, volume / 6, vector_area / 2, area / 2, lo, hi)
+def surface_summary(triangles: np.ndarray) -> SurfaceSummary:
+    """Volume, vector area, area and bounding box of ``triangles`` (n, 3, 3): one pass
+    of the divergence-theorem kernel, whose moments the solid then reuses."""
+    m = triangle_soup_moments(triangles)
+    return SurfaceSummary(m.origin, m.m0, m.vector_area, m.area, m.lower, m.upper, m)
 
 
 # ---------------------------------------------------------------- topology
@@ -581,12 +555,13 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
         if summary.flat:
             raise GeometryError(f"{prefix}encloses no volume: the surface is flat or its faces "
                                 "cancel", path=path)
+        moments = summary.moments
         if summary.volume < 0:
             notices.append(f"{prefix}inside out: its faces pointed inward; turned outward")
-            triangles = triangles[:, ::-1]
+            triangles, moments = triangles[:, ::-1], None
         notices.append(f"{prefix}shells: not checked for overlap ({n} triangles, over "
                        f"{FULL_CHECK_LIMIT}; --repair checks)")
-        return _solid(triangles, name, path), tuple(notices)
+        return _solid(triangles, name, path, moments), tuple(notices)
 
     topo = mesh_topology(triangles)
     if not topo.orientable:
@@ -632,12 +607,13 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
         same_dtype = vertices[faces].astype(triangles.dtype, copy=False)
         return _solid(same_dtype, name, path), tuple(notices)
     if not changed:
-        return _solid(triangles, name, path), tuple(notices)
+        return _solid(triangles, name, path, summary.moments), tuple(notices)
     return _solid(vertices[faces], name, path), tuple(notices)
 
 
-def _solid(triangles: np.ndarray, name: str | None, path: str | None) -> MeshSolid:
+def _solid(triangles: np.ndarray, name: str | None, path: str | None,
+           moments: VolumeMoments | None = None) -> MeshSolid:
     try:
-        return MeshSolid(triangles, name=name)
+        return MeshSolid(triangles, name=name, moments=moments)
     except PlumbobError as error:
         raise GeometryError(error.message, path=path) from None
