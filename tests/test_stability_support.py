@@ -104,6 +104,16 @@ def test_particles_stand_on_their_lowest_points():
     assert s.kind == "polygon" and len(s.vertices) == 3
 
 
+def test_an_assembly_of_a_solid_and_a_lamina_stands_as_a_solid():
+    from plumbob.bodies.csg import Assembly
+    from plumbob.bodies.primitives import rectangle
+
+    plate = rectangle(3, 1, density=1.0)  # in z = 0, beside the cube's base
+    s = support_polygon(Assembly((box(1, 1, 1, density=1.0), plate)))
+    assert s.kind == "polygon" and s.dim == 3
+    assert np.allclose(np.ptp(s.polygon, axis=0), [3, 1, 0])
+
+
 def test_a_body_lying_flat_has_nothing_to_stand_on():
     pair = ParticleSystem([1.0, 2.0], [[0, 0, 0], [1, 0, 0]])
     with pytest.raises(StabilityError, match="lies flat"):
