@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 
 from .errors import PlumbobError
@@ -19,6 +20,15 @@ COMMANDS = ("mass", "check", "poses", "lift", "materials", "simulate", "collide"
 
 
 class _Parser(argparse.ArgumentParser):
+    # No option of plumbob looks like a negative number, so "-1,0,0" or "-3.5" after an
+    # option is its value (argparse would otherwise take it for an unknown option).
+    _NEGATIVE_VALUE = re.compile(r"^-\.?\d[\w.,+\-]*$")
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        if hasattr(self, "_negative_number_matcher"):
+            self._negative_number_matcher = self._NEGATIVE_VALUE
+
     def error(self, message: str) -> None:  # one line, status 2, no usage dump
         self.exit(2, f"plumbob: {message} (see '{self.prog} --help')\n")
 

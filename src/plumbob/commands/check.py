@@ -105,7 +105,7 @@ def register(subparsers) -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
                        help="direction of gravity in the body's frame (default -z; -y for a "
-                            "lamina); write --down=0,0,-1 when it starts with a minus")
+                            "lamina)")
     where.add_argument("--pose", type=int, metavar="K",
                        help="rest it in its K-th most probable resting pose (see 'plumbob "
                             "poses')")

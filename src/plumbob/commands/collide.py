@@ -5,12 +5,9 @@ from __future__ import annotations
 
 import argparse
 import math
-import re
 
 from ..errors import DynamicsError
 from ..report import dump_json, format_number, format_vector, table
-
-_NEGATIVE_VALUE = re.compile(r"^-\.?\d[\w.,+\-]*$")
 
 HELP = "velocities, momentum and kinetic energy before and after a collision"
 EPILOG = """\
@@ -37,10 +34,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="coefficient of restitution, 0 (coalescing) to 1 (elastic); "
                              "default 1")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
-    if hasattr(parser, "_negative_number_matcher"):
-        # Let "--v1 -3,4" through as a value: no option of this command looks like a
-        # negative number, so an argument "-<digit>…" can only be a value.
-        parser._negative_number_matcher = _NEGATIVE_VALUE
     parser.set_defaults(func=run)
 
 
