@@ -163,3 +163,24 @@ def test_triangle_centre_one_third_of_height():
 def test_degenerate_primitives_are_errors(make):
     with pytest.raises(GeometryError):
         make()
+
+
+@pytest.mark.parametrize(
+    "body, down, count",
+    [
+        (P.sphere(1.0), [0, 0, -1.0], 1),  # a point, not a cap of samples
+        (P.sphere(1.0), [0.6, 0, -0.8], 1),
+        (P.disc(1.0), [0, -1.0], 1),
+        (P.semicircle(1.0), [0.6, 0.8], 1),
+    ],
+)
+def test_curved_contact_is_the_true_point(body, down, count):
+    pts = body.support_points(np.array(down), 1e-6)
+    assert len(pts) == count
+    np.testing.assert_allclose(pts[0], np.array(down) * (1.0 if len(down) == 3 else 1.0), atol=1e-12)
+
+
+def test_cylinder_on_its_side_touches_along_a_line():
+    pts = P.cylinder(0.5, 2.0).support_points(np.array([1.0, 0, 0]), 1e-6)
+    assert np.allclose(pts[:, 0], 0.5) and np.allclose(pts[:, 1], 0)
+    assert pts[:, 2].min() == pytest.approx(0) and pts[:, 2].max() == pytest.approx(2)

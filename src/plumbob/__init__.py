@@ -45,6 +45,9 @@ _LAZY = {
     "MeshSolid": ("plumbob.bodies.solid", "MeshSolid"),
     "material": ("plumbob.materials", "material"),
     "collide": ("plumbob.dynamics.collisions", "collide"),
+    "check": ("plumbob.stability", "check"),
+    "poses": ("plumbob.stability", "resting_poses"),
+    "lift": ("plumbob.energy", "lift_energy"),
 }
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties
 
-__all__ = ["Body", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE", "lowest"]
+__all__ = ["Body", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE", "lowest", "contact_sampling"]
 
 DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed"
 
@@ -33,10 +33,22 @@ def check_density(density: float | None, what: str = "density") -> float | None:
     return value
 
 
+def contact_sampling(tolerance: float, size: float) -> float:
+    """How finely to sample curved surfaces when looking for contact within ``tolerance``.
+
+    Coarser than the contact tolerance on purpose: samples near a point of tangency
+    (a sphere's bottom) then stay above the tolerance and only the exact contact
+    points count, while samples on a flat contact (a cylinder's base rim) are exactly
+    at the lowest level whatever the sampling.
+    """
+    return max(64 * tolerance, 1e-3 * size)
+
+
 def lowest(points: np.ndarray, down: np.ndarray, tolerance: float) -> np.ndarray:
-    """The rows of ``points`` (n, d) within ``tolerance`` (m) of the lowest along ``down``."""
+    """The distinct rows of ``points`` (n, d) within ``tolerance`` (m) of the lowest along
+    ``down``."""
     depth = points @ down
-    return points[depth >= depth.max() - tolerance]
+    return np.unique(points[depth >= depth.max() - tolerance] + 0.0, axis=0)
 
 
 class Body(ABC):

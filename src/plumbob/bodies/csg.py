@@ -127,8 +127,15 @@ class Assembly(Body):
         return np.concatenate(pts)
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
-        pts = np.concatenate([p.support_points(down, tolerance) for p in self.parts])
-        return lowest(pts, np.asarray(down, dtype=float), tolerance)
+        down = np.asarray(down, dtype=float)
+        pts = [
+            p.support_points(down, tolerance)
+            if p.dim == len(down)
+            # a lamina in a solid assembly lies in z = 0: its hull points, in space
+            else np.pad(p.hull_points(tolerance), ((0, 0), (0, len(down) - p.dim)))
+            for p in self.parts
+        ]
+        return lowest(np.concatenate(pts), down, tolerance)
 
     def with_default_density(self, density: float) -> Body:
         return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))

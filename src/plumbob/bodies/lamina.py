@@ -9,7 +9,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.polygon import bulge_arc_geometry
 from ..massprops import MassProperties
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
+from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
 from .region import Region
 
 __all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia"]
@@ -93,7 +93,7 @@ class Lamina(Body):
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
         down = np.asarray(down, dtype=float)
-        candidates = [self.hull_points(tolerance / 4)]
+        candidates = [self.hull_points(contact_sampling(tolerance, self.region.size))]
         for ring in self.region.rings:
             if ring.bulges is None:
                 continue

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
+from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
 from .lamina import lamina_mass_properties, second_moments_to_inertia
 from .region import Region
 
@@ -109,7 +109,10 @@ class MeshSolid(_UniformSolid):
         return self._finish(m.m0, m.origin + centre, central)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
-        return np.unique(self.triangles.reshape(-1, 3), axis=0).astype(float)
+        points = np.ascontiguousarray(self.triangles.reshape(-1, 3), dtype=float)
+        # unique rows through a byte view: several times faster than unique(axis=0)
+        _, first = np.unique(points.view(np.dtype((np.void, 24))).ravel(), return_index=True)
+        return points[np.sort(first)]
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         matrix = np.asarray(matrix, dtype=float)
@@ -181,7 +184,11 @@ class Extrusion(_UniformSolid):
 
         down = np.asarray(down, dtype=float)
         flat = down[:2]
-        pts = self._profile_points(tolerance / 4)
+        size = self.profile.size
+        # Down along the axis: a whole end face touches, sampled finely; otherwise
+        # coarse samples plus the exact extreme points (see contact_sampling).
+        face_down = np.linalg.norm(flat) * size <= tolerance
+        pts = self._profile_points(tolerance / 4 if face_down else contact_sampling(tolerance, size))
         if np.linalg.norm(flat) > 0:
             exact = Lamina(self.profile).support_points(flat / np.linalg.norm(flat), tolerance)
             pts = np.concatenate((pts, exact))
@@ -249,18 +256,24 @@ class Revolution(_UniformSolid):
         from .lamina import Lamina
 
         down = np.asarray(down, dtype=float)
-        pts, steps = self._rings(tolerance / 4)
-        candidates = [self._sweep(pts, 2 * np.pi * np.arange(steps) / steps)]
         radial = np.hypot(down[0], down[1])
-        if radial > 0:
-            # Every lowest point lies in the half-plane facing `down`: the profile's
-            # support there, in the direction (radial, down_z), is exact.
-            psi = np.arctan2(down[1], down[0])
-            direction = np.array([radial, down[2]])
-            half = Lamina(self.profile).support_points(
-                direction / np.linalg.norm(direction), tolerance
-            )
-            candidates.append(self._sweep(np.concatenate((half, pts)), np.array([psi])))
+        size = self.profile.size
+        profile = Lamina(self.profile)
+        direction = np.array([radial, down[2]])
+        # The profile's own lowest points in the half-plane facing down: exact.
+        exact = profile.support_points(direction / np.linalg.norm(direction), tolerance)
+        coarse = np.concatenate((profile.hull_points(contact_sampling(tolerance, size)), exact))
+        on_axis = coarse[:, 0] <= 1e-12 * size
+        axis_points = np.stack((0 * coarse[on_axis, 1], 0 * coarse[on_axis, 1], coarse[on_axis, 1]), axis=1)
+        if radial * size <= tolerance:
+            # Down along the axis: whole rings may touch (a cylinder's base rim): sweep
+            # finely in angle; the profile itself stays coarse but for its exact points.
+            steps = _circle_steps(float(coarse[:, 0].max()), tolerance / 4)
+            swept = self._sweep(coarse[~on_axis], 2 * np.pi * np.arange(steps) / steps)
+            return lowest(np.concatenate((swept, axis_points)), down, tolerance)
+        # Otherwise every lowest point lies in the half-plane facing down.
+        psi = np.arctan2(down[1], down[0])
+        candidates = (self._sweep(coarse[~on_axis], np.array([psi])), axis_points)
         return lowest(np.concatenate(candidates), down, tolerance)
 
     def to_geometry(self, segments: int = 128):

@@ -170,15 +170,8 @@ def hull_points(body, tolerance: float | None = None) -> np.ndarray:
 
 def support_points(body, down: np.ndarray, tolerance: float) -> np.ndarray:
     """The body's lowest points along ``down`` within ``tolerance`` m, shape (k, dim)."""
-    from ..bodies.csg import Assembly
-
     down = np.asarray(down, dtype=float)
-    if isinstance(body, Assembly) and len({p.dim for p in body.parts}) > 1:
-        # laminas in a solid assembly lie in z = 0: their hull points, as 3D points
-        parts = [support_points(p, down, tolerance) if p.dim == 3 else
-                 np.pad(hull_points(p, tolerance / 4), ((0, 0), (0, 1))) for p in body.parts]
-        pts = lowest(np.concatenate(parts), down, tolerance)
-    elif isinstance(body, Body):
+    if isinstance(body, Body):
         pts = np.asarray(body.support_points(down, tolerance), dtype=float)
     else:
         pts = lowest(hull_points(body), down, tolerance)
