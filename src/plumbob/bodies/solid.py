@@ -109,10 +109,12 @@ class MeshSolid(_UniformSolid):
         return self._finish(m.m0, m.origin + centre, central)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
-        points = np.ascontiguousarray(self.triangles.reshape(-1, 3), dtype=float)
-        # unique rows through a byte view: several times faster than unique(axis=0)
-        _, first = np.unique(points.view(np.dtype((np.void, 24))).ravel(), return_index=True)
-        return points[np.sort(first)]
+        points = self.triangles.reshape(-1, 3).astype(float)
+        # distinct rows by a three-key sort: several times faster than unique(axis=0)
+        points = points[np.lexsort(points.T)]
+        distinct = np.ones(len(points), dtype=bool)
+        distinct[1:] = np.any(points[1:] != points[:-1], axis=1)
+        return points[distinct]
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         matrix = np.asarray(matrix, dtype=float)
