@@ -12,7 +12,7 @@ from ..massprops import MassProperties
 from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
 from .region import Region
 
-__all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia"]
+__all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia", "uniform_mass_properties"]
 
 
 def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
@@ -21,6 +21,27 @@ def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
     n = central.shape[0]
     c[:n, :n] = central
     return np.trace(c) * np.eye(3) - c
+
+
+def uniform_mass_properties(
+    dim: int,
+    measure: float,
+    centre: np.ndarray,
+    central: np.ndarray,
+    density: float | None,
+    *,
+    exact: bool = True,
+    relative_error: float = 0.0,
+    note: str | None = None,
+) -> MassProperties:
+    """Mass properties of a uniform body from its size (m² or m³), centre and central
+    second moments ``∫ r rᵀ`` of the region; ``density`` None means not given (1)."""
+    rho = 1.0 if density is None else density
+    notes = [] if density is not None else [DEFAULT_DENSITY_NOTE]
+    if note:
+        notes.append(note)
+    return MassProperties(dim, rho * measure, measure, centre, rho * second_moments_to_inertia(central),
+                          exact=exact, relative_error=relative_error, notes=tuple(notes))
 
 
 def lamina_mass_properties(
@@ -72,20 +93,9 @@ class Lamina(Body):
 
     def mass_properties(self) -> MassProperties:
         area, centre, central = lamina_mass_properties(self.region, 1.0)
-        sigma = self.areal_density
-        notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
-        if self.note:
-            notes.append(self.note)
-        return MassProperties(
-            2,
-            sigma * area,
-            area,
-            centre,
-            sigma * second_moments_to_inertia(central),
-            exact=self.exact,
-            relative_error=self.relative_error,
-            notes=tuple(notes),
-        )
+        return uniform_mass_properties(
+            2, area, centre, central, None if self.density is None else self.areal_density,
+            exact=self.exact, relative_error=self.relative_error, note=self.note)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         tol = self.region.size * 1e-4 if tolerance is None else tolerance

@@ -15,8 +15,8 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
-from .lamina import lamina_mass_properties, second_moments_to_inertia
+from .base import Body, check_density, contact_sampling, lowest
+from .lamina import lamina_mass_properties, uniform_mass_properties
 from .region import Region
 
 __all__ = ["MeshSolid", "Extrusion", "Revolution", "CLOSURE_TOLERANCE"]
@@ -34,20 +34,8 @@ class _UniformSolid(Body):
 
     def _finish(self, volume: float, centre: np.ndarray, central: np.ndarray) -> MassProperties:
         """Mass properties from volume (m³), centre (3,) and ``∫ r rᵀ dV`` about it (3, 3)."""
-        rho = 1.0 if self.density is None else self.density
-        notes = [] if self.density is not None else [DEFAULT_DENSITY_NOTE]
-        if self.note:
-            notes.append(self.note)
-        return MassProperties(
-            3,
-            rho * volume,
-            volume,
-            centre,
-            rho * second_moments_to_inertia(central),
-            exact=self.exact,
-            relative_error=self.relative_error,
-            notes=tuple(notes),
-        )
+        return uniform_mass_properties(3, volume, centre, central, self.density, exact=self.exact,
+                                       relative_error=self.relative_error, note=self.note)
 
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))

@@ -34,7 +34,7 @@ from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..errors import FormatError, GeometryError
 from . import Reading
-from .validate import check_extent, fmt_point, units_scale
+from .validate import check_extent, fmt_point, unique_names, units_scale
 
 __all__ = [
     "OUTLINE_SUFFIXES",
@@ -183,15 +183,6 @@ def _assemble(parts: list[Lamina], name: str | None) -> Body:
     return Assembly(tuple(parts), name=name)
 
 
-def _unique(names: list[str]) -> list[str]:
-    seen: dict[str, int] = {}
-    out = []
-    for name in names:
-        seen[name] = seen.get(name, 0) + 1
-        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
-    return out
-
-
 # ------------------------------------------------------------------ even-odd
 def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str | None = None,
                        scale: float = 1.0) -> tuple[Body, tuple[str, ...]]:
@@ -252,7 +243,7 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     direct = depth[inside[0]] == depth[inside[1]] - 1
     parent[inside[1, direct]] = inside[0, direct]
     outer = np.flatnonzero(depth % 2 == 0)
-    names = _unique([outlines[k].name or f"outline {i + 1}" for i, k in enumerate(outer)])
+    names = unique_names([outlines[k].name or f"outline {i + 1}" for i, k in enumerate(outer)])
     parts = []
     for k, part_name in zip(outer, names):  # per outer boundary
         holes = np.flatnonzero((parent == k) & (depth % 2 == 1))
@@ -279,7 +270,7 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
     if not np.isfinite(bounds).all():
         raise GeometryError("a coordinate is not a finite number (NaN or infinity)", path=path)
     notices = check_extent(bounds[:, :2].min(axis=0), bounds[:, 2:].max(axis=0), path=path)
-    names = _unique([n for n, _ in named])
+    names = unique_names([n for n, _ in named])
     parts = []
     several = len(named) > 1
     for part_name, geometry in zip(names, geometries):  # per polygon

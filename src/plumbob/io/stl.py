@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import FormatError, InputFileError
-from .validate import check_extent, check_reach, raise_nonfinite, units_scale
+from .validate import check_extent, check_reach, raise_nonfinite, unique_names, units_scale
 
 if TYPE_CHECKING:
     from . import Reading
@@ -317,7 +317,7 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     stem = os.path.splitext(os.path.basename(path))[0]
     several = len(stl.solids) > 1
     parts = []
-    names = _unique_names([s.name or (f"solid {i + 1}" if several else stem)
+    names = unique_names([s.name or (f"solid {i + 1}" if several else stem)
                            for i, s in enumerate(stl.solids)])
     for solid, name in zip(stl.solids, names):
         tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float) * scale
@@ -328,14 +328,3 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     if not several:
         return Reading(parts[0], tuple(notices), path)
     return Reading(Assembly(tuple(parts), name=stem), tuple(notices), path)
-
-
-def _unique_names(names: list[str]) -> list[str]:
-    seen: dict[str, int] = {}
-    out = []
-    for name in names:
-        seen[name] = seen.get(name, 0) + 1
-        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
-    return out
-
-

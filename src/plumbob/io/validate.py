@@ -39,6 +39,7 @@ __all__ = [
     "finite_bounds",
     "SurfaceSummary",
     "surface_summary",
+    "unique_names",
     "Topology",
     "mesh_topology",
     "connected_components",
@@ -609,6 +610,16 @@ def check_solid(triangles: np.ndarray, *, path: str | None = None, name: str | N
     if not changed:
         return _solid(triangles, name, path, summary.moments), tuple(notices)
     return _solid(vertices[faces], name, path), tuple(notices)
+
+
+def unique_names(names: list[str]) -> list[str]:
+    """Names made distinct for a per-body table: repeats get " (2)", " (3)", …"""
+    seen: dict[str, int] = {}
+    out = []
+    for name in names:
+        seen[name] = seen.get(name, 0) + 1
+        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
+    return out
 
 
 def _solid(triangles: np.ndarray, name: str | None, path: str | None,

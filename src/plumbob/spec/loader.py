@@ -110,7 +110,6 @@ class _Spec:
 
 
 # ----------------------------------------------------------------- primitives
-# Each entry: (dimension, required keys, optional keys, builder(spec, table, where) -> Body)
 def _n(spec: _Spec, t: dict, key: str, where: str, length: bool = True) -> float:
     return spec.number(t[key], f"{where}.{key}", length)
 
@@ -155,122 +154,54 @@ def _outline(spec: _Spec, t: dict, where: str) -> Lamina:
     return Lamina(region)
 
 
+def _simple(build: Callable[..., Body], *keys: str, angles: tuple[str, ...] = ()):
+    """A builder passing the named values, in order, to ``build``: lengths scaled by the
+    spec's units, ``angles`` (degrees in the spec) in radians."""
+
+    def builder(spec: _Spec, table: dict, where: str) -> Body:
+        return build(*(_angle(spec, table, k, where) if k in angles else _n(spec, table, k, where)
+                       for k in keys))
+
+    return builder
+
+
+# Each entry: (dimension, required keys, optional keys, builder(spec, table, where) -> Body)
 PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[_Spec, dict, str], Body]]] = {
-    "rectangle": (
-        2,
-        {"width", "height"},
-        {"centered"},
-        lambda s, t, w: prim.rectangle(_n(s, t, "width", w), _n(s, t, "height", w)),
-    ),
-    "square": (
-        2,
-        {"side"},
-        set(),
-        lambda s, t, w: prim.rectangle(_n(s, t, "side", w), _n(s, t, "side", w)),
-    ),
-    "triangle": (
-        2,
-        {"vertices"},
-        set(),
-        lambda s, t, w: prim.polygon(s.points(t["vertices"], f"{w}.vertices")),
-    ),
-    "polygon": (
-        2,
-        {"vertices"},
-        {"holes"},
-        lambda s, t, w: prim.polygon(
-            s.points(t["vertices"], f"{w}.vertices"),
-            [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(t.get("holes", []))],
-        ),
-    ),
+    "rectangle": (2, {"width", "height"}, {"centered"}, _simple(prim.rectangle, "width", "height")),
+    "square": (2, {"side"}, set(), _simple(lambda a: prim.rectangle(a, a), "side")),
+    "triangle": (2, {"vertices"}, set(),
+                 lambda s, t, w: prim.polygon(s.points(t["vertices"], f"{w}.vertices"))),
+    "polygon": (2, {"vertices"}, {"holes"}, lambda s, t, w: prim.polygon(
+        s.points(t["vertices"], f"{w}.vertices"),
+        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(t.get("holes", []))])),
     "outline": (2, {"vertices"}, {"bulges"}, _outline),
-    "regular_polygon": (
-        2,
-        {"sides", "radius"},
-        set(),
-        lambda s, t, w: prim.regular_polygon(
-            s.number(t["sides"], f"{w}.sides"), _n(s, t, "radius", w)
-        ),
-    ),
-    "disc": (2, {"radius"}, set(), lambda s, t, w: prim.disc(_n(s, t, "radius", w))),
-    "semicircle": (2, {"radius"}, set(), lambda s, t, w: prim.semicircle(_n(s, t, "radius", w))),
-    "sector": (
-        2,
-        {"radius", "angle"},
-        set(),
-        lambda s, t, w: prim.sector(_n(s, t, "radius", w), _angle(s, t, "angle", w)),
-    ),
-    "segment": (
-        2,
-        {"radius", "angle"},
-        set(),
-        lambda s, t, w: prim.circular_segment(_n(s, t, "radius", w), _angle(s, t, "angle", w)),
-    ),
-    "annulus": (
-        2,
-        {"inner_radius", "outer_radius"},
-        set(),
-        lambda s, t, w: prim.annulus(_n(s, t, "inner_radius", w), _n(s, t, "outer_radius", w)),
-    ),
-    "box": (
-        3,
-        {"length", "width", "height"},
-        {"centered"},
-        lambda s, t, w: prim.box(
-            _n(s, t, "length", w), _n(s, t, "width", w), _n(s, t, "height", w)
-        ),
-    ),
-    "cube": (3, {"side"}, {"centered"}, lambda s, t, w: prim.box(*[_n(s, t, "side", w)] * 3)),
-    "cylinder": (
-        3,
-        {"radius", "height"},
-        set(),
-        lambda s, t, w: prim.cylinder(_n(s, t, "radius", w), _n(s, t, "height", w)),
-    ),
-    "cone": (
-        3,
-        {"radius", "height"},
-        set(),
-        lambda s, t, w: prim.cone(_n(s, t, "radius", w), _n(s, t, "height", w)),
-    ),
-    "frustum": (
-        3,
-        {"bottom_radius", "top_radius", "height"},
-        set(),
-        lambda s, t, w: prim.frustum(
-            _n(s, t, "bottom_radius", w), _n(s, t, "top_radius", w), _n(s, t, "height", w)
-        ),
-    ),
-    "sphere": (3, {"radius"}, set(), lambda s, t, w: prim.sphere(_n(s, t, "radius", w))),
-    "hemisphere": (3, {"radius"}, set(), lambda s, t, w: prim.hemisphere(_n(s, t, "radius", w))),
-    "torus": (
-        3,
-        {"major_radius", "minor_radius"},
-        set(),
-        lambda s, t, w: prim.torus(_n(s, t, "major_radius", w), _n(s, t, "minor_radius", w)),
-    ),
-    "pyramid": (
-        3,
-        {"base", "height"},
-        {"apex"},
-        lambda s, t, w: prim.pyramid(
-            s.points(t["base"], f"{w}.base"),
-            _n(s, t, "height", w),
-            s.vector(t["apex"], f"{w}.apex", (2,)) if "apex" in t else None,
-        ),
-    ),
-    "tetrahedron": (
-        3,
-        {"vertices"},
-        set(),
-        lambda s, t, w: prim.tetrahedron(*s.points(t["vertices"], f"{w}.vertices", (3,))),
-    ),
-    "extrude": (
-        3,
-        {"profile", "height"},
-        set(),
-        lambda s, t, w: prim.prism(_profile(s, t, w), _n(s, t, "height", w)),
-    ),
+    "regular_polygon": (2, {"sides", "radius"}, set(), lambda s, t, w: prim.regular_polygon(
+        s.number(t["sides"], f"{w}.sides"), _n(s, t, "radius", w))),
+    "disc": (2, {"radius"}, set(), _simple(prim.disc, "radius")),
+    "semicircle": (2, {"radius"}, set(), _simple(prim.semicircle, "radius")),
+    "sector": (2, {"radius", "angle"}, set(), _simple(prim.sector, "radius", "angle", angles=("angle",))),
+    "segment": (2, {"radius", "angle"}, set(),
+                _simple(prim.circular_segment, "radius", "angle", angles=("angle",))),
+    "annulus": (2, {"inner_radius", "outer_radius"}, set(),
+                _simple(prim.annulus, "inner_radius", "outer_radius")),
+    "box": (3, {"length", "width", "height"}, {"centered"},
+            _simple(prim.box, "length", "width", "height")),
+    "cube": (3, {"side"}, {"centered"}, _simple(lambda a: prim.box(a, a, a), "side")),
+    "cylinder": (3, {"radius", "height"}, set(), _simple(prim.cylinder, "radius", "height")),
+    "cone": (3, {"radius", "height"}, set(), _simple(prim.cone, "radius", "height")),
+    "frustum": (3, {"bottom_radius", "top_radius", "height"}, set(),
+                _simple(prim.frustum, "bottom_radius", "top_radius", "height")),
+    "sphere": (3, {"radius"}, set(), _simple(prim.sphere, "radius")),
+    "hemisphere": (3, {"radius"}, set(), _simple(prim.hemisphere, "radius")),
+    "torus": (3, {"major_radius", "minor_radius"}, set(),
+              _simple(prim.torus, "major_radius", "minor_radius")),
+    "pyramid": (3, {"base", "height"}, {"apex"}, lambda s, t, w: prim.pyramid(
+        s.points(t["base"], f"{w}.base"), _n(s, t, "height", w),
+        s.vector(t["apex"], f"{w}.apex", (2,)) if "apex" in t else None)),
+    "tetrahedron": (3, {"vertices"}, set(),
+                    lambda s, t, w: prim.tetrahedron(*s.points(t["vertices"], f"{w}.vertices", (3,)))),
+    "extrude": (3, {"profile", "height"}, set(),
+                lambda s, t, w: prim.prism(_profile(s, t, w), _n(s, t, "height", w))),
     "revolve": (3, {"profile"}, set(), lambda s, t, w: prim.revolve(_profile(s, t, w))),
     "mesh": (3, {"file"}, {"units"}, lambda s, t, w: _mesh_file(s, t, w)),
 }
