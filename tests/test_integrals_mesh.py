@@ -125,3 +125,21 @@ def test_splitting_a_body_sums_back(seed):
     assert pieces.volume == pytest.approx(whole.volume, rel=1e-10)
     assert rel(pieces.center_of_mass, whole.center_of_mass, scale=3.0) < 1e-10
     assert rel(pieces.inertia, whole.inertia) < 1e-9
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_refining_random_triangles_changes_nothing(seed):
+    """Split random triangles at random interior points (1 → 3): the solid is the same."""
+    rng = np.random.default_rng(seed)
+    tri = irregular_mesh().triangles
+    chosen = rng.random(len(tri)) < 0.5
+    a, b, c = (tri[chosen, i] for i in range(3))
+    w = rng.dirichlet([1.0, 1.0, 1.0], size=chosen.sum())
+    p = w[:, :1] * a + w[:, 1:2] * b + w[:, 2:] * c
+    refined = np.concatenate([tri[~chosen], np.stack((a, b, p), 1), np.stack((b, c, p), 1),
+                              np.stack((c, a, p), 1)])
+    before = MeshSolid(tri).mass_properties()
+    after = MeshSolid(refined).mass_properties()
+    assert after.volume == pytest.approx(before.volume, rel=1e-12)
+    assert rel(after.center_of_mass, before.center_of_mass, scale=2.0) < 1e-12
+    assert rel(after.inertia, before.inertia) < 1e-11
