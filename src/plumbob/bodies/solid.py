@@ -9,6 +9,7 @@ and a solid of revolution from the exact area moments of their profile
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -97,12 +98,19 @@ class MeshSolid(_UniformSolid):
         return self._finish(m.m0, m.origin + centre, central)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
+        return self._distinct_vertices
+
+    @cached_property
+    def _distinct_vertices(self) -> np.ndarray:
+        """The mesh's distinct vertices (n, 3), m: computed once (stability asks often)."""
         points = self.triangles.reshape(-1, 3).astype(float)
         # distinct rows by a three-key sort: several times faster than unique(axis=0)
         points = points[np.lexsort(points.T)]
         distinct = np.ones(len(points), dtype=bool)
         distinct[1:] = np.any(points[1:] != points[:-1], axis=1)
-        return points[distinct]
+        points = points[distinct]
+        points.setflags(write=False)
+        return points
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         matrix = np.asarray(matrix, dtype=float)
