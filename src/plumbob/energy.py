@@ -25,6 +25,7 @@ import numpy as np
 
 from .errors import PlumbobError
 from .massprops import MassProperties
+from .units import STANDARD_GRAVITY
 
 __all__ = [
     "STANDARD_GRAVITY",
@@ -40,7 +41,6 @@ __all__ = [
     "seed_work_per_day",
 ]
 
-STANDARD_GRAVITY = 9.81  # m/s², the seed's value
 DAYS_PER_YEAR = 365.25
 
 

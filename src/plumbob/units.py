@@ -1,10 +1,13 @@
-"""Length units accepted for coordinates in files and specs."""
+"""Length units accepted for coordinates in files and specs, and the default g."""
 
 from __future__ import annotations
 
 from .errors import PlumbobError
 
-__all__ = ["LENGTH_UNITS", "length_scale"]
+__all__ = ["LENGTH_UNITS", "STANDARD_GRAVITY", "length_scale"]
+
+#: m/s², the seed unit's value of g, the default wherever gravity enters
+STANDARD_GRAVITY = 9.81
 
 #: metres per unit
 LENGTH_UNITS: dict[str, float] = {

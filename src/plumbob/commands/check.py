@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from ..units import STANDARD_GRAVITY
 from ._common import add_body_arguments, load_body, parse_vector, print_notices
 
 __all__ = ["register", "run", "add_stability_arguments", "open_body", "positive",
@@ -56,8 +57,8 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
     """The body arguments every command shares (PATH, --density/--material, --units,
     --repair, --json) and --g."""
     add_body_arguments(parser)
-    parser.add_argument("--g", type=positive, default=9.81, metavar="G",
-                        help="gravitational acceleration, m/s² (default 9.81)")
+    parser.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
+                        help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
 
 
 def open_body(args) -> tuple:

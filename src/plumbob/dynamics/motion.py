@@ -38,6 +38,7 @@ import numpy as np
 
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
+from ..units import STANDARD_GRAVITY
 
 __all__ = [
     "STANDARD_GRAVITY",
@@ -49,7 +50,6 @@ __all__ = [
 ]
 
 #: Standard acceleration of gravity, m/s² (the seed's g).
-STANDARD_GRAVITY = 9.81
 
 #: At t = 0 a string counts as taut when |d| ≥ L (1 − _TAUT_RTOL). During a run the
 #: threshold is 100 × rtol: a string that the solver holds at |d| ≈ L stays taut.

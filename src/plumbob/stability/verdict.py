@@ -35,6 +35,7 @@ import numpy as np
 
 from ..errors import StabilityError
 from ..massprops import MassProperties
+from ..units import STANDARD_GRAVITY
 from .support import Support, support_polygon
 
 __all__ = [
@@ -46,7 +47,6 @@ __all__ = [
     "verdict_from_support",
 ]
 
-STANDARD_GRAVITY = 9.81  # m/s², the seed's value
 
 
 @dataclass(frozen=True)
