@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 
 HELP = "list the materials that specs and --material accept, with densities and sources"
 EPILOG = """\
@@ -26,11 +27,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(func=run)
 
 
-def _matches(entry, words: list[str], category: str | None) -> bool:
+def _matches(entry, words: list[str], category: str | None, whole: bool) -> bool:
+    """Every WORD in the name, category or description: as a whole word, or anywhere."""
     text = f"{entry.name} {entry.category} {entry.description}".lower().replace("_", " ")
     if category is not None and entry.category.lower() != category.lower():
         return False
-    return all(w.lower().replace("_", " ").replace("-", " ") in text for w in words)
+    words = [w.lower().replace("_", " ").replace("-", " ") for w in words]
+    if whole:
+        tokens = set(re.findall(r"[\w.]+", text))
+        return all(set(w.split()) <= tokens for w in words)
+    return all(w in text for w in words)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -41,7 +47,10 @@ def run(args: argparse.Namespace) -> int:
     if args.category is not None and args.category.lower() not in CATEGORIES:
         raise MaterialError(f"unknown category {args.category!r}; categories: "
                             + ", ".join(CATEGORIES))
-    chosen = [m for m in materials().values() if _matches(m, args.query, args.category)]
+    # Whole words first ("pla" is PLA, not "plain" or "platinum"), else any substring.
+    chosen = [m for m in materials().values() if _matches(m, args.query, args.category, True)]
+    if not chosen:
+        chosen = [m for m in materials().values() if _matches(m, args.query, args.category, False)]
     refs = sources()
     used = sorted({m.source for m in chosen})
     if args.json:
