@@ -220,8 +220,6 @@ class MassProperties:
             return self
         return replace(self, dim=3, center_of_mass=self.center_of_mass_3d)
 
-    def with_notes(self, *notes: str) -> MassProperties:
-        return replace(self, notes=self.notes + tuple(n for n in notes if n not in self.notes))
 
 
 def point_mass(mass: float, position: np.ndarray | list[float]) -> MassProperties:

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import sys
-import tempfile
 from collections.abc import Iterable, Sequence
 from typing import Any
 
@@ -20,7 +18,6 @@ __all__ = [
     "table",
     "format_number",
     "mass_properties_dict",
-    "write_atomically",
 ]
 
 
@@ -122,18 +119,3 @@ def mass_properties_dict(props: MassProperties, kind: str) -> dict[str, Any]:
     if props.notes:
         out["notes"] = list(props.notes)
     return out
-
-
-def write_atomically(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` all at once: a temporary file renamed into place,
-    so a failure never leaves a partial file."""
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".plumbob-", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w") as handle:
-            handle.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
