@@ -12,23 +12,20 @@ import numpy as np
 STL_DTYPE = np.dtype([("normal", "<f4", 3), ("tri", "<f4", (3, 3)), ("attr", "<u2")])
 
 
-def sphere_triangles(min_triangles: int) -> np.ndarray:
-    """A closed UV sphere (float64, (n, 3, 3)) of radius 1 with at least ``min_triangles``."""
-    rings = int(np.ceil(np.sqrt(min_triangles / 4))) + 1
-    segments = 2 * rings
-    theta = np.linspace(0, np.pi, rings + 1)
-    phi = np.linspace(0, 2 * np.pi, segments + 1)[:-1]
-    t, p = np.meshgrid(theta, phi, indexing="ij")
-    grid = np.stack((np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)), axis=-1)
-    a = grid[:-1, :]
-    b = grid[1:, :]
-    c = np.roll(grid[1:, :], -1, axis=1)
-    d = np.roll(grid[:-1, :], -1, axis=1)
-    upper = np.stack((a, b, c), axis=2)[1:].reshape(-1, 3, 3)  # skip the degenerate pole row
-    lower = np.stack((a, c, d), axis=2)[:-1].reshape(-1, 3, 3)
-    tri = np.concatenate((upper, lower))
-    # scale so that the mesh is non-symmetric enough not to be a special case
-    return tri * np.array([1.0, 0.8, 0.6])
+def torus_triangles(triangles: int, major: float = 1.0, minor: float = 0.3) -> np.ndarray:
+    """A closed, outward-wound torus mesh with about ``triangles`` triangles, (n, 3, 3) m."""
+    nv = max(3, int(np.sqrt(triangles / 4)))
+    nu = max(3, -(-triangles // (2 * nv)))
+    u = 2 * np.pi * np.arange(nu) / nu
+    v = 2 * np.pi * np.arange(nv) / nv
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    ring = major + minor * np.cos(vv)
+    verts = np.stack((ring * np.cos(uu), ring * np.sin(uu), minor * np.sin(vv)), axis=-1)
+    i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
+    i1, j1 = (i + 1) % nu, (j + 1) % nv
+    a, b, c, d = verts[i, j], verts[i1, j], verts[i1, j1], verts[i, j1]
+    return np.concatenate((np.stack((a, b, c), axis=-2).reshape(-1, 3, 3),
+                           np.stack((a, c, d), axis=-2).reshape(-1, 3, 3)))
 
 
 def write_binary_stl(path: str, triangles: np.ndarray) -> None:

@@ -16,7 +16,7 @@ import os
 import tempfile
 
 import numpy as np
-from _common import PYTHON, sphere_triangles, time_call, time_process, write_binary_stl
+from _common import PYTHON, time_call, time_process, torus_triangles, write_binary_stl
 
 
 def main() -> None:
@@ -33,8 +33,8 @@ def main() -> None:
     from plumbob.io import read
 
     with tempfile.TemporaryDirectory() as folder:
-        path = os.path.join(folder, "sphere.stl")
-        triangles = sphere_triangles(args.triangles)
+        path = os.path.join(folder, "torus.stl")
+        triangles = torus_triangles(args.triangles)
         write_binary_stl(path, triangles)
         size = os.path.getsize(path)
         print(f"binary STL: {len(triangles):,} triangles, {size / 1e6:.1f} MB")

@@ -23,43 +23,17 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 import tracemalloc
 
 import numpy as np
-
-RECORD = np.dtype([("normal", "<f4", (3,)), ("tri", "<f4", (3, 3)), ("attr", "<u2")])
+from _common import time_call, torus_triangles, write_binary_stl
 
 
 def torus_stl(path: str, triangles: int) -> int:
     """Write a closed torus (R = 1 m, r = 0.3 m) of ≥ ``triangles`` triangles; return the count."""
-    n = int(np.ceil(np.sqrt(triangles / 2)))
-    u = 2 * np.pi * np.arange(n) / n
-    v = 2 * np.pi * np.arange(n) / n
-    uu, vv = np.meshgrid(u, v, indexing="ij")
-    points = np.stack(((1 + 0.3 * np.cos(vv)) * np.cos(uu), (1 + 0.3 * np.cos(vv)) * np.sin(uu),
-                       0.3 * np.sin(vv)), axis=-1)
-    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-    i1, j1 = (i + 1) % n, (j + 1) % n
-    a, b, c, d = points[i, j], points[i1, j], points[i1, j1], points[i, j1]
-    tri = np.concatenate((np.stack((a, b, c), -2).reshape(-1, 3, 3),
-                          np.stack((a, c, d), -2).reshape(-1, 3, 3)))
-    records = np.zeros(len(tri), dtype=RECORD)
-    records["tri"] = tri
-    with open(path, "wb") as f:
-        f.write(b"plumbob benchmark torus".ljust(80, b" "))
-        f.write(np.uint32(len(tri)).tobytes())
-        records.tofile(f)
+    tri = torus_triangles(triangles)
+    write_binary_stl(path, tri)
     return len(tri)
-
-
-def best(fn, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 _RSS = """
@@ -92,9 +66,9 @@ def main(triangles: int = 1 << 20) -> int:
         # Interleaved, best of many: other processes on the machine add noise to both.
         t_numpy, t_load = float("inf"), float("inf")
         for _ in range(15):
-            t_numpy = min(t_numpy, best(lambda: np.fromfile(path, dtype=np.uint8), 1))
-            t_load = min(t_load, best(lambda: load_stl(path), 1))
-        t_read = best(lambda: read_stl(path), 3)
+            t_numpy = min(t_numpy, time_call(lambda: np.fromfile(path, dtype=np.uint8), 1))
+            t_load = min(t_load, time_call(lambda: load_stl(path), 1))
+        t_read = time_call(lambda: read_stl(path), 3)
         volume = read_stl(path).body.mass_properties().volume
         tracemalloc.start()
         load_stl(path)
@@ -105,8 +79,8 @@ def main(triangles: int = 1 << 20) -> int:
         try:
             import trimesh
 
-            t_trimesh = best(lambda: trimesh.load(path), 1)
-            t_trimesh_raw = best(lambda: trimesh.load(path, process=False), 2)
+            t_trimesh = time_call(lambda: trimesh.load(path), 1)
+            t_trimesh_raw = time_call(lambda: trimesh.load(path, process=False), 2)
         except ImportError:  # pragma: no cover
             t_trimesh = t_trimesh_raw = float("nan")
     print(f"  numpy.fromfile              {t_numpy * 1e3:8.1f} ms")
