@@ -88,8 +88,12 @@ def format_number(value: float, digits: int = 6) -> str:
     return f"{value:.{digits}g}"
 
 
-def format_vector(vector: Iterable[float], digits: int = 6) -> str:
-    return "(" + ", ".join(format_number(float(v), digits) for v in vector) + ")"
+def format_vector(vector: Iterable[float], digits: int = 6, scale: float | None = None) -> str:
+    """Numbers in parentheses; with ``scale``, round-off below 1e-12 of it shown as 0."""
+    values = [float(v) for v in vector]
+    if scale is not None:
+        values = [0.0 if abs(v) < 1e-12 * scale else v for v in values]
+    return "(" + ", ".join(format_number(v, digits) for v in values) + ")"
 
 
 def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:

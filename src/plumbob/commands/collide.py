@@ -72,15 +72,16 @@ def run(args: argparse.Namespace) -> int:
     body2 = "fixed surface" if result.wall else f"{format_number(result.m2)} kg"
     energy_note = " (body 1, relative to the surface)" if result.wall else ""
     momentum_note = " (body 1)" if result.wall else ""
+    speed = max(abs(v) for v in (*result.v1_before, *result.v2_before))  # for round-off
     rows = [
         ("body 1", f"{format_number(result.m1)} kg"),
         ("body 2", body2),
         ("coefficient of restitution", format_number(result.e)),
         ("common normal", format_vector(result.normal)),
         ("v1 before → after", f"{format_vector(result.v1_before)} → "
-                              f"{format_vector(result.v1_after)} m/s"),
+                              f"{format_vector(result.v1_after, scale=speed)} m/s"),
         ("v2 before → after", f"{format_vector(result.v2_before)} → "
-                              f"{format_vector(result.v2_after)} m/s"),
+                              f"{format_vector(result.v2_after, scale=speed)} m/s"),
         ("impulse on body 2", f"{format_number(result.impulse)} N·s along the normal"),
         ("momentum before → after" + momentum_note,
          f"{format_vector(result.momentum_before)} → {format_vector(result.momentum_after)} "

@@ -62,8 +62,7 @@ def mass_text(reading: Reading) -> str:
         rows.append(("mean density", f"{format_number(props.density)} {density_unit}"))
     # Round-off far below the body's size is shown as 0 (the JSON keeps every digit).
     scale = float(np.abs(props.center_of_mass).max() + np.sqrt(np.trace(props.inertia) / props.mass))
-    com = np.where(np.abs(props.center_of_mass) < 1e-12 * scale, 0.0, props.center_of_mass)
-    rows.append(("centre of mass", f"{format_vector(com)} m"))
+    rows.append(("centre of mass", f"{format_vector(props.center_of_mass, scale=scale)} m"))
     inertia = np.where(np.abs(props.inertia) < 1e-12 * np.abs(props.inertia).max(), 0.0, props.inertia)
     labels = ("inertia (about centre)", "", "")
     for label, row in zip(labels, inertia):
