@@ -371,3 +371,31 @@ def test_every_pose_of_a_fine_mesh_stands_where_it_rests():
         v = check(body, p.down)
         assert v.verdict == "stands" and v.support.kind == "polygon"
         assert v.critical_tilt_deg == pytest.approx(p.critical_tilt_deg, rel=1e-6, abs=1e-9)
+
+
+def test_a_bowl_rocks_back_and_a_cylinder_rolls():
+    """Sampled curved surfaces: the bottom of a bowl is a stable pose whose critical tilt is
+    where the rocker's equilibrium ends (asin(d/R) for a ball whose centre of mass is d from
+    the centre of its radius-R surface); a cylinder's side is one neutral, rolling pose."""
+    from plumbob.bodies.primitives import cylinder, hemisphere
+
+    dome = [p for p in resting_poses(hemisphere(1.0)) if p.down[2] > 0.9]
+    assert len(dome) == 1 and not dome[0].neutral
+    assert dome[0].com_height == pytest.approx(1 - 3 / 8, abs=1e-3)
+    assert dome[0].critical_tilt_deg == pytest.approx(np.degrees(np.arcsin(3 / 8)), abs=1.0)
+    side = [p for p in resting_poses(cylinder(0.5, 2.0)) if abs(p.down[2]) < 0.1]
+    assert len(side) == 1 and side[0].neutral and side[0].critical_tilt_deg == 0.0
+
+
+def test_a_weighted_ball_has_one_self_righting_pose():
+    from plumbob.bodies.csg import difference, union
+    from plumbob.bodies.primitives import sphere
+
+    shell = difference(sphere(1.0, density=100.0), sphere(0.3).translated([0, 0, -0.5]))
+    ball = union(shell, sphere(0.3, density=10_000.0).translated([0, 0, -0.5]))
+    d = -ball.mass_properties().center_of_mass[2]
+    poses = resting_poses(ball)
+    assert len(poses) == 1 and not poses[0].neutral
+    assert poses[0].probability == pytest.approx(1.0)
+    assert np.degrees(np.arccos(-poses[0].down[2])) < 2.0
+    assert poses[0].critical_tilt_deg == pytest.approx(np.degrees(np.arcsin(d)), abs=1.0)

@@ -59,6 +59,9 @@ from .verdict import STANDARD_GRAVITY
 __all__ = ["Pose", "Poses", "resting_poses", "poses_from_points", "FALLBACK_SAMPLES"]
 
 FALLBACK_SAMPLES = 200_000  # Fibonacci directions when the exact basins cannot be traced
+# A family of stable sampled faces whose normals all lie within this angle of its lowest
+# face is the bottom of a bowl (a self-righting rocker), not a rolling surface.
+BOWL_SPREAD_DEG = 5.0
 _AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
 _THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are its own arc
 _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
@@ -852,8 +855,49 @@ def _families(land: _Landscape, neutral_height: float) -> np.ndarray:
     return connected_components(graph, directed=False)[1]
 
 
+def _rocking_tilt(X: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24) -> float:
+    """Critical tilt (degrees) of a pose at the bottom of a curved bowl, from the hull
+    points ``X`` (n, dim) relative to the centre of mass, sampled to within ``eps`` m.
+
+    On a plane tilted by θ a rocker rolls until the point it touches, P(u) (the support
+    point for the contact direction u), lies straight below the centre of mass: so
+    θ(u) = angle(u, P(u)). Following u away from ``down`` along each azimuth, the pose
+    holds while θ(u) still rises; past its first maximum the body rolls away. The
+    critical tilt is that maximum in the weakest azimuth. (A ball whose centre of mass
+    sits d below the centre of its radius-R surface: asin(d/R).) P(u) is the mean of the
+    sampled points within ``eps`` of the support plane, which follows a smooth surface's
+    contact far more closely than any single sample.
+    """
+    dim = len(down)
+    if dim == 3:
+        helper = np.eye(3)[np.argmin(np.abs(down))]
+        t1 = _unit(np.cross(down, helper))
+        t2 = np.cross(down, t1)
+        phi = 2 * np.pi * np.arange(azimuths) / azimuths
+        tangents = np.cos(phi)[:, None] * t1 + np.sin(phi)[:, None] * t2
+    else:
+        tangents = np.array([[-down[1], down[0]], [down[1], -down[0]]])
+    below = X[X @ down > 0]
+    alpha = np.radians(np.arange(0.25, 90.0, 0.25))
+    peaks = []
+    for tangent in tangents:  # a few dozen azimuths, each vectorised over roll and points
+        u = np.cos(alpha)[:, None] * down + np.sin(alpha)[:, None] * tangent
+        reach = u @ below.T
+        near = reach >= reach.max(axis=1, keepdims=True) - eps
+        contact = (near @ below) / near.sum(axis=1, keepdims=True)
+        cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
+        theta = np.arccos(np.clip(cosine, -1.0, 1.0))
+        peak = np.maximum.accumulate(theta)
+        # a fall well below the best so far ends the branch; smaller dips are the ripple
+        # of the sampled surface (a few degrees where the contact crosses the bottom)
+        fell = (theta < peak - np.maximum(np.radians(3.0), 0.5 * peak)) & (alpha >= np.radians(5.0))
+        falling = np.flatnonzero(fell)
+        peaks.append(peak[falling[0]] if len(falling) else peak[-1])
+    return float(np.degrees(min(peaks)))
+
+
 def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
-              neutral_height: float, notes: list[str]) -> Poses:
+              neutral_height: float, notes: list[str], X: np.ndarray | None = None) -> Poses:
     ids = np.flatnonzero(land.stable)
     family = _families(land, neutral_height)
     total = land.area[ids].sum()
@@ -866,6 +910,16 @@ def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
         p = float(land.area[members].sum() / total)
         rep = int(members[np.argmax(land.area[members])])
         neutral = len(members) > 1
+        bowl = False
+        if neutral:
+            low = int(members[np.argmin(land.heights[members])])
+            # The members as low as the lowest (within the sampling's ridges): spread along
+            # a rolling surface, or clustered round the bottom of a bowl, which rocks back.
+            level = members[land.heights[members] <= land.heights[low] + 4 * neutral_height]
+            spread = np.degrees(np.arccos(np.clip(land.normals[level] @ land.normals[low], -1, 1)))
+            bowl = X is not None and float(spread.max()) <= BOWL_SPREAD_DEG
+            if bowl:
+                rep, neutral = low, False
         cross = (fam_a != fam_b) & ((fam_a == root) | (fam_b == root))
         barrier = None
         if cross.any():
@@ -873,6 +927,8 @@ def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
         margin, face = land.margin(rep)
         tilt = 0.0 if neutral else float(np.degrees(np.arctan2(max(margin, 0.0),
                                                                land.heights[rep])))
+        if bowl:
+            tilt = _rocking_tilt(X, land.normals[rep], neutral_height)
         poses.append(Pose(land.normals[rep].copy(), float(land.heights[rep]), p, tilt, barrier,
                           face + com, neutral, len(members)))
     poses.sort(key=lambda q: (-q.probability, q.com_height))
@@ -880,6 +936,11 @@ def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
     if neutral_poses:
         notes.append(f"{sum(q.members for q in neutral_poses)} hull faces of rolling surfaces "
                      f"were merged into {len(neutral_poses)} neutral pose(s)")
+    rockers = [q for q in poses if q.members > 1 and not q.neutral]
+    if rockers:
+        notes.append(f"{sum(q.members for q in rockers)} hull faces at the bottom of curved bowls "
+                     f"were merged into {len(rockers)} rocking pose(s); their critical tilt is "
+                     "that of the rocker, to about a degree")
     if land.method == "sampled":
         notes.append("the basins could not be traced exactly (degenerate hull): probabilities "
                      f"come from rolling {FALLBACK_SAMPLES} directions downhill")
@@ -922,7 +983,8 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         raise GeometryError("the points have no extent, or the tolerance is not positive")
     X = X - com
     land = _landscape2(X, tol) if X.shape[1] == 2 else _landscape3(X, tol, samples)
-    return _assemble(land, com, float(mass), float(g), float(neutral_height), list(notes))
+    return _assemble(land, com, float(mass), float(g), float(neutral_height), list(notes),
+                     X if neutral_height > 0 else None)
 
 
 def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None = None,
