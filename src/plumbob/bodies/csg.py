@@ -222,8 +222,10 @@ class Faceted(Body):
         return self if self.density is not None else replace(self, density=check_density(density))
 
 
-def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str) -> Body:
-    """Integrate a faceted boolean of ``bodies``, extrapolated over two facetings."""
+def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
+                  geometries: list | None = None) -> Body:
+    """Integrate a faceted boolean of ``bodies``, extrapolated over two facetings
+    (``geometries``: the bodies' shapes at ``segments``, when already made)."""
     from .lamina import Lamina
     from .region import Region
     from .solid import MeshSolid
@@ -241,7 +243,8 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str) -> 
     dim = bodies[0].dim
 
     def integrated(count: int) -> tuple[Body, MassProperties]:
-        geometry = build([b.to_geometry(count) for b in bodies])
+        parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in bodies]
+        geometry = build(parts)
         if not _measure(geometry, dim) > 0:
             raise GeometryError(f"the {what} is empty: the parts do not overlap")
         if dim == 2:
@@ -283,8 +286,8 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     if dim == 2:
         import shapely
 
-        return _faceted_body(bodies, shapely.union_all, segments, "union")
-    return _faceted_body(bodies, _manifold_union, segments, "union")
+        return _faceted_body(bodies, shapely.union_all, segments, "union", geoms)
+    return _faceted_body(bodies, _manifold_union, segments, "union", geoms)
 
 
 def leaf_densities(body: Body) -> set:
@@ -364,4 +367,4 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
             result = _overlap(result, g, dim)
         return result
 
-    return _faceted_body(bodies, build, segments, "intersection")
+    return _faceted_body(bodies, build, segments, "intersection", geoms)
