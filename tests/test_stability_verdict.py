@@ -201,3 +201,22 @@ def test_tipping_energy_is_the_rise_of_the_centre_of_mass():
     for e in v.edges:
         rise = np.hypot(e.distance, v.com_height) - v.com_height
         assert e.energy == pytest.approx(v.mass * 2.0 * rise, rel=1e-10)
+
+
+def test_curved_contact_is_judged_by_curvature():
+    """Over a point of contact: a hemisphere on its dome rocks back, a ball rolls, a cone
+    on its tip falls."""
+    from plumbob.bodies.primitives import cone, hemisphere, sphere
+
+    dome = check(hemisphere(1.0, density=1.0), down=[0, 0, 1])
+    assert dome.verdict == "stands" and dome.margin == pytest.approx(0, abs=1e-6)
+    assert dome.critical_tilt_deg == pytest.approx(np.degrees(np.arcsin(3 / 8)), abs=1.0)
+    # rolled over the rim: the centre rises from 5/8 to the rim's farthest reach √(1 + (3/8)²)
+    rise = np.hypot(1, 3 / 8) - 5 / 8
+    assert dome.energy_to_topple == pytest.approx(dome.mass * 9.81 * rise, rel=0.02)
+    assert check(hemisphere(1.0), down=[0, 0, 1], require_tilt_deg=10).passes
+    assert not check(hemisphere(1.0), down=[0, 0, 1], require_tilt_deg=30).passes
+    slope = check(hemisphere(1.0), down=[0, 0, 1], tilt_deg=30, toward_deg=45).slope
+    assert slope.topples
+    assert check(sphere(1.0)).verdict == "neutral"
+    assert check(cone(0.5, 2.0), down=[0, 0, 1]).verdict == "topples"

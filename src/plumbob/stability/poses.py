@@ -53,6 +53,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import GeometryError, StabilityError
+from .rocking import rocking
 from .support import body_dim, body_size, hull_points, is_polytope
 from .verdict import STANDARD_GRAVITY
 
@@ -855,47 +856,6 @@ def _families(land: _Landscape, neutral_height: float) -> np.ndarray:
     return connected_components(graph, directed=False)[1]
 
 
-def _rocking_tilt(X: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24) -> float:
-    """Critical tilt (degrees) of a pose at the bottom of a curved bowl, from the hull
-    points ``X`` (n, dim) relative to the centre of mass, sampled to within ``eps`` m.
-
-    On a plane tilted by θ a rocker rolls until the point it touches, P(u) (the support
-    point for the contact direction u), lies straight below the centre of mass: so
-    θ(u) = angle(u, P(u)). Following u away from ``down`` along each azimuth, the pose
-    holds while θ(u) still rises; past its first maximum the body rolls away. The
-    critical tilt is that maximum in the weakest azimuth. (A ball whose centre of mass
-    sits d below the centre of its radius-R surface: asin(d/R).) P(u) is the mean of the
-    sampled points within ``eps`` of the support plane, which follows a smooth surface's
-    contact far more closely than any single sample.
-    """
-    dim = len(down)
-    if dim == 3:
-        helper = np.eye(3)[np.argmin(np.abs(down))]
-        t1 = _unit(np.cross(down, helper))
-        t2 = np.cross(down, t1)
-        phi = 2 * np.pi * np.arange(azimuths) / azimuths
-        tangents = np.cos(phi)[:, None] * t1 + np.sin(phi)[:, None] * t2
-    else:
-        tangents = np.array([[-down[1], down[0]], [down[1], -down[0]]])
-    below = X[X @ down > 0]
-    alpha = np.radians(np.arange(0.25, 90.0, 0.25))
-    peaks = []
-    for tangent in tangents:  # a few dozen azimuths, each vectorised over roll and points
-        u = np.cos(alpha)[:, None] * down + np.sin(alpha)[:, None] * tangent
-        reach = u @ below.T
-        near = reach >= reach.max(axis=1, keepdims=True) - eps
-        contact = (near @ below) / near.sum(axis=1, keepdims=True)
-        cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
-        theta = np.arccos(np.clip(cosine, -1.0, 1.0))
-        peak = np.maximum.accumulate(theta)
-        # a fall well below the best so far ends the branch; smaller dips are the ripple
-        # of the sampled surface (a few degrees where the contact crosses the bottom)
-        fell = (theta < peak - np.maximum(np.radians(3.0), 0.5 * peak)) & (alpha >= np.radians(5.0))
-        falling = np.flatnonzero(fell)
-        peaks.append(peak[falling[0]] if len(falling) else peak[-1])
-    return float(np.degrees(min(peaks)))
-
-
 def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
               neutral_height: float, notes: list[str], X: np.ndarray | None = None) -> Poses:
     ids = np.flatnonzero(land.stable)
@@ -928,7 +888,7 @@ def _assemble(land: _Landscape, com: np.ndarray, mass: float, g: float,
         tilt = 0.0 if neutral else float(np.degrees(np.arctan2(max(margin, 0.0),
                                                                land.heights[rep])))
         if bowl:
-            tilt = _rocking_tilt(X, land.normals[rep], neutral_height)
+            tilt = float(rocking(X, land.normals[rep], neutral_height).tilts_deg.min())
         poses.append(Pose(land.normals[rep].copy(), float(land.heights[rep]), p, tilt, barrier,
                           face + com, neutral, len(members)))
     poses.sort(key=lambda q: (-q.probability, q.com_height))

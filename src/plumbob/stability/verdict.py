@@ -36,7 +36,8 @@ import numpy as np
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..units import STANDARD_GRAVITY
-from .support import Support, support_polygon
+from .rocking import Rocking, rocking
+from .support import Support, body_size, hull_points, is_polytope, support_polygon
 
 __all__ = [
     "STANDARD_GRAVITY",
@@ -141,6 +142,7 @@ class Verdict:
     slides_first: bool | None = None
     required_tilt_deg: float | None = None
     passes: bool | None = None
+    rocking: Rocking | None = None
 
     @property
     def stands(self) -> bool:
@@ -153,6 +155,11 @@ class Verdict:
     def tipping_angle_deg(self, direction) -> float:
         """The tilt, degrees, that topples the body when the plane descends toward the
         horizontal ``direction`` (body frame, (dim,)); ≤ 0 when it does not stand."""
+        if self.rocking is not None and self.verdict == "stands":
+            # a plane descending toward d turns the contact direction toward −d
+            d = np.asarray(direction, dtype=float)
+            k = int(np.argmax(-self.rocking.directions @ (d / np.linalg.norm(d))))
+            return float(self.rocking.tilts_deg[k])
         frame = self.support.frame
         d = frame.to_ground(np.asarray(direction, dtype=float))
         d = d / np.linalg.norm(d)
@@ -171,8 +178,14 @@ def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
 def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY, *,
                          tilt_deg: float | None = None, toward_deg: float | None = None,
                          friction: float | None = None,
-                         require_tilt_deg: float | None = None) -> Verdict:
-    """The verdict for a body of ``mass`` kg with support ``sup`` (see :func:`check`)."""
+                         require_tilt_deg: float | None = None,
+                         rocked: tuple[Rocking, float] | None = None) -> Verdict:
+    """The verdict for a body of ``mass`` kg with support ``sup`` (see :func:`check`).
+
+    rocked: for a body on a curved surface, how it responds to being turned and the
+        height noise (m) of its sampling: a centre of mass over a point or line of
+        contact then rocks back (stands), rolls (neutral) or topples by curvature.
+    """
     h, tol = sup.com_height, sup.tolerance
     frame = sup.frame
     distances = sup.edge_distances
@@ -198,6 +211,15 @@ def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY,
         verdict = "neutral"
     weight = mass * g
     angle = float(np.degrees(np.arctan2(margin, h))) if verdict != "neutral" else 0.0
+    energy = float(_energy(weight, margin, h)) if verdict == "stands" else 0.0
+    roll = None
+    if verdict == "neutral" and rocked is not None:
+        roll, noise = rocked
+        verdict = roll.kind(noise)
+        k = int(np.argmin(roll.tilts_deg if verdict == "stands" else roll.rise()))
+        direction = -roll.directions[k]  # the plane descends this way to turn it
+        if verdict == "stands":
+            angle, energy = float(roll.tilts_deg[k]), weight * roll.barrier()
     angles = np.degrees(np.arctan2(distances, h))
     energies = _energy(weight, distances, h)
     edges = tuple(
@@ -205,9 +227,8 @@ def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY,
                     float(e))
         for a, b, n, d, t, e in zip(sup.edge_starts, sup.edge_ends, sup.edge_normals,
                                     distances, angles, energies))
-    energy = float(_energy(weight, margin, h)) if verdict == "stands" else 0.0
     result = Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass, g,
-                     sup, edges)
+                     sup, edges, rocking=roll)
     slope = None
     if tilt_deg is not None or toward_deg is not None:
         slope = _slope(result, 0.0 if tilt_deg is None else tilt_deg,
@@ -217,7 +238,7 @@ def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY,
         if friction < 0 or not np.isfinite(friction):
             raise StabilityError(f"a friction coefficient must be ≥ 0, not {friction:g}")
         slides_first = (slope.slides_first if slope is not None
-                        else bool(verdict == "stands" and friction * h < margin))
+                        else bool(verdict == "stands" and friction < np.tan(np.radians(angle))))
     passes = None
     if require_tilt_deg is not None:
         passes = bool(verdict == "stands" and angle >= float(require_tilt_deg))
@@ -275,5 +296,14 @@ def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | Non
     """
     props = body.mass_properties() if props is None else props
     sup = support_polygon(body, down, tolerance=tolerance, props=props)
-    return verdict_from_support(sup, props.mass, g, tilt_deg=tilt_deg, toward_deg=toward_deg,
-                                friction=friction, require_tilt_deg=require_tilt_deg)
+    options = dict(tilt_deg=tilt_deg, toward_deg=toward_deg, friction=friction,
+                   require_tilt_deg=require_tilt_deg)
+    result = verdict_from_support(sup, props.mass, g, **options)
+    size = body_size(body)
+    if result.verdict != "neutral" or is_polytope(body, size):
+        return result
+    # Over a point or line of contact on a curved surface: judge by curvature.
+    sampling = 1e-4 * size
+    points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
+    rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
+    return verdict_from_support(sup, props.mass, g, rocked=rocked, **options)
