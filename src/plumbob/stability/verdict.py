@@ -299,8 +299,10 @@ def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | Non
     options = dict(tilt_deg=tilt_deg, toward_deg=toward_deg, friction=friction,
                    require_tilt_deg=require_tilt_deg)
     result = verdict_from_support(sup, props.mass, g, **options)
+    if result.verdict != "neutral":
+        return result
     size = body_size(body)
-    if result.verdict != "neutral" or is_polytope(body, size):
+    if is_polytope(body, size):
         return result
     # Over a point or line of contact on a curved surface: judge by curvature.
     sampling = 1e-4 * size
