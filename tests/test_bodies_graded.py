@@ -16,7 +16,7 @@ import pytest
 from conftest import rel, star_polygon
 from hypothesis import given
 from hypothesis import strategies as st
-from test_integrals_quadrature import (
+from polynomial_reference import (
     evaluate_poly,
     moment_polys,
     monomials,

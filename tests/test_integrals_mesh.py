@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from plumbob.bodies import primitives as P
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError
-from plumbob.integrals.mesh import triangle_soup_moments
+from plumbob.integrals.mesh import mesh_field_moments, triangle_soup_moments
 
 
 def icosphere(subdivisions=3, radius=1.0):
@@ -60,6 +60,45 @@ def test_chunking_does_not_change_the_sum():
     chunked = triangle_soup_moments(tri, origin=whole.origin, chunk=7)
     assert chunked.m0 == pytest.approx(whole.m0, rel=1e-13)
     assert rel(chunked.m2, whole.m2) < 1e-13
+
+
+@pytest.mark.parametrize("chunk", [1, 7, 1 << 20])
+def test_field_kernel_with_a_constant_density_is_the_uniform_kernel(chunk):
+    """Both kernels walk the same chunk loop: ρ = 3 gives 3 × the uniform moments, the same
+    volume and the same closure diagnostics, for any chunk size."""
+    tri = irregular_mesh().triangles
+    uniform = triangle_soup_moments(tri)
+    field = mesh_field_moments(tri, lambda p: np.full(len(p), 3.0), uniform.origin, 0, chunk=chunk)
+    assert field.exact and field.cells == len(tri)
+    assert field.measure == pytest.approx(uniform.m0, rel=1e-13)
+    assert field.mass == pytest.approx(3 * uniform.m0, rel=1e-13)
+    assert rel(field.first, 3 * uniform.m1, scale=3 * uniform.m0) < 1e-13
+    assert rel(field.second, 3 * uniform.m2) < 1e-13
+    np.testing.assert_allclose(field.vector_area, uniform.vector_area, atol=1e-14 * uniform.area)
+    assert field.surface_area == pytest.approx(uniform.area, rel=1e-13)
+    assert field.evaluations == len(tri) * (8 + 3)  # degree-2 rule: 2³ points, and 3 corners
+
+
+def test_field_kernel_chunking_and_float32_do_not_change_the_sums():
+    tri = icosphere(3).triangles
+    origin = np.array([0.1, -0.2, 0.05])
+    density = lambda p: 2 + p[:, 0] * p[:, 1] - 0.5 * p[:, 2] ** 2  # noqa: E731
+    whole = mesh_field_moments(tri, density, origin, 2, chunk=1 << 20)
+    chunked = mesh_field_moments(tri, density, origin, 2, chunk=7)
+    single = mesh_field_moments(tri.astype(np.float32), density, origin, 2)
+    assert chunked.mass == pytest.approx(whole.mass, rel=1e-13)
+    assert rel(chunked.second, whole.second) < 1e-13
+    assert single.mass == pytest.approx(whole.mass, rel=1e-6)
+
+
+def test_field_kernel_keeps_the_worst_invalid_samples():
+    tri = icosphere(1).triangles
+    r = mesh_field_moments(tri, lambda p: p[:, 2], np.zeros(3), 1)
+    assert len(r.bad_values) and r.bad_values[0] == r.bad_values.min() < 0
+    assert r.corner_values[0] == pytest.approx(-1.0)  # the south pole
+    np.testing.assert_allclose(r.corner_points[0], [0, 0, -1], atol=1e-12)
+    with pytest.raises(ValueError, match="one value per point"):
+        mesh_field_moments(tri, lambda p: np.ones(2), np.zeros(3), 1)
 
 
 def test_float32_input_is_accepted():

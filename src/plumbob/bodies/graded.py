@@ -41,18 +41,10 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import DensityError, ExpressionError, GeometryError
+from ..integrals.adaptive import MAX_EVALUATIONS, FieldIntegral, integrate_field
+from ..integrals.cells import ArcCells, BezierCells, Cells, ProductCells, SimplexCells
 from ..integrals.mesh import CHUNK as MESH_CHUNK
-from ..integrals.quadrature import (
-    MAX_EVALUATIONS,
-    ArcCells,
-    BezierCells,
-    Cells,
-    FieldIntegral,
-    ProductCells,
-    SimplexCells,
-    integrate_field,
-    mesh_field_moments,
-)
+from ..integrals.mesh import mesh_field_moments
 from ..massprops import MassProperties
 from .base import Body, Transformed
 from .lamina import Lamina, second_moments_to_inertia
