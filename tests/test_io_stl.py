@@ -17,7 +17,7 @@ from plumbob.errors import InputFileError  # noqa: E402
 from plumbob.io import read  # noqa: E402
 from plumbob.io import stl as stl_module  # noqa: E402
 from plumbob.io.stl import load_stl, read_stl  # noqa: E402
-from plumbob.io.validate import UNITS_ASSUMED  # noqa: E402
+from plumbob.units import UNITS_ASSUMED  # noqa: E402
 
 
 def box(a: float, b: float, c: float, offset=(0.0, 0.0, 0.0)) -> np.ndarray:

@@ -6,6 +6,8 @@ The CLI prints ``str(error)`` on one line and exits with status 2.
 
 from __future__ import annotations
 
+import numpy as np
+
 
 class PlumbobError(Exception):
     """Base class of every error plumbob raises on bad input."""
@@ -52,3 +54,12 @@ class StabilityError(PlumbobError):
 
 class DynamicsError(PlumbobError):
     """Bad input to a particle simulation or a collision."""
+
+
+def fmt_point(point: np.ndarray) -> str:
+    """``(x, y[, z])`` with 6 significant digits: how messages name a point.
+
+    >>> fmt_point([0.5, 1 / 3, 2e-7])
+    '(0.5, 0.333333, 2e-07)'
+    """
+    return "(" + ", ".join(f"{float(c):.6g}" for c in np.asarray(point).reshape(-1)) + ")"

@@ -1,30 +1,80 @@
-"""Length units accepted for coordinates in files and specs, and the default g."""
+"""Length units: the one table of metres per unit, and the default g.
+
+Every length unit plumbob knows is in :data:`METRES_PER_UNIT`, keyed by its
+symbol. A user may name the common ones (:data:`LENGTH_UNITS`: ``--units``, a
+spec's ``units``); files may also declare the others (DXF's ``$INSUNITS``, 3MF's
+``unit`` attribute, CSS lengths in SVG), often spelled out (``millimeter``,
+``feet``): :data:`UNIT_SPELLINGS` maps those spellings to symbols.
+"""
 
 from __future__ import annotations
 
+import numpy as np
+
 from .errors import PlumbobError
 
-__all__ = ["LENGTH_UNITS", "STANDARD_GRAVITY", "length_scale"]
+__all__ = [
+    "METRES_PER_UNIT",
+    "LENGTH_UNITS",
+    "UNIT_SPELLINGS",
+    "UNITS_ASSUMED",
+    "STANDARD_GRAVITY",
+    "length_scale",
+    "file_unit_scale",
+    "units_scale",
+]
 
 #: m/s², the seed unit's value of g, the default wherever gravity enters
 STANDARD_GRAVITY = 9.81
 
-#: metres per unit
-LENGTH_UNITS: dict[str, float] = {
+#: metres per unit, for every length unit plumbob knows (px, pt, pc and q are CSS's)
+METRES_PER_UNIT: dict[str, float] = {
     "m": 1.0,
     "cm": 1e-2,
     "mm": 1e-3,
     "km": 1e3,
     "in": 0.0254,
     "ft": 0.3048,
+    "um": 1e-6,
+    "dm": 0.1,
+    "yd": 0.9144,
+    "mi": 1609.344,
+    "px": 0.0254 / 96,
+    "pt": 0.0254 / 72,
+    "pc": 0.0254 / 6,
+    "q": 2.5e-4,
 }
+
+#: metres per unit, for the units a user may name (``--units``, a spec's ``units``)
+LENGTH_UNITS: dict[str, float] = {
+    unit: METRES_PER_UNIT[unit] for unit in ("m", "cm", "mm", "km", "in", "ft")
+}
+
+#: unit names files spell out → the symbol in :data:`METRES_PER_UNIT`
+UNIT_SPELLINGS: dict[str, str] = {
+    "micron": "um", "micrometer": "um",
+    "millimeter": "mm", "millimetre": "mm", "millimeters": "mm",
+    "centimeter": "cm", "centimetre": "cm",
+    "decimeter": "dm",
+    "meter": "m", "metre": "m", "meters": "m",
+    "kilometer": "km",
+    "inch": "in",
+    "foot": "ft", "feet": "ft",
+    "yard": "yd",
+    "mile": "mi",
+}
+
+#: the notice when neither the user nor the file says what the lengths are in
+UNITS_ASSUMED = "units: none in file; metres assumed (use --units)"
 
 
 def length_scale(unit: str | None, default: str = "m") -> float:
-    """Metres per ``unit``.
+    """Metres per ``unit``, one of :data:`LENGTH_UNITS` (None: ``default``).
 
     >>> length_scale("mm")
     0.001
+    >>> length_scale(None)
+    1.0
     """
     name = default if unit is None else unit.strip().lower()
     try:
@@ -32,3 +82,44 @@ def length_scale(unit: str | None, default: str = "m") -> float:
     except KeyError:
         known = ", ".join(LENGTH_UNITS)
         raise PlumbobError(f"unknown length unit {unit!r}; use one of {known}") from None
+
+
+def file_unit_scale(name: str | None) -> float | None:
+    """Metres per the unit a file declares, spelled out or as a symbol; None when unknown.
+
+    >>> file_unit_scale("Millimeter")
+    0.001
+    >>> file_unit_scale("ft")
+    0.3048
+    >>> file_unit_scale("furlong") is None
+    True
+    """
+    if name is None:
+        return None
+    key = name.strip().lower()
+    return METRES_PER_UNIT.get(UNIT_SPELLINGS.get(key, key))
+
+
+def units_scale(units: str | None, file_units: str | None = None,
+                file_scale: float | None = None) -> tuple[float, tuple[str, ...]]:
+    """Metres per file unit, and the notice that says where it came from.
+
+    ``units``: what the user passed (``--units``), or None.
+    ``file_units``/``file_scale``: the unit the file declares (its name and
+    metres per unit), or None when the format carries none (STL, OBJ, …).
+
+    >>> units_scale("in")
+    (0.0254, ())
+    >>> units_scale(None, "millimeter", 1e-3)
+    (0.001, ('units: millimeter (from the file)',))
+    >>> units_scale(None)[1] == (UNITS_ASSUMED,)
+    True
+    """
+    if units is not None:
+        scale = length_scale(units)
+        if file_units is not None and file_scale is not None and not np.isclose(scale, file_scale):
+            return scale, (f"units: the file says {file_units}; {units} used as --units asks",)
+        return scale, ()
+    if file_units is not None and file_scale is not None:
+        return file_scale, (f"units: {file_units} (from the file)",)
+    return 1.0, (UNITS_ASSUMED,)

@@ -7,8 +7,8 @@ from typing import Any
 import numpy as np
 
 from ..bodies.csg import Assembly
-from ..io import Reading
 from ..massprops import MassProperties
+from ..reading import Reading
 from ..report import format_number, format_vector, mass_properties_dict, table
 
 __all__ = ["mass_json", "mass_text"]

@@ -1,6 +1,6 @@
 """Reading bodies from files: dispatch on the file's extension.
 
-``read(path, units=None, repair=False)`` returns a :class:`Reading`: the body
+``read(path, units=None, repair=False)`` returns a :class:`~plumbob.reading.Reading`: the body
 and the notices a user should see (assumed units, repaired defects, implausible
 sizes). A file holding several bodies gives an
 :class:`~plumbob.bodies.csg.Assembly` whose parts carry their names.
@@ -18,21 +18,11 @@ Every failure is a :class:`~plumbob.errors.PlumbobError` naming the file.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
 
-from ..bodies.base import Body
 from ..errors import InputFileError, PlumbobError
+from ..reading import Reading
 
-__all__ = ["Reading", "read", "SUFFIXES"]
-
-
-@dataclass(frozen=True)
-class Reading:
-    """A body read from a file, with notices for the user (assumptions, repairs)."""
-
-    body: Body
-    notices: tuple[str, ...] = ()
-    path: str | None = None
+__all__ = ["read", "SUFFIXES"]
 
 
 #: file extension → reader family

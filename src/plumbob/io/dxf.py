@@ -10,7 +10,7 @@ SPLINEs that are non-rational and clamped are split exactly into Bézier
 pieces (degree 3 as they are, degree 2 raised to cubic, degree 1 as lines);
 rational or unclamped ones are flattened within 1e-7 of the drawing's size and
 the lamina marked not exact. Elliptical arcs become cubic Béziers (see
-:func:`~plumbob.io.outlines.elliptic_arc_cubics`).
+:func:`~plumbob.io.curves.elliptic_arc_cubics`).
 
 Units come from the ``$INSUNITS`` header unless ``--units`` is given.
 Entities drawn in another plane than XY are ignored (with a notice); a mirrored
@@ -19,20 +19,23 @@ coordinate system (extrusion (0, 0, −1)) is mapped into XY exactly.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..bodies.region import Ring
-from ..errors import FormatError, GeometryError, PlumbobError
-from . import Reading
-from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
-from .validate import ABSURD_COORDINATE, FILE_UNITS, fmt_point, units_scale
+from ..errors import FormatError, GeometryError, PlumbobError, fmt_point
+from ..mesh.topology import connected_components
+from ..reading import Reading
+from ..units import file_unit_scale, units_scale
+from .checks import ABSURD_COORDINATE
+from .curves import arc_bulges, elliptic_arc_cubics
+from .laminas import Outline, body_from_outlines
+from .parts import stem
 
 __all__ = ["read_dxf", "INSUNITS"]
 
-#: $INSUNITS code → (name, metres per unit)
+#: $INSUNITS code → the unit's name
 INSUNITS = {1: "inch", 2: "foot", 3: "mile", 4: "millimeter", 5: "centimeter", 6: "meter",
             7: "kilometer", 10: "yard", 14: "decimeter"}
 JOIN_TOLERANCE = 1e-9  # relative to the drawing's size
@@ -68,7 +71,7 @@ def read_dxf(path: str, units: str | None = None) -> Reading:
     doc = _open(path)
     code = doc.header.get("$INSUNITS", 0)
     file_units = INSUNITS.get(int(code)) if isinstance(code, int | float) else None
-    scale, notices = units_scale(units, file_units, FILE_UNITS.get(str(file_units)))
+    scale, notices = units_scale(units, file_units, file_unit_scale(file_units))
     notices = list(notices)
     pieces: list[_Piece] = []
     counts: dict[str, int] = {}
@@ -98,8 +101,7 @@ def read_dxf(path: str, units: str | None = None) -> Reading:
                        f"(e.g. {leftovers[0].label} ending at "
                        f"{fmt_point(leftovers[0].points[-1])})")
     outlines = [p.outline(scale) for p in closed]
-    stem = os.path.splitext(os.path.basename(path))[0]
-    body, more = body_from_outlines(outlines, path=path, name=stem, scale=scale)
+    body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=scale)
     return Reading(body, tuple(notices) + more, path)
 
 
@@ -318,8 +320,6 @@ def _join(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
     """Chain open pieces whose ends meet into closed pieces; return (loops, leftovers)."""
     if not pieces:
         return [], []
-    from .validate import connected_components
-
     ends = np.concatenate([p.points[[0, -1]] for p in pieces])  # (2k, 2): start, end
     size = float(np.linalg.norm(np.ptp(ends, axis=0))) or 1.0
     tol = JOIN_TOLERANCE * size

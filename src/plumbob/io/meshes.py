@@ -1,7 +1,7 @@
 """OBJ, PLY, OFF, 3MF, GLB and glTF solids, read through trimesh.
 
 trimesh parses (``process=False``: nothing merged or dropped); plumbob then
-checks every mesh as it checks an STL (:func:`~plumbob.io.validate.check_solid`).
+checks every mesh as it checks an STL (:func:`~plumbob.mesh.check_solid`).
 A file with several meshes (a 3MF with several objects, a glTF scene) gives an
 :class:`~plumbob.bodies.csg.Assembly`, one named part per mesh instance, each
 placed by its scene transform.
@@ -21,8 +21,11 @@ import zipfile
 import numpy as np
 
 from ..errors import FormatError, InputFileError, PlumbobError
-from . import Reading
-from .validate import FILE_UNITS, check_extent, check_solid, finite_bounds, units_scale
+from ..reading import Reading
+from ..units import file_unit_scale, units_scale
+from .checks import check_extent, finite_bounds
+from .parts import assemble, stem
+from .solids import mesh_solid
 
 __all__ = ["MESH_SUFFIXES", "MAX_EXPANDED_BYTES", "read_mesh", "check_3mf_archive"]
 
@@ -100,12 +103,12 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
         file_units = check_3mf_archive(path, max_expanded)
     elif file_type in ("glb", "gltf"):
         file_units = "meter"  # glTF's unit, by its specification
-    if file_units is not None and file_units.lower() not in FILE_UNITS:
+    if file_units is not None and file_unit_scale(file_units) is None:
         if units is None:
             raise FormatError(f"declares the unknown unit {file_units!r}; pass --units",
                               path=path)
         file_units = None
-    scale, notices = units_scale(units, file_units, FILE_UNITS.get(str(file_units).lower()))
+    scale, notices = units_scale(units, file_units, file_unit_scale(file_units))
     notices = list(notices)
     meshes, skipped = _load(path, file_type)
     if skipped:
@@ -121,17 +124,12 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
         lo, hi = np.minimum(lo, tlo * scale), np.maximum(hi, thi * scale)
     notices += check_extent(lo, hi, path=path)
     for name, tri in meshes:
-        body, more = check_solid(tri * scale if scale != 1.0 else tri, path=path, name=name,
-                                 repair=repair, label=f"mesh {name!r}" if several else None,
-                                 scale=scale)
+        body, more = mesh_solid(tri * scale if scale != 1.0 else tri, path=path, name=name,
+                                repair=repair, label=f"mesh {name!r}" if several else None,
+                                scale=scale)
         parts.append(body)
         notices.extend(more)
-    if not several:
-        return Reading(parts[0], tuple(notices), path)
-    from ..bodies.csg import Assembly
-
-    stem = os.path.splitext(os.path.basename(path))[0]
-    return Reading(Assembly(tuple(parts), name=stem), tuple(notices), path)
+    return Reading(assemble(parts, stem(path)), tuple(notices), path)
 
 
 def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]:

@@ -21,15 +21,14 @@ import os
 import sys
 import warnings
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FormatError, InputFileError
-from .validate import check_extent, check_reach, raise_nonfinite, unique_names, units_scale
-
-if TYPE_CHECKING:
-    from . import Reading
+from ..reading import Reading
+from ..units import units_scale
+from .checks import check_extent, check_reach, raise_nonfinite
+from .parts import assemble, stem, unique_names
 
 __all__ = ["STL_RECORD", "StlSolid", "StlFile", "load_stl", "read_stl"]
 
@@ -303,9 +302,7 @@ def _load_ascii(path: str, size: int) -> StlFile | None:
 def read_stl(path: str, units: str | None = None, repair: bool = False) -> Reading:
     """Read an STL file as a body: one :class:`MeshSolid`, or an :class:`Assembly`
     of one per ``solid`` block (ASCII files with several)."""
-    from ..bodies.csg import Assembly
-    from . import Reading
-    from .validate import check_solid
+    from .solids import mesh_solid
 
     stl = load_stl(path)
     scale, notices = units_scale(units)
@@ -314,17 +311,14 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
         notices += check_extent(stl.lo * scale, stl.hi * scale, path=path)
     else:
         check_reach(stl.reach * scale, path=path)
-    stem = os.path.splitext(os.path.basename(path))[0]
     several = len(stl.solids) > 1
     parts = []
-    names = unique_names([s.name or (f"solid {i + 1}" if several else stem)
+    names = unique_names([s.name or (f"solid {i + 1}" if several else stem(path))
                            for i, s in enumerate(stl.solids)])
     for solid, name in zip(stl.solids, names):
         tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float) * scale
-        body, more = check_solid(tri, path=path, name=name, repair=repair, extent=stl.lo is None,
-                                 label=f"solid {name!r}" if several else None, scale=scale)
+        body, more = mesh_solid(tri, path=path, name=name, repair=repair, extent=stl.lo is None,
+                                label=f"solid {name!r}" if several else None, scale=scale)
         parts.append(body)
         notices.extend(more)
-    if not several:
-        return Reading(parts[0], tuple(notices), path)
-    return Reading(Assembly(tuple(parts), name=stem), tuple(notices), path)
+    return Reading(assemble(parts, stem(path)), tuple(notices), path)

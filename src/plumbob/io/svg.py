@@ -18,20 +18,22 @@ Coordinates keep the SVG's orientation (y points down the page).
 
 from __future__ import annotations
 
-import os
 import re
 
 import numpy as np
 
 from ..bodies.region import Ring
-from ..errors import FormatError, GeometryError
-from . import Reading
-from .outlines import Outline, arc_bulges, body_from_outlines, elliptic_arc_cubics
-from .validate import ABSURD_COORDINATE, fmt_point, units_scale
+from ..errors import FormatError, GeometryError, fmt_point
+from ..reading import Reading
+from ..units import METRES_PER_UNIT, units_scale
+from .checks import ABSURD_COORDINATE
+from .curves import arc_bulges, elliptic_arc_cubics
+from .laminas import Outline, body_from_outlines
+from .parts import stem
 
 __all__ = ["read_svg", "PX"]
 
-PX = 0.0254 / 96  #: metres per CSS px
+PX = METRES_PER_UNIT["px"]  #: metres per CSS px
 
 
 def read_svg(path: str, units: str | None = None) -> Reading:
@@ -75,8 +77,7 @@ def read_svg(path: str, units: str | None = None) -> Reading:
                        "no area")
     if not outlines:
         raise FormatError("has no closed path or shape", path=path)
-    stem = os.path.splitext(os.path.basename(path))[0]
-    body, more = body_from_outlines(outlines, path=path, name=stem, scale=scale)
+    body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=scale)
     return Reading(body, tuple(notices) + more, path)
 
 
@@ -117,8 +118,8 @@ def _parse(path: str, transform: str | None):
 
 
 _LENGTH = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([a-zA-Z]*)\s*$")
-_CSS_UNITS = {"": PX, "px": PX, "mm": 1e-3, "cm": 1e-2, "q": 2.5e-4, "in": 0.0254,
-              "pt": 0.0254 / 72, "pc": 0.0254 / 6}
+#: the absolute CSS length units (a bare number is in px)
+_CSS_UNITS = ("px", "mm", "cm", "q", "in", "pt", "pc")
 
 
 def _css_length(text) -> float | None:
@@ -126,9 +127,10 @@ def _css_length(text) -> float | None:
     if text is None:
         return None
     match = _LENGTH.match(str(text))
-    if not match or match.group(2).lower() not in _CSS_UNITS:
+    unit = (match.group(2).lower() or "px") if match else None
+    if unit not in _CSS_UNITS:
         return None
-    value = float(match.group(1)) * _CSS_UNITS[match.group(2).lower()]
+    value = float(match.group(1)) * METRES_PER_UNIT[unit]
     return value if value > 0 and np.isfinite(value) else None
 
 

@@ -1,74 +1,27 @@
-"""Mesh checks: topology, winding, shells (voids, islands, overlaps), repair, sizes, units."""
+"""The solid check: winding, shells (voids, islands, overlaps), repair, big meshes."""
 
 import os
 import sys
 
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "bad_inputs"))
 from make_bad_inputs import cube  # noqa: E402
 
+from plumbob import mesh  # noqa: E402
+from plumbob.bodies.solid import MeshSolid  # noqa: E402
 from plumbob.errors import GeometryError  # noqa: E402
-from plumbob.io import validate  # noqa: E402
-from plumbob.io.validate import (  # noqa: E402
-    check_extent,
-    check_solid,
-    connected_components,
-    mesh_topology,
-    units_scale,
-)
+
+
+def check_solid(triangles, **options):
+    """:func:`plumbob.mesh.check_solid`, with the body a reader would build from its result."""
+    checked = mesh.check_solid(triangles, **options)
+    return MeshSolid(checked.triangles, moments=checked.moments), checked.notices
 
 
 def notices_with(notices, text):
     return [n for n in notices if text in n]
-
-
-@given(st.integers(1, 60), st.lists(st.tuples(st.integers(0, 59), st.integers(0, 59)),
-                                    max_size=80))
-def test_connected_components_match_scipy(n, edges):
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components as scipy_components
-
-    edges = [(u % n, v % n) for u, v in edges]
-    u = np.array([e[0] for e in edges], dtype=np.int64)
-    v = np.array([e[1] for e in edges], dtype=np.int64)
-    ours = connected_components(n, u, v)
-    graph = coo_matrix((np.ones(len(u)), (u, v)), shape=(n, n))
-    count, theirs = scipy_components(graph, directed=False)
-    assert ours.max() + 1 == count
-    # the same partition: labels correspond one to one
-    pairs = set(zip(ours.tolist(), theirs.tolist()))
-    assert len(pairs) == count
-
-
-@given(st.integers(0, 5000), st.integers(0, 2**32 - 1))
-def test_block_bounds_match_a_plain_reduction(n, seed):
-    points = np.random.default_rng(seed).normal(size=(n, 3)).astype(np.float32)
-    lo, hi = validate.block_bounds(points)
-    if n:
-        assert np.array_equal(lo, points.min(axis=0)) and np.array_equal(hi, points.max(axis=0))
-    else:
-        assert np.all(lo == np.inf) and np.all(hi == -np.inf)
-    if n > 1:
-        points[n // 2, 1] = np.nan
-        assert np.isnan(validate.block_bounds(points)[0][1])
-
-
-def test_topology_of_a_cube():
-    topo = mesh_topology(cube(2).astype(np.float32))
-    assert len(topo.vertices) == 26  # 8 corners, 12 edge midpoints, 6 face centres
-    assert topo.shells == 1 and topo.orientable
-    assert len(topo.boundary) == 0 and topo.nonmanifold == 0 and not topo.flip.any()
-
-
-def test_signed_zero_merges():
-    tri = cube()
-    tri[tri == 0] = -0.0  # the same points, negative zeros
-    tri[:6][tri[:6] == 0] = 0.0
-    assert len(mesh_topology(tri).vertices) == 8
 
 
 def test_hidden_winding_error_is_found_on_small_meshes():
@@ -155,7 +108,7 @@ def test_mobius_strip_is_not_orientable():
 
 
 def test_big_meshes_take_the_cheap_path(monkeypatch):
-    monkeypatch.setattr(validate, "FULL_CHECK_LIMIT", 0)
+    monkeypatch.setattr(mesh.solid, "FULL_CHECK_LIMIT", 0)
     body, notices = check_solid(cube(2)[:, ::-1].astype(np.float32))
     assert body.triangles.dtype == np.float32
     assert body.mass_properties().volume == pytest.approx(1.0, rel=1e-7)
@@ -185,14 +138,3 @@ def _subdivide(t: np.ndarray, k: int = 4) -> np.ndarray:
             if i + j < k - 1:
                 out.append([p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)])
     return np.array(out)
-
-
-def test_extent_and_units():
-    assert check_extent(np.zeros(3), np.ones(3), path=None) == ()
-    assert "2000 m across" in check_extent(np.zeros(2), np.array([2000.0, 0]), path=None)[0]
-    assert "only 1e-06 m" in check_extent(np.zeros(2), np.array([1e-6, 0]), path=None)[0]
-    with pytest.raises(GeometryError, match="far beyond"):
-        check_extent(np.zeros(3), np.array([0, 0, 2e9]), path="x.stl")
-    assert units_scale(None) == (1.0, (validate.UNITS_ASSUMED,))
-    assert units_scale("in") == (0.0254, ())
-    assert units_scale(None, "millimeter", 1e-3)[0] == 1e-3

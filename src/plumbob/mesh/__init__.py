@@ -1,0 +1,60 @@
+"""Triangle meshes on their own: welding, topology, closure, repair, shells, the solid check.
+
+These functions take any triangle soup — an ``(n, 3, 3)`` array of corners in
+metres, as a reader, a generator or a user's own code makes it — and need
+nothing from files or bodies. The readers in :mod:`plumbob.io` call
+:func:`check_solid` on every mesh; call it yourself to check a mesh before
+you build a :class:`~plumbob.bodies.solid.MeshSolid` from it.
+
+Everything is vectorised over triangles; only shells (usually a handful) are
+visited one by one. Nothing here imports shapely, trimesh or scipy;
+manifold3d is imported only to unite overlapping shells.
+
+Examples
+--------
+>>> import numpy as np
+>>> from plumbob import mesh
+>>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+>>> tetra = v[[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]]
+>>> mesh.surface_summary(tetra).closed
+True
+>>> checked = mesh.check_solid(tetra[:, ::-1])
+>>> checked.notices
+('inside out: its faces pointed inward; turned outward',)
+>>> mesh.check_solid(tetra[:3], repair=True)  # the hole is most of the surface
+Traceback (most recent call last):
+...
+plumbob.errors.GeometryError: is open with a hole too large to close safely (3 boundary edges, \
+58% of the surface) near (0.333333, 0.333333, 0.333333): close it in a mesh editor
+"""
+
+from __future__ import annotations
+
+from .closure import CLOSURE_TOLERANCE, SurfaceSummary, is_closed, surface_summary
+from .repair import HOLE_AREA_FRACTION, fill_holes
+from .shells import resolve_shells, unite_shells
+from .solid import FULL_CHECK_LIMIT, CheckedSolid, check_solid
+from .topology import Topology, connected_components, mesh_topology
+from .weld import merge_vertices
+from .winding import solid_angle, solid_angles, winding_numbers
+
+__all__ = [
+    "CLOSURE_TOLERANCE",
+    "FULL_CHECK_LIMIT",
+    "HOLE_AREA_FRACTION",
+    "CheckedSolid",
+    "SurfaceSummary",
+    "Topology",
+    "check_solid",
+    "connected_components",
+    "fill_holes",
+    "is_closed",
+    "merge_vertices",
+    "mesh_topology",
+    "resolve_shells",
+    "solid_angle",
+    "solid_angles",
+    "surface_summary",
+    "unite_shells",
+    "winding_numbers",
+]

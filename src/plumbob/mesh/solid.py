@@ -1,0 +1,159 @@
+"""Is this triangle soup a solid? The check every mesh passes before it is measured.
+
+A triangle mesh must close and face outward. The cheap test (its vector area
+vanishes, :mod:`plumbob.mesh.closure`) runs on every mesh; the full
+topological check — vertices merged, edges paired, boundary edges counted and
+located, winding made consistent, shells found and checked for overlap — runs
+when the cheap test fails, when ``repair`` is asked for, or when the mesh is
+small enough (:data:`FULL_CHECK_LIMIT`) that it costs little.
+
+Errors here name no file: a reader adds its path (see :mod:`plumbob.io.solids`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import GeometryError, fmt_point
+from ..integrals.mesh import VolumeMoments
+from .closure import SurfaceSummary, surface_summary
+from .repair import fill_holes
+from .shells import resolve_shells
+from .topology import mesh_topology
+
+__all__ = ["FULL_CHECK_LIMIT", "CheckedSolid", "check_solid"]
+
+#: triangles; meshes up to this size always get the full topological check
+FULL_CHECK_LIMIT = 50_000
+
+
+@dataclass(frozen=True, eq=False)
+class CheckedSolid:
+    """A triangle soup found (or made) closed and outward-facing.
+
+    triangles: (n, 3, 3) m, closed and wound outward; the input array itself
+        (its dtype kept) when nothing had to change.
+    notices: what was assumed, turned, repaired or united, for the user.
+    moments: the triangles' volume moments when the check already summed them, else None.
+    surface: the one-pass summary of the triangles as given (bounding box, area, …).
+    """
+
+    triangles: np.ndarray
+    notices: tuple[str, ...]
+    moments: VolumeMoments | None
+    surface: SurfaceSummary
+
+
+def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | None = None,
+                scale: float = 1.0) -> CheckedSolid:
+    """Check that a triangle soup bounds a solid; turn or unite what can be fixed safely.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) ndarray
+        A triangle soup, m, any float dtype (float32 is kept when nothing changes).
+    repair : bool
+        Close small holes (:func:`~plumbob.mesh.repair.fill_holes`) instead of
+        refusing an open mesh; also forces the full check on a large mesh.
+    label : str, optional
+        Names the body in messages when a file holds several (``"solid 'lid'"``).
+    scale : float
+        Metres per unit of the coordinates that messages name points in (the
+        file's own units).
+
+    Returns
+    -------
+    CheckedSolid
+        The closed, outward triangles, with notices for what was turned
+        (inside-out shells, inconsistently wound faces), repaired or united
+        (overlapping shells, through manifold3d).
+
+    Raises
+    ------
+    GeometryError
+        For an empty, flat, open (unless ``repair`` closes its small holes) or
+        non-orientable mesh. The error names no file.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    >>> tetra = v[[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]]
+    >>> checked = check_solid(tetra)
+    >>> checked.triangles is tetra, checked.notices
+    (True, ())
+    >>> check_solid(tetra[:, ::-1]).notices
+    ('inside out: its faces pointed inward; turned outward',)
+    >>> check_solid(tetra[:3])
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the mesh is open: 3 boundary edges (1 hole), e.g. near \
+(0.5, 0, 0.5); close it in a mesh editor or pass --repair
+    """
+    prefix = f"{label}: " if label else ""
+    n = len(triangles)
+    if n == 0:
+        raise GeometryError(f"{prefix}has no triangles: there is no solid to measure")
+    summary = surface_summary(triangles)
+    if not summary.area > 0:
+        raise GeometryError(f"{prefix}all {n} triangles have zero area: there is no surface")
+    notices: list[str] = []
+    full = repair or not summary.closed or n <= FULL_CHECK_LIMIT
+    if not full:
+        if summary.flat:
+            raise GeometryError(f"{prefix}encloses no volume: the surface is flat or its faces "
+                                "cancel")
+        moments = summary.moments
+        if summary.volume < 0:
+            notices.append(f"{prefix}inside out: its faces pointed inward; turned outward")
+            triangles, moments = triangles[:, ::-1], None
+        notices.append(f"{prefix}shells: not checked for overlap ({n} triangles, over "
+                       f"{FULL_CHECK_LIMIT}; --repair checks)")
+        return CheckedSolid(triangles, tuple(notices), moments, summary)
+
+    topo = mesh_topology(triangles)
+    if not topo.orientable:
+        raise GeometryError(f"{prefix}cannot be wound consistently (it is non-orientable, like a "
+                            "Möbius strip): it bounds no solid")
+    faces = topo.oriented_faces
+    flipped = int(topo.flip.sum())
+    if flipped:
+        notices.append(f"{prefix}winding: {flipped} of {n} triangles were wound against their "
+                       "neighbours; turned to match")
+    vertices, shell = topo.vertices, topo.shell
+    closed_after = summary.closed if not flipped else surface_summary(vertices[faces]).closed
+    changed = bool(flipped)
+    if len(topo.boundary) and not closed_after:
+        if not repair:
+            holes = int(topo.boundary_loops().max()) + 1
+            near = vertices[topo.boundary[0]].mean(axis=0)
+            raise GeometryError(
+                f"{prefix}the mesh is open: {len(topo.boundary)} boundary edges "
+                f"({holes} hole{'s' if holes > 1 else ''}), e.g. near {fmt_point(near / scale)}; "
+                "close it in a mesh editor or pass --repair")
+        vertices, faces, shell, notice = fill_holes(topo, faces, shell, summary.area,
+                                                    label=prefix, scale=scale)
+        notices.append(notice)
+        changed = True
+    elif len(topo.boundary):
+        notices.append(f"{prefix}{len(topo.boundary)} edges are not shared by two triangles "
+                       "(T-junctions?), but the surface still closes")
+    elif not closed_after:
+        raise GeometryError(f"{prefix}the mesh is not closed although every edge is shared: "
+                            "its faces do not enclose a volume")
+    if topo.nonmanifold:
+        notices.append(f"{prefix}{topo.nonmanifold} edges are shared by more than two triangles")
+    before = faces
+    faces, shell, united, more = resolve_shells(vertices, faces, shell, topo.shells, label=prefix)
+    notices.extend(more)
+    if united is not None:
+        return CheckedSolid(united, tuple(notices), None, summary)
+    if not changed and faces is not before:
+        # only whole shells turned: reuse the input's dtype (float32 stays float32)
+        same_dtype = vertices[faces].astype(triangles.dtype, copy=False)
+        return CheckedSolid(same_dtype, tuple(notices), None, summary)
+    if not changed:
+        return CheckedSolid(triangles, tuple(notices), summary.moments, summary)
+    return CheckedSolid(vertices[faces], tuple(notices), None, summary)

@@ -1,0 +1,27 @@
+"""What reading a file or spec gives: the body, and what the user should be told.
+
+Readers (:mod:`plumbob.io`, :mod:`plumbob.spec`) return a :class:`Reading`;
+commands print its notices and measure its body. It sits above the bodies and
+below every reader, so readers and commands share it without importing each other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .bodies.base import Body
+
+__all__ = ["Reading"]
+
+
+@dataclass(frozen=True)
+class Reading:
+    """A body read from a file, with notices for the user (assumptions, repairs).
+
+    body: what the file describes. notices: assumed units, repaired defects,
+    implausible sizes, one line each. path: the file, when there is one.
+    """
+
+    body: Body
+    notices: tuple[str, ...] = ()
+    path: str | None = None
