@@ -36,7 +36,7 @@ from plumbob.bodies.region import Region, Ring
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import DensityError, ExpressionError, GeometryError
 from plumbob.massprops import MassProperties, combine, rotation_matrix
-from plumbob.spec.expr import parse
+from plumbob.expr import parse
 
 F = DensityField.from_expression
 

@@ -89,7 +89,7 @@ class _Reader:
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             raise self.fail(f"{where} must be a number or an expression (got {value!r})")
         if isinstance(value, str):
-            from ..spec.expr import evaluate
+            from ..expr import evaluate
 
             try:
                 result = evaluate(value, self.names)

@@ -29,7 +29,7 @@ from ..io import Reading
 from ..massprops import rotation_matrix
 from ..materials import material as lookup_material
 from ..units import LENGTH_UNITS, length_scale
-from .expr import Expression, parse
+from ..expr import Expression, parse
 
 if sys.version_info >= (3, 11):
     import tomllib
