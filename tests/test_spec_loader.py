@@ -3,7 +3,7 @@ import pytest
 
 from plumbob.bodies.csg import Assembly, Composite
 from plumbob.errors import ExpressionError, InputFileError, SpecError
-from plumbob.io import read
+from plumbob.loading import read
 from plumbob.spec.loader import build_spec, load_spec
 
 

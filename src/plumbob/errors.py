@@ -15,6 +15,25 @@ class PlumbobError(Exception):
         self.message = message
         super().__init__(f"{path}: {message}" if path else message)
 
+    def within(self, context: str | None = None, *, path: str | None = None) -> PlumbobError:
+        """The same error placed where it happened: ``context: message``, and naming
+        ``path`` when it names no file yet (a file it already names is kept).
+
+        The one way to add context, so an error raised deep in a builder reaches the
+        user as ``file: place: problem`` with its class (and exit status) unchanged.
+
+        >>> error = SpecError("must be positive").within("part 1.radius", path="a.toml")
+        >>> type(error).__name__, str(error)
+        ('SpecError', 'a.toml: part 1.radius: must be positive')
+        >>> str(error.within(path="b.toml"))
+        'a.toml: part 1.radius: must be positive'
+        """
+        message = f"{context}: {self.message}" if context else self.message
+        error = type(self)(message, path=self.path or path)
+        error.__dict__.update({k: v for k, v in self.__dict__.items()
+                               if k not in ("message", "path")})
+        return error
+
 
 class InputFileError(PlumbobError):
     """A file is missing, unreadable, empty, truncated or of an unknown kind."""

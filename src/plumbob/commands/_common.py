@@ -6,7 +6,8 @@ import argparse
 import sys
 
 from ..bodies.base import check_density
-from ..io import Reading, read
+from ..io import Reading
+from ..loading import read
 from ..units import LENGTH_UNITS
 
 __all__ = ["add_body_arguments", "load_body", "print_notices", "parse_vector"]

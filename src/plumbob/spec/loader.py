@@ -25,11 +25,11 @@ from ..bodies.lamina import Lamina
 from ..bodies.particles import ParticleSystem
 from ..bodies.region import Region, Ring
 from ..errors import InputFileError, PlumbobError, SpecError
+from ..expr import Expression, parse
 from ..io import Reading
 from ..massprops import rotation_matrix
 from ..materials import material as lookup_material
 from ..units import LENGTH_UNITS, length_scale
-from ..expr import Expression, parse
 
 if sys.version_info >= (3, 11):
     import tomllib
