@@ -33,5 +33,5 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     if io.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
-        return io.read_checked(path, lambda: load_spec(path))
+        return load_spec(path)
     return io.read(path, units=units, repair=repair)

@@ -57,6 +57,9 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     notice). ``repair``: close small holes in open meshes (reported in the notices).
     """
     path = os.fspath(path)
+    if path.lower().endswith(".toml"):
+        raise InputFileError("is a TOML spec, not a mesh or outline: read it with plumbob.read "
+                             "(plumbob.loading.read)", path=path)
     kind = file_family(path, SUFFIXES)
     return read_checked(path, lambda: _dispatch(kind, path, units, repair))
 
