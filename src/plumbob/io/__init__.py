@@ -23,6 +23,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import TypeVar
 
 from ..bodies.base import Body
 from ..errors import InputFileError, PlumbobError
@@ -38,6 +39,8 @@ class Reading:
     notices: tuple[str, ...] = ()
     path: str | None = None
 
+
+_Read = TypeVar("_Read")
 
 #: file extension → reader family
 SUFFIXES = {
@@ -76,10 +79,11 @@ def file_family(path: str, suffixes: Mapping[str, str]) -> str:
     return kind
 
 
-def read_checked(path: str, reader: Callable[[], Reading]) -> Reading:
-    """Run ``reader`` on the file ``path`` once it is known to exist, be a file and hold
-    something; any failure, including one raised below the readers (a body's own
-    check), becomes a :class:`PlumbobError` naming the file."""
+def read_checked(path: str, reader: Callable[[], _Read]) -> _Read:
+    """Run ``reader`` (of a file's body, or of a simulation spec) on the file ``path``
+    once it is known to exist, be a file and hold something; any failure, including
+    one raised below the readers (a body's own check), becomes a
+    :class:`PlumbobError` naming the file."""
     if not os.path.exists(path):
         raise InputFileError("no such file", path=path)
     if os.path.isdir(path):
