@@ -20,7 +20,7 @@ from plumbob.bodies import primitives as prim
 from plumbob.bodies.csg import Assembly
 from plumbob.bodies.graded import DensityField, GradedLamina, with_density_field
 from plumbob.cli import main
-from plumbob.io import read
+from plumbob.loading import read
 from plumbob.materials import density_of
 
 GRADED_PLATE = os.path.join(SHAPES, "graded_plate.toml")

@@ -35,8 +35,8 @@ from plumbob.bodies.lamina import Lamina
 from plumbob.bodies.region import Region, Ring
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import DensityError, ExpressionError, GeometryError
+from plumbob.expr import parse
 from plumbob.massprops import MassProperties, combine, rotation_matrix
-from plumbob.spec.expr import parse
 
 F = DensityField.from_expression
 

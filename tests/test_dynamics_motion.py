@@ -15,12 +15,11 @@ from plumbob.dynamics import (
     Link,
     MotionModel,
     Spring,
-    load_simulation,
-    parse_simulation,
     simulate,
     spring_pair_pull,
 )
 from plumbob.errors import DynamicsError, InputFileError, SpecError
+from plumbob.spec import load_simulation, parse_simulation
 
 SHAPES = Path(__file__).resolve().parents[1] / "shapes"
 G = 9.81

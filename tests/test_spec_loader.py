@@ -3,8 +3,8 @@ import pytest
 
 from plumbob.bodies.csg import Assembly, Composite
 from plumbob.errors import ExpressionError, InputFileError, SpecError
-from plumbob.io import read
-from plumbob.spec.loader import build_spec, load_spec
+from plumbob.loading import read
+from plumbob.spec.loader import build_spec, load_spec, parse_simulation
 
 
 def write(tmp_path, text, name="shape.toml"):
@@ -255,3 +255,36 @@ side = 1
 at = [1, 0]
 """)
     assert load_spec(path).body.mass_properties().center_of_mass == pytest.approx([11, 0.5])
+
+
+def test_kind_chooses_the_reader_or_the_content_does(tmp_path):
+    particles = '[[particle]]\nname = "A"\nmass = 1\nposition = [0, 0]\n'
+    spring = particles + '[[particle]]\nname = "B"\nmass = 3\nposition = [4, 0]\n' \
+        '[[spring]]\nbetween = ["A", "B"]\nstiffness = 1\n'
+    # a simulation read for its mass properties: its particles at t = 0, kind given or not
+    for text in (spring, 'kind = "simulation"\n' + spring):
+        props = load_spec(write(tmp_path, text)).body.mass_properties()
+        assert props.center_of_mass == pytest.approx([3, 0])
+    assert load_spec(write(tmp_path, 'kind = "shape"\n' + particles)).body.kind == "particles"
+    data = {"particle": [{"name": "A", "mass": 1, "position": [0, 0]}]}
+    assert parse_simulation(data).model.names == ("A",)
+    with pytest.raises(SpecError, match="not a simulation"):
+        parse_simulation({"kind": "shape", **data})
+    with pytest.raises(SpecError, match='"shape" or a "simulation"'):
+        load_spec(write(tmp_path, 'kind = "lamina"\n' + particles))
+
+
+def test_one_particle_schema_force_acts_only_in_a_simulation(tmp_path):
+    forced = '[[particle]]\nmass = 2\nposition = [1, 0]\nforce = [1, 0]\n'
+    assert load_spec(write(tmp_path, forced)).body.mass_properties().mass == 2  # a simulation
+    with pytest.raises(SpecError, match="only in a simulation"):
+        load_spec(write(tmp_path, '[shape]\nunits = "mm"\n' + forced))
+    with pytest.raises(SpecError, match="names must be unique"):
+        load_spec(write(tmp_path, '[[particle]]\nname = "A"\nmass = 1\nposition = [0, 0]\n' * 2))
+
+
+def test_io_reads_files_and_leaves_specs_to_loading(tmp_path):
+    from plumbob.io import read as read_file
+
+    with pytest.raises(InputFileError, match="plumbob.read"):
+        read_file(write(tmp_path, '[[part]]\ntype = "disc"\nradius = 1\n'))

@@ -32,7 +32,7 @@ __all__ = [
 ]
 
 _LAZY = {
-    "read": ("plumbob.io", "read"),
+    "read": ("plumbob.loading", "read"),
     "MassProperties": ("plumbob.massprops", "MassProperties"),
     "PlumbobError": ("plumbob.errors", "PlumbobError"),
     "primitives": ("plumbob.bodies.primitives", None),
@@ -53,7 +53,7 @@ _LAZY = {
 
 def load(path: str, **options: Any):
     """The body described by the file at ``path`` (spec, mesh or outline)."""
-    from .io import read
+    from .loading import read
 
     return read(path, **options).body
 

@@ -17,6 +17,36 @@ class PlumbobError(Exception):
         self.message = message
         super().__init__(f"{path}: {message}" if path else message)
 
+    def within(
+        self,
+        context: str | None = None,
+        *,
+        path: str | None = None,
+        cls: type[PlumbobError] | None = None,
+    ) -> PlumbobError:
+        """The same error placed where it happened: ``context: message``, naming
+        ``path`` when it names no file yet (a file it already names is kept).
+
+        The one way to add context, so an error raised deep in a builder reaches the
+        user as ``file: place: problem``. ``cls``: the family the caller promises (every
+        error building a spec is a :class:`SpecError`): an error not of it becomes one;
+        otherwise the class is kept.
+
+        >>> error = GeometryError("must be positive").within("part 1", path="a.toml")
+        >>> type(error).__name__, str(error)
+        ('GeometryError', 'a.toml: part 1: must be positive')
+        >>> str(error.within(path="b.toml"))
+        'a.toml: part 1: must be positive'
+        >>> type(error.within(cls=SpecError)).__name__
+        'SpecError'
+        """
+        message = f"{context}: {self.message}" if context else self.message
+        family = type(self) if cls is None or isinstance(self, cls) else cls
+        error = family(message, path=self.path or path)
+        error.__dict__.update({k: v for k, v in self.__dict__.items()
+                               if k not in ("message", "path")})
+        return error
+
 
 class InputFileError(PlumbobError):
     """A file is missing, unreadable, empty, truncated or of an unknown kind."""

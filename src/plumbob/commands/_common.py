@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from ..bodies.base import check_density
-from ..io import read
+from ..loading import read
 from ..reading import Reading
 from ..units import LENGTH_UNITS
 

@@ -39,7 +39,7 @@ def _number(text: str, label: str) -> float:
 
 def run(args: argparse.Namespace) -> int:
     from ..dynamics.motion import simulate
-    from ..dynamics.spec import load_simulation
+    from ..spec import load_simulation
 
     until = _number(args.until, "--until")
     if until <= 0:

@@ -5,9 +5,9 @@
 * :mod:`.collisions` — Newton's law of restitution for smooth, non-rotating bodies.
 * :mod:`.two_particle` — the lift over a pulley, the mace's balance point, the vibrating
   molecule and the other closed forms of section 1.
-* :mod:`.spec` — simulation specs in TOML.
 
-scipy is imported only when a simulation runs.
+Simulation specs in TOML are read by :mod:`plumbob.spec` (``load_simulation``), which
+builds the :class:`MotionModel` here. scipy is imported only when a simulation runs.
 """
 
 from .collisions import (
@@ -19,7 +19,6 @@ from .collisions import (
     restitution_from_bounces,
 )
 from .motion import STANDARD_GRAVITY, Link, MotionModel, SimulationResult, Spring, simulate
-from .spec import SimulationSpec, load_simulation, parse_simulation
 from .two_particle import (
     MaceBalance,
     PulleyLift,
@@ -38,7 +37,6 @@ __all__ = [
     "CollisionResult", "ImpactCheck", "bounce_heights", "check_impact", "collide",
     "restitution_from_bounces",
     "STANDARD_GRAVITY", "Link", "MotionModel", "SimulationResult", "Spring", "simulate",
-    "SimulationSpec", "load_simulation", "parse_simulation",
     "MaceBalance", "PulleyLift", "RigidPair", "VibratingMolecule", "center_of_mass_acceleration",
     "mace_balance_point", "max_pull_before_break", "partner_position", "pulley_lift",
     "rigid_pair", "spring_pair_pull",

@@ -9,8 +9,11 @@ Formats (see ``docs/formats.md``):
 
 * solids — STL (binary and ASCII, plumbob's own fast reader), OBJ, PLY, OFF,
   3MF, GLB and glTF (through trimesh);
-* laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines;
-* shape specs — TOML.
+* laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines.
+
+TOML specs are not read here: :func:`plumbob.loading.read` sends them to
+:mod:`plumbob.spec` (which reads its mesh and outline files through this package),
+so io never depends on spec. It shares :func:`file_family` and :func:`read_checked`.
 
 Every failure is a :class:`~plumbob.errors.PlumbobError` naming the file.
 """
@@ -18,16 +21,19 @@ Every failure is a :class:`~plumbob.errors.PlumbobError` naming the file.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Mapping
+from typing import TypeVar
 
 from ..errors import InputFileError, PlumbobError
 from ..reading import Reading
 
-__all__ = ["read", "SUFFIXES"]
+__all__ = ["read", "read_checked", "file_family", "SUFFIXES"]
 
+
+_Read = TypeVar("_Read")
 
 #: file extension → reader family
 SUFFIXES = {
-    ".toml": "spec",
     ".stl": "stl",
     ".obj": "mesh", ".ply": "mesh", ".off": "mesh", ".3mf": "mesh", ".glb": "mesh", ".gltf": "mesh",
     ".geojson": "outline", ".json": "outline", ".wkt": "outline", ".wkb": "outline",
@@ -36,19 +42,38 @@ SUFFIXES = {
 
 
 def read(path: str, *, units: str | None = None, repair: bool = False) -> Reading:
-    """Read the body in ``path``; the reader is chosen by the file's extension.
+    """Read the body in the mesh or outline file ``path``; the reader is chosen by the
+    file's extension.
 
     ``units``: the length unit of the file's coordinates (``mm``, ``cm``, ``m``,
     ``in``, ``ft``); None uses the unit the file declares, else metres (with a
     notice). ``repair``: close small holes in open meshes (reported in the notices).
     """
     path = os.fspath(path)
+    if path.lower().endswith(".toml"):
+        raise InputFileError("is a TOML spec, not a mesh or outline: read it with plumbob.read "
+                             "(plumbob.loading.read)", path=path)
+    kind = file_family(path, SUFFIXES)
+    return read_checked(path, lambda: _dispatch(kind, path, units, repair))
+
+
+def file_family(path: str, suffixes: Mapping[str, str]) -> str:
+    """The reader family ``suffixes`` gives the extension of ``path``; an unknown
+    extension is an :class:`InputFileError` listing the ones known."""
     suffix = os.path.splitext(path)[1].lower()
-    kind = SUFFIXES.get(suffix)
+    kind = suffixes.get(suffix)
     if kind is None:
-        known = ", ".join(sorted(SUFFIXES))
+        known = ", ".join(sorted(suffixes))
         raise InputFileError(
             f"unknown file type {suffix or '(no extension)'!r}; plumbob reads {known}", path=path)
+    return kind
+
+
+def read_checked(path: str, reader: Callable[[], _Read]) -> _Read:
+    """Run ``reader`` (of a file's body, or of a simulation spec) on the file ``path``
+    once it is known to exist, be a file and hold something; any failure, including
+    one raised below the readers (a body's own check), becomes a
+    :class:`PlumbobError` naming the file."""
     if not os.path.exists(path):
         raise InputFileError("no such file", path=path)
     if os.path.isdir(path):
@@ -61,10 +86,10 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     if empty:
         raise InputFileError("is empty (0 bytes): nothing to read", path=path)
     try:
-        return _dispatch(kind, path, units, repair)
+        return reader()
     except PlumbobError as error:
-        if error.path is None:  # raised below the readers (a body's own check): name the file
-            raise type(error)(error.message, path=path) from None
+        if error.path is None:
+            raise error.within(path=path) from None
         raise
     except MemoryError:
         raise InputFileError("is too large to read into memory", path=path) from None
@@ -74,10 +99,6 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
 
 
 def _dispatch(kind: str, path: str, units: str | None, repair: bool) -> Reading:
-    if kind == "spec":
-        from ..spec.loader import load_spec
-
-        return load_spec(path)
     if kind == "stl":
         from .stl import read_stl
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ExpressionError
+from .errors import ExpressionError
 
 __all__ = ["Expression", "parse", "evaluate", "FUNCTIONS", "CONSTANTS"]
 

@@ -4,7 +4,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from plumbob.errors import ExpressionError
-from plumbob.spec.expr import evaluate, parse
+from plumbob.expr import evaluate, parse
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,368 @@
+"""The ``[[part]]`` tables of a shape spec: primitives placed, given a density and
+combined (``op = "add" | "subtract" | "intersect"``) into one body.
+
+The format is documented in ``docs/shapes.md``; :func:`build_parts` is the entry.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, fields, replace
+from typing import Any
+
+import numpy as np
+
+from ..bodies import primitives as prim
+from ..bodies.base import Body, check_density
+from ..bodies.csg import Assembly, Composite, difference, intersection, leaf_densities, union
+from ..bodies.lamina import Lamina
+from ..bodies.region import Region, Ring
+from ..expr import Expression, parse
+from ..io import read as read_file
+from ..massprops import rotation_matrix
+from ..materials import material as lookup_material
+from .values import SpecContext, suggest
+
+__all__ = ["build_parts", "named", "PRIMITIVES", "PART_KEYS", "MATERIAL_KEYS"]
+
+PLACEMENT_KEYS = {"at", "rotate", "mirror"}
+#: what a part, or the [shape] table for all its parts, may say of their material
+MATERIAL_KEYS = {"density", "material", "thickness"}
+PART_KEYS = {"type", "name", "op"} | MATERIAL_KEYS | PLACEMENT_KEYS
+
+
+# ----------------------------------------------------------------- primitives
+def _n(spec: SpecContext, t: dict, key: str, where: str, length: bool = True) -> float:
+    return spec.number(t[key], f"{where}.{key}", length)
+
+
+def _angle(spec: SpecContext, t: dict, key: str, where: str) -> float:
+    return np.radians(spec.number(t[key], f"{where}.{key}"))
+
+
+def _profile(spec: SpecContext, t: dict, where: str) -> Region:
+    table = t["profile"]
+    if not isinstance(table, dict):
+        raise spec.error(f"{where}.profile", "expected a table describing a 2D shape")
+    body = (
+        _build_group(spec, table, f"{where}.profile", want_dim=2)
+        if "part" in table
+        else _build_part(spec, table, f"{where}.profile", want_dim=2)
+    )
+    if isinstance(body, Lamina):
+        return body.region
+    if isinstance(body, Composite) and all(isinstance(p, Lamina) for p in body.parts):
+        rings: list[Ring] = []
+        for part, sign in zip(body.parts, body.signs):
+            rings += [r if sign > 0 else r.reversed() for r in part.region.rings]
+        return Region(tuple(rings))
+    if hasattr(body, "region"):
+        return body.region
+    raise spec.error(
+        f"{where}.profile", "the profile must be a plain 2D shape (no placement of the whole)"
+    )
+
+
+def _outline(spec: SpecContext, t: dict, where: str) -> Lamina:
+    vertices = spec.points(t["vertices"], f"{where}.vertices")
+    bulges = None
+    if "bulges" in t:
+        if not isinstance(t["bulges"], list) or len(t["bulges"]) != len(vertices):
+            raise spec.error(f"{where}.bulges", "give one bulge per edge (as many as vertices)")
+        bulges = np.array([spec.number(b, f"{where}.bulges") for b in t["bulges"]])
+    region = Region((Ring(vertices, bulges),))
+    if region.moments().m0 < 0:
+        region = Region((region.rings[0].reversed(),))
+    return Lamina(region)
+
+
+def _simple(build: Callable[..., Body], *keys: str, angles: tuple[str, ...] = ()):
+    """A builder passing the named values, in order, to ``build``: lengths scaled by the
+    spec's units, ``angles`` (degrees in the spec) in radians."""
+
+    def builder(spec: SpecContext, table: dict, where: str) -> Body:
+        return build(*(_angle(spec, table, k, where) if k in angles else _n(spec, table, k, where)
+                       for k in keys))
+
+    return builder
+
+
+# Each entry: (dimension, required keys, optional keys, builder(spec, table, where) -> Body)
+PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[SpecContext, dict, str], Body]]] = {
+    "rectangle": (2, {"width", "height"}, {"centered"}, _simple(prim.rectangle, "width", "height")),
+    "square": (2, {"side"}, set(), _simple(lambda a: prim.rectangle(a, a), "side")),
+    "triangle": (2, {"vertices"}, set(),
+                 lambda s, t, w: prim.polygon(s.points(t["vertices"], f"{w}.vertices"))),
+    "polygon": (2, {"vertices"}, {"holes"}, lambda s, t, w: prim.polygon(
+        s.points(t["vertices"], f"{w}.vertices"),
+        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(t.get("holes", []))])),
+    "outline": (2, {"vertices"}, {"bulges"}, _outline),
+    "regular_polygon": (2, {"sides", "radius"}, set(), lambda s, t, w: prim.regular_polygon(
+        s.number(t["sides"], f"{w}.sides"), _n(s, t, "radius", w))),
+    "disc": (2, {"radius"}, set(), _simple(prim.disc, "radius")),
+    "semicircle": (2, {"radius"}, set(), _simple(prim.semicircle, "radius")),
+    "sector": (2, {"radius", "angle"}, set(), _simple(prim.sector, "radius", "angle", angles=("angle",))),
+    "segment": (2, {"radius", "angle"}, set(),
+                _simple(prim.circular_segment, "radius", "angle", angles=("angle",))),
+    "annulus": (2, {"inner_radius", "outer_radius"}, set(),
+                _simple(prim.annulus, "inner_radius", "outer_radius")),
+    "box": (3, {"length", "width", "height"}, {"centered"},
+            _simple(prim.box, "length", "width", "height")),
+    "cube": (3, {"side"}, {"centered"}, _simple(lambda a: prim.box(a, a, a), "side")),
+    "cylinder": (3, {"radius", "height"}, set(), _simple(prim.cylinder, "radius", "height")),
+    "cone": (3, {"radius", "height"}, set(), _simple(prim.cone, "radius", "height")),
+    "frustum": (3, {"bottom_radius", "top_radius", "height"}, set(),
+                _simple(prim.frustum, "bottom_radius", "top_radius", "height")),
+    "sphere": (3, {"radius"}, set(), _simple(prim.sphere, "radius")),
+    "hemisphere": (3, {"radius"}, set(), _simple(prim.hemisphere, "radius")),
+    "torus": (3, {"major_radius", "minor_radius"}, set(),
+              _simple(prim.torus, "major_radius", "minor_radius")),
+    "pyramid": (3, {"base", "height"}, {"apex"}, lambda s, t, w: prim.pyramid(
+        s.points(t["base"], f"{w}.base"), _n(s, t, "height", w),
+        s.vector(t["apex"], f"{w}.apex", (2,)) if "apex" in t else None)),
+    "tetrahedron": (3, {"vertices"}, set(),
+                    lambda s, t, w: prim.tetrahedron(*s.points(t["vertices"], f"{w}.vertices", (3,)))),
+    "extrude": (3, {"profile", "height"}, set(),
+                lambda s, t, w: prim.prism(_profile(s, t, w), _n(s, t, "height", w))),
+    "revolve": (3, {"profile"}, set(), lambda s, t, w: prim.revolve(_profile(s, t, w))),
+    "mesh": (3, {"file"}, {"units"}, lambda s, t, w: _mesh_file(s, t, w)),
+}
+
+
+def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
+    """A mesh file beside the spec, read by :mod:`plumbob.io` (its errors name it)."""
+    name = t["file"]
+    if not isinstance(name, str):
+        raise spec.error(f"{where}.file", "expected a file name")
+    path = os.path.join(os.path.dirname(os.path.abspath(spec.path)), name)
+    if os.path.splitext(path)[1].lower() == ".toml":
+        raise spec.error(f"{where}.file", "a mesh part must name a mesh file, not another spec")
+    return read_file(path, units=t.get("units")).body
+
+
+def _placement(spec: SpecContext, body: Body, table: dict, where: str) -> Body:
+    dim = body.dim
+    if not PLACEMENT_KEYS & set(table):
+        return body
+    matrix = np.eye(dim)
+    if "mirror" in table:
+        normal = spec.vector(table["mirror"], f"{where}.mirror", (dim,), length=False)
+        if not np.linalg.norm(normal) > 0:
+            raise spec.error(f"{where}.mirror", "the mirror's normal must not be zero")
+        normal = normal / np.linalg.norm(normal)
+        matrix = np.eye(dim) - 2 * np.outer(normal, normal)
+    if "rotate" in table:
+        matrix = _rotation(spec, table["rotate"], f"{where}.rotate", dim) @ matrix
+    offset = spec.vector(table["at"], f"{where}.at", (dim,)) if "at" in table else np.zeros(dim)
+    return body.transformed(matrix, offset)
+
+
+def _rotation(spec: SpecContext, value: Any, where: str, dim: int) -> np.ndarray:
+    if dim == 2:
+        if isinstance(value, dict):
+            raise spec.error(where, "a 2D shape turns by an angle in degrees: rotate = 90")
+        angle = np.radians(spec.number(value, where))
+        return rotation_matrix([0, 0, 1], angle)[:2, :2]
+    steps = value if isinstance(value, list) and value and isinstance(value[0], dict) else [value]
+    matrix = np.eye(3)
+    for i, step in enumerate(steps):
+        if not isinstance(step, dict) or set(step) != {"axis", "angle"}:
+            raise spec.error(
+                where, "a 3D rotation is {axis = [x, y, z], angle = DEGREES} (or a list of them)"
+            )
+        axis = spec.vector(step["axis"], f"{where}[{i + 1}].axis", (3,), length=False)
+        if not np.linalg.norm(axis) > 0:
+            raise spec.error(where, "a rotation axis must not be zero")
+        matrix = (
+            rotation_matrix(axis, np.radians(spec.number(step["angle"], f"{where}.angle"))) @ matrix
+        )
+    return matrix
+
+
+@dataclass(frozen=True)
+class _Material:
+    """Density settings inherited from the shape by its parts."""
+
+    density: float | Expression | None = None
+    thickness: float | None = None
+    label: str | None = None
+
+
+def _material(spec: SpecContext, table: dict, where: str, inherited: _Material) -> _Material:
+    density, label = inherited.density, inherited.label
+    if "density" in table and "material" in table:
+        raise spec.error(where, "give a density or a material, not both")
+    if "material" in table:
+        name = table["material"]
+        if not isinstance(name, str):
+            raise spec.error(f"{where}.material", "expected a material name")
+        with spec.at(f"{where}.material"):
+            density, label = lookup_material(name).density, name
+    elif "density" in table:
+        raw = table["density"]
+        label = None
+        if isinstance(raw, str):
+            with spec.at(f"{where}.density"):
+                expression = parse(raw)
+            field_names = expression.names & {"x", "y", "z"}
+            density = expression if field_names else spec.number(raw, f"{where}.density")
+        else:
+            density = spec.number(raw, f"{where}.density")
+        if isinstance(density, float):
+            with spec.at(f"{where}.density"):
+                check_density(density)
+    thickness = inherited.thickness
+    if "thickness" in table:
+        thickness = spec.number(table["thickness"], f"{where}.thickness", length=True)
+        if not thickness > 0:
+            raise spec.error(f"{where}.thickness", "a thickness must be positive")
+    return _Material(density, thickness, label)
+
+
+def _apply_material(spec: SpecContext, body: Body, mat: _Material, where: str) -> Body:
+    """A part's uniform density (a density field is applied after placement)."""
+    if mat.thickness is not None and body.dim != 2:
+        raise spec.error(where, "a thickness applies only to a lamina (2D shape)")
+    density = None if isinstance(mat.density, Expression) else mat.density
+    if isinstance(body, Lamina):
+        if mat.label is not None and mat.thickness is None:
+            raise spec.error(
+                where,
+                f"a lamina of {mat.label} needs a thickness (m) to turn the "
+                "material's kg/m³ into kg/m²",
+            )
+        return replace(body, density=density, thickness=mat.thickness)
+    return body if density is None else body.with_default_density(density)
+
+
+def _apply_field(spec: SpecContext, body: Body, mat: _Material, where: str) -> Body:
+    """A density field over ``body`` in the spec's frame (x, y, z after placement)."""
+    from ..bodies.graded import DensityField, with_density_field
+
+    scale = mat.thickness if (mat.thickness is not None and body.dim == 2) else 1.0
+    with spec.at(f"{where}.density"):
+        field = DensityField.from_expression(mat.density, scale=scale, constants=dict(spec.names))
+        return with_density_field(body, field)
+
+
+def _own_field(mat: _Material, inherited: _Material) -> bool:
+    return isinstance(mat.density, Expression) and mat.density is not inherited.density
+
+
+def _build_part(
+    spec: SpecContext,
+    table: dict,
+    where: str,
+    want_dim: int | None = None,
+    inherited: _Material = _Material(),
+) -> Body:
+    kind = table.get("type")
+    if not isinstance(kind, str):
+        raise spec.error(where, 'every part needs a type, e.g. type = "rectangle"')
+    if kind not in PRIMITIVES:
+        raise spec.error(f"{where}.type", f"unknown type {kind!r}{suggest(kind, set(PRIMITIVES))}")
+    dim, required, optional, build = PRIMITIVES[kind]
+    if want_dim is not None and dim != want_dim:
+        raise spec.error(where, f"a {kind} is {dim}D; a {want_dim}D shape is needed here")
+    spec.table(table, PART_KEYS | required | optional, where)
+    missing = sorted(required - set(table))
+    if missing:
+        raise spec.error(where, f"a {kind} needs {', '.join(missing)}")
+    with spec.at(where):
+        body = build(spec, table, where)
+    if table.get("centered"):
+        box = body.mass_properties().center_of_mass
+        body = body.translated(-box)
+    mat = _material(spec, table, where, inherited)
+    body = _placement(spec, _apply_material(spec, body, mat, where), table, where)
+    return _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
+
+
+def _build_group(
+    spec: SpecContext,
+    table: dict,
+    where: str,
+    want_dim: int | None = None,
+    inherited: _Material = _Material(),
+) -> Body:
+    parts = table["part"]
+    if not isinstance(parts, list) or not parts:
+        raise spec.error(where, "[[part]] must be a list of tables")
+    mat = _material(spec, table, where, inherited)
+    built: list[tuple[str, Body, str]] = []
+    for i, part in enumerate(parts):
+        label = f"part {i + 1}" + (
+            f" ({part['name']})" if isinstance(part, dict) and "name" in part else ""
+        )
+        if not isinstance(part, dict):
+            raise spec.error(label, "expected a table")
+        op = part.get("op", "add")
+        if op not in ("add", "subtract", "intersect"):
+            raise spec.error(f"{label}.op", f"unknown op {op!r}; use add, subtract or intersect")
+        if i == 0 and op != "add":
+            raise spec.error(label, 'the first part must be added (op = "add")')
+        if "part" in part:
+            spec.table(part, (PART_KEYS - {"type"}) | {"part"}, label)
+            body = _build_group(spec, part, label, want_dim, mat)
+        else:
+            body = _build_part(spec, part, label, want_dim, mat)
+        body = named(body, part.get("name"))
+        built.append((op, body, label))
+    dims = {b.dim for _, b, _ in built}
+    if len(dims) > 1:
+        raise spec.error(where, "all parts must be 2D (a lamina) or all 3D (a solid)")
+    body = _placement(spec, _combine(spec, built), table, where)
+    return _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
+
+
+def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
+    if len(built) == 1:
+        return built[0][1]
+    with spec.at("parts"):
+        if all(op == "add" for op, _, _ in built):
+            result = union(*(b for _, b, _ in built))
+            if len(leaf_densities(result)) > 1 and isinstance(result, Composite):
+                return Assembly(result.parts)
+            return result
+        result = built[0][1]
+        for op, body, label in built[1:]:
+            if op == "add":
+                result = union(result, body)
+            elif op == "subtract":
+                result = difference(result, _hole_material(spec, result, body, label))
+            else:
+                result = intersection(result, body)
+        return result
+
+
+def _hole_material(spec: SpecContext, parent: Body, hole: Body, label: str) -> Body:
+    """A removed part must weigh what it is cut from (a hole given no density takes the
+    parent's in :func:`difference`)."""
+    hole_density = leaf_densities(hole)
+    if hole_density == {None} or hole_density == leaf_densities(parent):
+        return hole
+    raise spec.error(
+        label,
+        "a removed part must have the same density as the part it is cut "
+        "from (give the density on [shape], or on neither part)",
+    )
+
+
+def named(body: Body, name: object) -> Body:
+    """``body`` carrying the spec's ``name`` for reports, when its kind has one."""
+    if isinstance(name, str) and "name" in {f.name for f in fields(body)}:
+        return replace(body, name=name)
+    return body
+
+
+
+
+def build_parts(spec: SpecContext, shape: dict, parts: Any) -> Body:
+    """The body the ``[[part]]`` tables make, with the material ``[shape]`` gives them
+    all (a density field on ``[shape]`` is laid over the whole, in the spec's frame)."""
+    inherited = _material(spec, shape, "shape", _Material())
+    body = _build_group(spec, {"part": parts}, "shape", None, inherited)
+    if isinstance(inherited.density, Expression):
+        body = _apply_field(spec, body, inherited, "shape")
+    return body

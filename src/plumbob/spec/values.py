@@ -1,0 +1,133 @@
+"""The values in a spec, for shape and simulation specs alike: numbers or expressions,
+points and vectors, tables whose keys are checked, and the ``[parameters]``.
+
+Every complaint is a :class:`~plumbob.errors.SpecError` naming the spec's file and the
+place (``part 2.radius``), so a user can find and fix it.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import PlumbobError, SpecError
+from ..expr import parse
+
+__all__ = ["SpecContext", "suggest", "read_parameters", "RESERVED_NAMES"]
+
+#: names a parameter may not take: the coordinates of a density field and the constants
+RESERVED_NAMES = ("x", "y", "z", "pi", "e")
+
+
+@dataclass(frozen=True)
+class SpecContext:
+    """What reading one spec needs at every value: the file (for messages), the
+    parameters an expression may use, and metres per length unit of the spec."""
+
+    path: str | None
+    names: Mapping[str, float]
+    scale: float = 1.0
+
+    def error(
+        self, where: str | None, message: str, cls: type[PlumbobError] = SpecError
+    ) -> PlumbobError:
+        """The error to raise for ``message`` at ``where`` (None: the spec as a whole)."""
+        return cls(f"{where}: {message}" if where else message, path=self.path)
+
+    @contextmanager
+    def at(self, where: str) -> Iterator[None]:
+        """Place any error raised inside (by a primitive, a boolean, the expression
+        parser, the material table) at ``where`` in this spec, as a SpecError; an
+        error already naming a file (a nested place, a mesh file) passes unchanged."""
+        try:
+            yield
+        except PlumbobError as error:
+            if error.path is not None:
+                raise
+            raise error.within(where, path=self.path, cls=SpecError) from None
+
+    def number(self, value: Any, where: str, length: bool = False) -> float:
+        """A TOML number or an expression over the parameters; ``length``: scaled to
+        metres by the spec's unit."""
+        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+            raise self.error(where, f"expected a number or an expression, not {value!r}")
+        if isinstance(value, str):
+            with self.at(where):
+                result = parse(value).evaluate(self.names)
+            if np.ndim(result) != 0:
+                raise self.error(where, f"{value!r} must give a single number")
+        else:
+            result = value
+        result = float(result)
+        if not np.isfinite(result):
+            raise self.error(where, f"{value!r} is not a finite number")
+        return result * (self.scale if length else 1.0)
+
+    def points(
+        self, value: Any, where: str, dims: tuple[int, ...] = (2,), length: bool = True
+    ) -> np.ndarray:
+        """A list of points, each of one of ``dims`` coordinates, all alike."""
+        if not isinstance(value, list) or not value:
+            raise self.error(where, "expected a list of points like [[0, 0], [1, 0], [0, 1]]")
+        rows = []
+        for i, row in enumerate(value):
+            if not isinstance(row, list) or len(row) not in dims:
+                raise self.error(
+                    where, f"point {i + 1} must be a list of {' or '.join(map(str, dims))} numbers"
+                )
+            rows.append([self.number(v, f"{where}[{i + 1}]", length) for v in row])
+        if len({len(r) for r in rows}) != 1:
+            raise self.error(where, "all points must have the same number of coordinates")
+        return np.array(rows)
+
+    def vector(
+        self,
+        value: Any,
+        where: str,
+        dims: tuple[int, ...],
+        length: bool = True,
+        like: str | None = None,
+    ) -> np.ndarray:
+        """A list of one of ``dims`` numbers; ``like`` names what fixes the count
+        (``the positions``) for the message when it is wrong."""
+        count = " or ".join(map(str, dims))
+        if not isinstance(value, list):
+            raise self.error(where, f"expected a list of {count} numbers, not {value!r}")
+        if len(value) not in dims:
+            reason = f" like {like}" if like else ""
+            raise self.error(where, f"expected {count} components{reason}, not {len(value)}")
+        return np.array([self.number(v, f"{where}[{i + 1}]", length) for i, v in enumerate(value)])
+
+    def table(self, value: Any, allowed: set[str], where: str, what: str = "key") -> dict:
+        """``value`` as a table of ``allowed`` keys (``what`` names them in the message)."""
+        if not isinstance(value, dict):
+            raise self.error(where, "expected a table")
+        for key in value:
+            if key not in allowed:
+                raise self.error(where, f"unknown {what} {key!r}{suggest(key, allowed)}")
+        return value
+
+
+def suggest(key: str, allowed: set[str]) -> str:
+    """``; did you mean 'width'?`` for a near miss, else the keys allowed."""
+    close = difflib.get_close_matches(key, sorted(allowed), n=1)
+    return f"; did you mean {close[0]!r}?" if close else f"; allowed: {', '.join(sorted(allowed))}"
+
+
+def read_parameters(path: str | None, table: Any) -> dict[str, float]:
+    """``[parameters]``: numbers or expressions evaluated in order, each over those
+    before it (never in the spec's length unit: a parameter is a plain number)."""
+    if not isinstance(table, dict):
+        raise SpecError("[parameters] must be a table of name = value", path=path)
+    names: dict[str, float] = {}
+    context = SpecContext(path, names)
+    for key, value in table.items():
+        if key in RESERVED_NAMES:
+            raise context.error(f"parameters.{key}", f"{key!r} is reserved; choose another name")
+        names[key] = context.number(value, f"parameters.{key}")
+    return names
