@@ -52,3 +52,9 @@ class StabilityError(PlumbobError):
 
 class DynamicsError(PlumbobError):
     """Bad input to a particle simulation or a collision."""
+
+
+class BodyQueryError(PlumbobError):
+    """A kind of body cannot answer a question asked of it: it does not implement
+    that part of the :class:`plumbob.bodies.base.Body` interface (for example
+    ``contains`` or ``is_polytope``), so no answer is guessed."""

@@ -3,14 +3,26 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
 from ..errors import GeometryError
 from ..integrals.polygon import bulge_arc_geometry
 from ..massprops import MassProperties
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
+from .base import (
+    DEFAULT_DENSITY_NOTE,
+    Body,
+    DensityCells,
+    check_density,
+    contact_sampling,
+    density_words,
+    lowest,
+    measure_words,
+)
+from .containment import region_contains
 from .region import Region
+from .tiling import region_cells
 
 __all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia", "uniform_mass_properties"]
 
@@ -60,7 +72,7 @@ def lamina_mass_properties(
     return m.m0, origin + centre, central
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Lamina(Body):
     """A plane region with uniform areal density.
 
@@ -128,3 +140,27 @@ class Lamina(Body):
 
     def to_geometry(self, segments: int = 128):
         return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)), segments)
+
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        return region_contains(self.region, self._points(points), self._contains_tolerance(tolerance))
+
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        return 1e-6 * self.region.size if tolerance is None else float(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return not self.region.is_curved
+
+    def density_cells(self) -> DensityCells:
+        origin = self.region.local_origin()
+        return DensityCells(origin, self.region.size, partial(region_cells, self.region, origin),
+                            self.hull_points)
+
+    def densities(self) -> set:
+        return {None if self.density is None else self.areal_density}
+
+    def _describe(self) -> str:
+        thick = "" if self.thickness is None else f", thickness {self.thickness:.4g} m"
+        unit = "kg/m³" if self.thickness is not None else "kg/m²"
+        return f"{self.region.describe()}, {measure_words(self)}{thick}{density_words(self.density, unit)}"
