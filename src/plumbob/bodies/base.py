@@ -24,7 +24,33 @@ DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assum
 
 
 def check_density(density: float | None, what: str = "density") -> float | None:
-    """A density must be a positive finite number (or None: not given)."""
+    """A density as a float, checked: a positive finite number, or None (not given).
+
+    Parameters
+    ----------
+    density : float or None
+        kg/m³ (kg/m² for a lamina given by its areal density).
+    what : str
+        How to name the value in the error message.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    DensityError
+        Not a number, not finite, zero or negative.
+
+    Examples
+    --------
+    >>> check_density("2700"), check_density(None)
+    (2700.0, None)
+    >>> check_density(0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: --density must be a positive finite number, not 0
+    """
     if density is None:
         return None
     try:
@@ -43,13 +69,50 @@ def contact_sampling(tolerance: float, size: float) -> float:
     (a sphere's bottom) then stay above the tolerance and only the exact contact
     points count, while samples on a flat contact (a cylinder's base rim) are exactly
     at the lowest level whatever the sampling.
+
+    Parameters
+    ----------
+    tolerance : float
+        The contact tolerance, m.
+    size : float
+        The body's size, m.
+
+    Returns
+    -------
+    float
+        The sampling tolerance, m.
+
+    Examples
+    --------
+    >>> contact_sampling(1e-6, 1.0), contact_sampling(1e-4, 1.0)
+    (0.001, 0.0064)
     """
     return max(64 * tolerance, 1e-3 * size)
 
 
 def lowest(points: np.ndarray, down: np.ndarray, tolerance: float) -> np.ndarray:
-    """The distinct rows of ``points`` (n, d) within ``tolerance`` (m) of the lowest along
-    ``down``."""
+    """The distinct points within ``tolerance`` of the lowest along ``down``.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, d)
+        m.
+    down : ndarray, shape (d,)
+        A unit vector.
+    tolerance : float
+        m.
+
+    Returns
+    -------
+    ndarray, shape (k, d)
+        Sorted, without repeats (and without negative zeros).
+
+    Examples
+    --------
+    >>> pts = np.array([[1.0, 1e-9], [0.0, 0.0], [1.0, 1e-9], [0.5, 1.0]])
+    >>> lowest(pts, np.array([0.0, -1.0]), 1e-6).tolist()
+    [[0.0, 0.0], [1.0, 1e-09]]
+    """
     depth = points @ down
     return np.unique(points[depth >= depth.max() - tolerance] + 0.0, axis=0)
 
@@ -237,8 +300,13 @@ class Body(ABC):
 
 
 def measure_words(body: Body) -> str:
-    """``"area 1 m²"`` or ``"volume 0.5 m³"`` for a repr; ``"not a valid …"`` when the
-    body's mass properties cannot be computed."""
+    """The body's area or volume in words, for a repr; ``"no valid volume"`` (area) when
+    its mass properties cannot be computed (an open mesh), so a repr never raises.
+
+    >>> from plumbob.bodies.primitives import box, disc
+    >>> measure_words(box(1, 2, 3)), measure_words(disc(1))
+    ('volume 6 m³', 'area 3.14 m²')
+    """
     what = "area" if body.dim == 2 else "volume"
     try:
         measure = body.mass_properties().measure
@@ -248,7 +316,11 @@ def measure_words(body: Body) -> str:
 
 
 def density_words(density: float | None, unit: str = "kg/m³") -> str:
-    """``", density 2700 kg/m³"`` for a repr, or nothing when no density was given."""
+    """A density in words, for a repr, or nothing when no density was given.
+
+    >>> density_words(2700.0), density_words(None)
+    (', density 2700 kg/m³', '')
+    """
     return "" if density is None else f", density {density:.4g} {unit}"
 
 

@@ -355,7 +355,44 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
 
 
 def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
-    """The union: exact when the parts do not overlap."""
+    """The union of bodies: exact when the parts do not overlap.
+
+    Parameters
+    ----------
+    *bodies : Body
+        All laminas or all solids.
+    segments : int
+        Circular segments per turn when the parts overlap and the union is
+        computed on facets (then Richardson-extrapolated from ``segments`` and
+        ``segments / 2``; the result is marked not exact).
+
+    Returns
+    -------
+    Body
+        A :class:`Composite` (exact) when no two parts overlap, else a
+        :class:`Faceted`; a single body is returned as it is.
+
+    Raises
+    ------
+    GeometryError
+        Laminas mixed with solids, or overlapping parts of different densities.
+    DensityError
+        Overlapping parts with a density field.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import box, disc
+    >>> two = union(box(1, 1, 1), box(1, 1, 1).translated([2, 0, 0]))
+    >>> type(two).__name__, two.mass_properties().exact, two.mass_properties().measure
+    ('Composite', True, 2.0)
+    >>> lens = union(disc(1), disc(1).translated([1, 0]))
+    >>> type(lens).__name__, lens.mass_properties().exact
+    ('Faceted', False)
+    >>> union(disc(1), box(1, 1, 1))
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: a boolean needs all laminas or all solids
+    """
     if len(bodies) == 1:
         return bodies[0]
     dim = _same_dim(bodies)
@@ -403,6 +440,33 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
     (and the holes do not overlap each other); a hole wholly outside is ignored.
 
     A hole with no density of its own weighs what it is cut from.
+
+    Parameters
+    ----------
+    body : Body
+        What the holes are cut from.
+    *holes : Body
+        Of the same dimension as ``body``.
+    segments : int
+        Circular segments per turn when a hole crosses the boundary and the
+        difference is computed on facets (see :func:`union`).
+
+    Returns
+    -------
+    Body
+        A :class:`Composite` (holes as negative parts) when exact, ``body``
+        itself when no hole touches it, else a :class:`Faceted`.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import rectangle, disc
+    >>> washer = difference(rectangle(4, 4, density=2.0), disc(1).translated([2, 2]))
+    >>> props = washer.mass_properties()
+    >>> props.exact, bool(np.isclose(props.mass, 2 * (16 - np.pi), rtol=1e-15))
+    (True, True)
+    >>> plate = rectangle(1, 1)
+    >>> difference(plate, disc(0.1).translated([5, 5])) is plate   # a hole outside: ignored
+    True
     """
     dim = _same_dim((body,) + holes)
     parent = leaf_densities(body)
@@ -441,7 +505,32 @@ def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int) -> B
 
 
 def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
-    """The common part: exact when one part lies inside all the others."""
+    """The common part of bodies: exact when one part lies inside all the others.
+
+    Parameters
+    ----------
+    *bodies : Body
+        All laminas or all solids.
+    segments : int
+        Circular segments per turn when computed on facets (see :func:`union`).
+
+    Returns
+    -------
+    Body
+        The innermost body itself when one lies inside all the others, else a
+        :class:`Faceted`.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import disc
+    >>> small = disc(1)
+    >>> intersection(disc(2), small) is small
+    True
+    >>> intersection(disc(1), disc(1).translated([5, 0]))
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the intersection is empty: the parts do not overlap
+    """
     if len(bodies) == 1:
         return bodies[0]
     dim = _same_dim(bodies)

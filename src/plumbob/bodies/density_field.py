@@ -151,6 +151,10 @@ class DensityField:
         """The field seen from a body placed by ``p ↦ matrix @ p + offset``: ``p ↦ f(M p + o)``.
 
         An affine substitution keeps the polynomial degree.
+
+        >>> f = DensityField.from_expression("1 + x").composed(np.eye(2), np.array([2.0, 0.0]))
+        >>> f.degree, f(np.array([[0.0, 0.0]])).tolist()   # the body's origin sits at x = 2
+        (1, [3.0])
         """
         matrix = np.asarray(matrix, dtype=float)
         offset = np.asarray(offset, dtype=float)
@@ -162,7 +166,16 @@ class DensityField:
         return DensityField(function, self.degree, self.text)
 
     def scaled(self, factor: float) -> DensityField:
-        """Every value multiplied by ``factor`` (> 0)."""
+        """Every value multiplied by ``factor`` (> 0): a lamina's thickness turns kg/m³
+        into kg/m².
+
+        >>> DensityField.from_expression("2 + x").scaled(0.5)(np.array([[2.0, 0.0]])).tolist()
+        [2.0]
+        >>> DensityField.from_expression("x").scaled(0)
+        Traceback (most recent call last):
+        ...
+        plumbob.errors.DensityError: a density scale must be a positive number, not 0
+        """
         factor = float(factor)
         if not (np.isfinite(factor) and factor > 0):
             raise DensityError(f"a density scale must be a positive number, not {factor:g}")

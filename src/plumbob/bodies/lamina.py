@@ -28,7 +28,27 @@ __all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia", "uni
 
 
 def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
-    """Inertia tensor (3, 3) from central second moments ``∫ r rᵀ dm`` (2, 2) or (3, 3)."""
+    """The inertia tensor ``tr(C) 1 − C`` from second moments ``C = ∫ r rᵀ dm``.
+
+    Parameters
+    ----------
+    central : ndarray, shape (2, 2) or (3, 3)
+        kg·m²; a plane body's (2, 2) moments lie in z = 0.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        kg·m².
+
+    Examples
+    --------
+    A unit mass at (1, 0): no inertia about x, 1 about y and z.
+
+    >>> second_moments_to_inertia(np.array([[1.0, 0.0], [0.0, 0.0]]))
+    array([[0., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
     c = np.zeros((3, 3))
     n = central.shape[0]
     c[:n, :n] = central
@@ -46,8 +66,33 @@ def uniform_mass_properties(
     relative_error: float = 0.0,
     note: str | None = None,
 ) -> MassProperties:
-    """Mass properties of a uniform body from its size (m² or m³), centre and central
-    second moments ``∫ r rᵀ`` of the region; ``density`` None means not given (1)."""
+    """Mass properties of a uniform body from its geometry's moments.
+
+    Parameters
+    ----------
+    dim : int
+        2 (lamina) or 3 (solid).
+    measure : float
+        Area, m², or volume, m³.
+    centre : ndarray, shape (dim,)
+        The centroid, m.
+    central : ndarray, shape (dim, dim)
+        ``∫ r rᵀ`` over the region about the centroid (m⁴ or m⁵).
+    density : float or None
+        kg/m² or kg/m³; None: not given, 1 is used and a note says so.
+    exact, relative_error, note
+        Carried into the result.
+
+    Returns
+    -------
+    MassProperties
+
+    Examples
+    --------
+    >>> p = uniform_mass_properties(2, 2.0, np.array([1.0, 0.5]), np.eye(2), None)
+    >>> p.mass, p.notes
+    (2.0, ('no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed',))
+    """
     rho = 1.0 if density is None else density
     notes = [] if density is not None else [DEFAULT_DENSITY_NOTE]
     if note:
@@ -59,7 +104,35 @@ def uniform_mass_properties(
 def lamina_mass_properties(
     region: Region, areal_density: float
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
+    """The exact area moments of a region.
+
+    Parameters
+    ----------
+    region : Region
+    areal_density : float
+        Not used: the moments are of the region alone.
+
+    Returns
+    -------
+    area : float
+        m².
+    centre : ndarray, shape (2,)
+        m.
+    central : ndarray, shape (2, 2)
+        ``∫ r rᵀ dA`` about the centre, m⁴.
+
+    Raises
+    ------
+    GeometryError
+        A region with no area, or rings running the wrong way.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import rectangle_region
+    >>> area, centre, central = lamina_mass_properties(rectangle_region(2, 1), 1.0)
+    >>> area, centre.tolist(), central.round(12).tolist()   # b h³/12 about the centre
+    (2.0, [1.0, 0.5], [[0.666666666667, 0.0], [0.0, 0.166666666667]])
+    """
     origin = region.local_origin()
     m = region.moments(origin)
     if not m.m0 > 0:

@@ -109,11 +109,33 @@ def _tri_area(t: np.ndarray) -> float:
 
 
 def region_cells(region: Region, origin: np.ndarray) -> list[Cells]:
-    """Signed cells tiling ``region`` (coordinates relative to ``origin`` (2,), m).
+    """Signed cells tiling a plane region.
 
     Triangles of the chord polygon, one :class:`ArcCells` per circular edge (plus
     a rectangle of two triangles for a cap larger than a half disc) and one
     :class:`BezierCells` per Bézier edge.
+
+    Parameters
+    ----------
+    region : Region
+    origin : ndarray, shape (2,)
+        m: the cells' coordinates are relative to it.
+
+    Returns
+    -------
+    list of Cells
+        Their signed sum is the region.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import disc_region, rectangle_region
+    >>> [(type(c).__name__, len(c)) for c in region_cells(rectangle_region(2, 1), np.zeros(2))]
+    [('SimplexCells', 2)]
+
+    A disc's chord polygon (two vertices) has no area: two half-disc caps tile it.
+
+    >>> [(type(c).__name__, len(c)) for c in region_cells(disc_region(1), np.zeros(2))]
+    [('SimplexCells', 0), ('ArcCells', 2)]
     """
     origin = np.asarray(origin, dtype=float)
     tris = [_chord_triangles(region)]
