@@ -36,8 +36,24 @@ __all__ = [
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
 
 
+class _OfParts(Body):
+    """What a body made of parts answers from its parts."""
+
+    parts: tuple[Body, ...]
+
+    def with_default_density(self, density: float) -> Body:
+        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
+
+    @property
+    def is_polytope(self) -> bool:
+        return all(part.is_polytope for part in self.parts)
+
+    def densities(self) -> set:
+        return set().union(*(p.densities() for p in self.parts))
+
+
 @dataclass(frozen=True, eq=False, repr=False)
-class Composite(Body):
+class Composite(_OfParts):
     """Parts of one body combined exactly: ``signs`` +1 adds a part, −1 removes a hole.
 
     The parts must not overlap (added ones) and each hole must lie inside the
@@ -78,9 +94,6 @@ class Composite(Body):
         pts = np.concatenate([p.support_points(down, tolerance) for p in self._added()])
         return lowest(pts, np.asarray(down, dtype=float), tolerance)
 
-    def with_default_density(self, density: float) -> Body:
-        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
-
     def to_geometry(self, segments: int = 128):
         added = [p.to_geometry(segments) for p, s in zip(self.parts, self.signs) if s > 0]
         removed = [p.to_geometry(segments) for p, s in zip(self.parts, self.signs) if s < 0]
@@ -105,13 +118,6 @@ class Composite(Body):
                 inside &= ~part.contains(pts, -part._contains_tolerance(tolerance))
         return inside
 
-    @property
-    def is_polytope(self) -> bool:
-        return all(part.is_polytope for part in self.parts)
-
-    def densities(self) -> set:
-        return set().union(*(p.densities() for p in self.parts))
-
     def graded(self, grader: Grader) -> Body:
         holes = tuple(p for p, s in zip(self.parts, self.signs) if s < 0)
         return replace(self, parts=tuple(p.graded(grader.part(s < 0, holes))
@@ -125,7 +131,7 @@ class Composite(Body):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Assembly(Body):
+class Assembly(_OfParts):
     """Separate parts, each its own body and material, reported part by part.
 
     Unlike a :class:`Composite`, an assembly keeps its parts' identities: the
@@ -169,9 +175,6 @@ class Assembly(Body):
         ]
         return lowest(np.concatenate(pts), down, tolerance)
 
-    def with_default_density(self, density: float) -> Body:
-        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
-
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         """In any part; a lamina in a solid assembly lies in z = 0 (within its tolerance)."""
@@ -183,13 +186,6 @@ class Assembly(Body):
             if flat.any():
                 inside[flat] |= part.contains(pts[flat, :part.dim], tol)
         return inside
-
-    @property
-    def is_polytope(self) -> bool:
-        return all(part.is_polytope for part in self.parts)
-
-    def densities(self) -> set:
-        return set().union(*(p.densities() for p in self.parts))
 
     def graded(self, grader: Grader) -> Body:
         return replace(self, parts=tuple(p.graded(grader.separate()) for p in self.parts))
