@@ -22,7 +22,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args(argv)
 
-    from plumbob.bodies.graded import DensityField, with_density_field
+    from plumbob.bodies.density_field import DensityField
+    from plumbob.bodies.graded import with_density_field
     from plumbob.bodies.solid import MeshSolid
 
     tris = torus_triangles(args.triangles)

@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 
 from plumbob.bodies import primitives as prim
 from plumbob.bodies.csg import Assembly
-from plumbob.bodies.graded import DensityField, GradedLamina, with_density_field
+from plumbob.bodies.density_field import DensityField
+from plumbob.bodies.graded import GradedLamina, with_density_field
 from plumbob.cli import main
 from plumbob.loading import read
 from plumbob.materials import density_of

@@ -25,8 +25,8 @@ from polynomial_reference import (
 
 from plumbob.bodies import primitives as prim
 from plumbob.bodies.csg import Assembly, Composite, union
+from plumbob.bodies.density_field import DensityField
 from plumbob.bodies.graded import (
-    DensityField,
     GradedLamina,
     GradedSolid,
     with_density_field,

@@ -86,6 +86,12 @@ class DynamicsError(PlumbobError):
     """Bad input to a particle simulation or a collision."""
 
 
+class BodyQueryError(PlumbobError):
+    """A kind of body cannot answer a question asked of it: it does not implement
+    that part of the :class:`plumbob.bodies.base.Body` interface (for example
+    ``contains`` or ``is_polytope``), so no answer is guessed."""
+
+
 def fmt_point(point: np.ndarray) -> str:
     """``(x, y[, z])`` with 6 significant digits: how messages name a point.
 

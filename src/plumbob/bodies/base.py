@@ -8,20 +8,49 @@ Downstream code (stability, energy, reports) uses only this interface.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Protocol
 
 import numpy as np
 
-from ..errors import DensityError, GeometryError
+from ..errors import BodyQueryError, DensityError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 
-__all__ = ["Body", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE", "lowest", "contact_sampling"]
+__all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE",
+           "lowest", "contact_sampling"]
 
 DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed"
 
 
 def check_density(density: float | None, what: str = "density") -> float | None:
-    """A density must be a positive finite number (or None: not given)."""
+    """A density as a float, checked: a positive finite number, or None (not given).
+
+    Parameters
+    ----------
+    density : float or None
+        kg/m³ (kg/m² for a lamina given by its areal density).
+    what : str
+        How to name the value in the error message.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    DensityError
+        Not a number, not finite, zero or negative.
+
+    Examples
+    --------
+    >>> check_density("2700"), check_density(None)
+    (2700.0, None)
+    >>> check_density(0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: --density must be a positive finite number, not 0
+    """
     if density is None:
         return None
     try:
@@ -40,22 +69,69 @@ def contact_sampling(tolerance: float, size: float) -> float:
     (a sphere's bottom) then stay above the tolerance and only the exact contact
     points count, while samples on a flat contact (a cylinder's base rim) are exactly
     at the lowest level whatever the sampling.
+
+    Parameters
+    ----------
+    tolerance : float
+        The contact tolerance, m.
+    size : float
+        The body's size, m.
+
+    Returns
+    -------
+    float
+        The sampling tolerance, m.
+
+    Examples
+    --------
+    >>> contact_sampling(1e-6, 1.0), contact_sampling(1e-4, 1.0)
+    (0.001, 0.0064)
     """
     return max(64 * tolerance, 1e-3 * size)
 
 
 def lowest(points: np.ndarray, down: np.ndarray, tolerance: float) -> np.ndarray:
-    """The distinct rows of ``points`` (n, d) within ``tolerance`` (m) of the lowest along
-    ``down``."""
+    """The distinct points within ``tolerance`` of the lowest along ``down``.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, d)
+        m.
+    down : ndarray, shape (d,)
+        A unit vector.
+    tolerance : float
+        m.
+
+    Returns
+    -------
+    ndarray, shape (k, d)
+        Sorted, without repeats (and without negative zeros).
+
+    Examples
+    --------
+    >>> pts = np.array([[1.0, 1e-9], [0.0, 0.0], [1.0, 1e-9], [0.5, 1.0]])
+    >>> lowest(pts, np.array([0.0, -1.0]), 1e-6).tolist()
+    [[0.0, 0.0], [1.0, 1e-09]]
+    """
     depth = points @ down
     return np.unique(points[depth >= depth.max() - tolerance] + 0.0, axis=0)
 
 
 class Body(ABC):
-    """A lamina, solid, particle system or assembly.
+    """A lamina, solid, particle system or assembly: what every body answers.
 
     kind: ``"lamina"``, ``"solid"``, ``"particles"`` or ``"assembly"``.
     dim: 2 for laminas (their own plane), 3 otherwise.
+
+    Other rooms ask a body questions instead of testing its type: its mass
+    properties, its hull and contact points (stability), which points it
+    contains, whether its hull points are exact (:attr:`is_polytope`), the cells
+    a density field over it is integrated on (:meth:`density_cells`), the
+    densities of its parts (:meth:`densities`) and how it takes a density field
+    (:meth:`graded`). A kind of body that cannot answer one raises
+    :class:`~plumbob.errors.BodyQueryError` (or, where the question has a
+    physical no, a :class:`~plumbob.errors.DensityError` or
+    :class:`~plumbob.errors.GeometryError` saying why): nothing is guessed.
     """
 
     kind: str
@@ -92,6 +168,7 @@ class Body(ABC):
         )
 
     def translated(self, offset: np.ndarray | list[float]) -> Body:
+        """This body moved by ``offset`` (dim,), m."""
         return self.transformed(np.eye(self.dim), np.asarray(offset, dtype=float))
 
     @property
@@ -109,8 +186,191 @@ class Body(ABC):
         manifold3d ``Manifold`` (solids), curves cut into ``segments`` per turn."""
         raise GeometryError(f"a {self.kind} has no shape for boolean operations")
 
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        """Which points lie in the body or on its boundary.
+
+        Parameters
+        ----------
+        points : array_like, shape (m, dim) or (dim,)
+            m, in the body's frame.
+        tolerance : float, optional
+            m. Points within it of the body count as inside; a negative value
+            asks for points at least that far inside. Default: 1e-6 of the
+            body's size.
+
+        Returns
+        -------
+        ndarray of bool, shape (m,)
+
+        Raises
+        ------
+        BodyQueryError
+            When this kind of body does not implement the test.
+
+        Examples
+        --------
+        >>> from plumbob.bodies.primitives import disc
+        >>> disc(1).contains([[0, 0], [1, 0], [1, 1]]).tolist()
+        [True, True, False]
+        """
+        raise BodyQueryError(f"a {type(self).__name__} cannot tell which points it contains")
+
+    def _points(self, points: np.ndarray) -> np.ndarray:
+        """``points`` as an (m, dim) float array, checked."""
+        pts = np.atleast_2d(np.asarray(points, dtype=float))
+        if pts.ndim != 2 or pts.shape[1] != self.dim:
+            raise GeometryError(f"a {self.dim}D body takes points with {self.dim} coordinates, "
+                                f"not an array of shape {np.shape(points)}")
+        return pts
+
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        """The tolerance of :meth:`contains`, m: the one given, else 1e-6 of the size."""
+        return 1e-6 * self.size if tolerance is None else float(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        """Whether :meth:`hull_points` are exact: the vertices of the body's convex hull,
+        with no curved boundary sampled (meshes, polygons, prisms of polygons,
+        particles, and placements and unions of them).
+
+        Examples
+        --------
+        >>> from plumbob.bodies.primitives import box, cylinder
+        >>> box(1, 1, 1).is_polytope, cylinder(1, 1).is_polytope
+        (True, False)
+        """
+        raise BodyQueryError(f"a {type(self).__name__} cannot tell whether its hull points are exact")
+
+    def density_cells(self) -> DensityCells:
+        """Where a density field over this body is integrated (see :class:`DensityCells`).
+
+        Only bodies of one piece of geometry have cells (laminas, meshes, prisms,
+        solids of revolution); placements and bodies of parts take a field part
+        by part (:meth:`graded`).
+
+        Raises
+        ------
+        BodyQueryError
+            When this kind of body does not implement it.
+        DensityError
+            When no density field can be given to it (particles).
+
+        Examples
+        --------
+        >>> from plumbob.bodies.primitives import rectangle
+        >>> rectangle(2, 1).density_cells()
+        <DensityCells about (0, 0), size 2.24 m>
+        """
+        raise BodyQueryError(f"a density field cannot be integrated over a {type(self).__name__}")
+
+    def densities(self) -> set:
+        """The densities of the body's parts: kg/m³, areal kg/m² for laminas, None where
+        not given, ``"field"`` for a density field; empty for particles (their
+        masses are given).
+
+        Examples
+        --------
+        >>> from plumbob.bodies.primitives import box, rectangle
+        >>> box(1, 1, 1, density=2.0).densities(), rectangle(1, 1, density=3, thickness=0.5).densities()
+        ({2.0}, {1.5})
+        """
+        raise BodyQueryError(f"a {type(self).__name__} cannot tell the densities of its parts")
+
+    def graded(self, grader: Grader) -> Body:
+        """This body with a density field, as ``grader`` gives it (see
+        :func:`plumbob.bodies.graded.with_density_field`, which makes the grader).
+
+        A body with :meth:`density_cells` becomes one graded body; bodies made of
+        parts (placements, composites, assemblies) override this to grade each
+        part, telling the grader where the part sits.
+        """
+        self.density_cells()  # a body that cannot carry a field says so now
+        return grader.leaf(self)
+
+    # ------------------------------------------------------------ printing
+    def __repr__(self) -> str:
+        name = f" {self.name!r}" if self.name else ""
+        text = self._describe()
+        return f"<{type(self).__name__}{name}{' ' if text else ''}{text}>"
+
+    def _describe(self) -> str:
+        """A few words saying what the body is, for its repr: never its arrays."""
+        return f"{self.dim}D {self.kind}"
+
+
+def measure_words(body: Body) -> str:
+    """The body's area or volume in words, for a repr; ``"no valid volume"`` (area) when
+    its mass properties cannot be computed (an open mesh), so a repr never raises.
+
+    >>> from plumbob.bodies.primitives import box, disc
+    >>> measure_words(box(1, 2, 3)), measure_words(disc(1))
+    ('volume 6 m³', 'area 3.14 m²')
+    """
+    what = "area" if body.dim == 2 else "volume"
+    try:
+        measure = body.mass_properties().measure
+    except PlumbobError:
+        return f"no valid {what}"
+    return f"{what} {measure:.3g} {'m²' if body.dim == 2 else 'm³'}"
+
+
+def density_words(density: float | None, unit: str = "kg/m³") -> str:
+    """A density in words, for a repr, or nothing when no density was given.
+
+    >>> density_words(2700.0), density_words(None)
+    (', density 2700 kg/m³', '')
+    """
+    return "" if density is None else f", density {density:.4g} {unit}"
+
 
 @dataclass(frozen=True, eq=False)
+class DensityCells:
+    """Where a density field over a body is integrated: what :meth:`Body.density_cells` gives.
+
+    origin: (dim,) m, a point near the body; the cells' coordinates are relative
+        to it, so products stay small.
+    size: m, the body's size, which scales the adaptive integration.
+    tiles: builds the signed cells (:class:`plumbob.integrals.cells.Cells`)
+        that tile the body; called when integrating, it may raise a
+        :class:`GeometryError` (an open mesh).
+    corners: builds points (n, dim) on the body's boundary, where the field is
+        checked before integrating.
+    triangles: the closed mesh (n, 3, 3) bounding the body, when it is one: a
+        polynomial field is then integrated in one pass over it
+        (:func:`plumbob.integrals.mesh.mesh_field_moments`).
+    """
+
+    origin: np.ndarray
+    size: float
+    tiles: Callable[[], list]
+    corners: Callable[[], np.ndarray]
+    triangles: np.ndarray | None = None
+
+    def __repr__(self) -> str:
+        where = ", ".join(f"{v:.3g}" for v in self.origin)
+        return f"<DensityCells about ({where}), size {self.size:.3g} m>"
+
+
+class Grader(Protocol):
+    """How a density field is given to a body, part by part (implemented by
+    :func:`plumbob.bodies.graded.with_density_field`; bodies only call it)."""
+
+    def leaf(self, body: Body) -> Body:
+        """``body`` — one that has :meth:`Body.density_cells` — with the field."""
+
+    def placed(self, matrix: np.ndarray, offset: np.ndarray) -> Grader:
+        """The grader for the body inside a placement ``x ↦ matrix @ x + offset``."""
+
+    def part(self, removed: bool, holes: tuple[Body, ...]) -> Grader:
+        """The grader for one part of a composite (``removed``: a hole), whose
+        ``holes`` are not in its added parts."""
+
+    def separate(self) -> Grader:
+        """The grader for one part of an assembly (a body of its own)."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class Transformed(Body):
     """A body placed by a rigid motion: ``x ↦ matrix @ x + offset``."""
 
@@ -165,3 +425,24 @@ class Transformed(Body):
             )
         affine = np.hstack((self.matrix, self.offset[:, None]))
         return inner.transform(affine)
+
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        return self.body.contains((self._points(points) - self.offset) @ self.matrix, tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return self.body.is_polytope
+
+    def densities(self) -> set:
+        return self.body.densities()
+
+    def graded(self, grader: Grader) -> Body:
+        return replace(self, body=self.body.graded(grader.placed(self.matrix, self.offset)))
+
+    def _describe(self) -> str:
+        moves = []
+        if not np.array_equal(self.matrix, np.eye(self.dim)):
+            moves.append("mirrored" if np.linalg.det(self.matrix) < 0 else "turned")
+        if np.any(self.offset):
+            moves.append("moved by (" + ", ".join(f"{v:.4g}" for v in self.offset) + ")")
+        return f"{self.body!r} {' and '.join(moves) or 'in place'}"

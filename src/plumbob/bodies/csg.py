@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties, combine
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, lowest
+from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
 
 __all__ = [
     "Composite",
@@ -36,8 +36,24 @@ __all__ = [
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
 
 
-@dataclass(frozen=True, eq=False)
-class Composite(Body):
+class _OfParts(Body):
+    """What a body made of parts answers from its parts."""
+
+    parts: tuple[Body, ...]
+
+    def with_default_density(self, density: float) -> Body:
+        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
+
+    @property
+    def is_polytope(self) -> bool:
+        return all(part.is_polytope for part in self.parts)
+
+    def densities(self) -> set:
+        return set().union(*(p.densities() for p in self.parts))
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Composite(_OfParts):
     """Parts of one body combined exactly: ``signs`` +1 adds a part, −1 removes a hole.
 
     The parts must not overlap (added ones) and each hole must lie inside the
@@ -78,9 +94,6 @@ class Composite(Body):
         pts = np.concatenate([p.support_points(down, tolerance) for p in self._added()])
         return lowest(pts, np.asarray(down, dtype=float), tolerance)
 
-    def with_default_density(self, density: float) -> Body:
-        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
-
     def to_geometry(self, segments: int = 128):
         added = [p.to_geometry(segments) for p, s in zip(self.parts, self.signs) if s > 0]
         removed = [p.to_geometry(segments) for p, s in zip(self.parts, self.signs) if s < 0]
@@ -92,9 +105,33 @@ class Composite(Body):
         result = _manifold_union(added)
         return result - _manifold_union(removed) if removed else result
 
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        """In an added part (within ``tolerance``) and not inside a hole (by more than
+        ``tolerance``): a hole's rim stays on the body."""
+        pts = self._points(points)
+        inside = np.zeros(len(pts), dtype=bool)
+        for part in self._added():
+            inside |= part.contains(pts, tolerance)
+        for part, sign in zip(self.parts, self.signs):
+            if sign < 0 and inside.any():
+                inside &= ~part.contains(pts, -part._contains_tolerance(tolerance))
+        return inside
 
-@dataclass(frozen=True, eq=False)
-class Assembly(Body):
+    def graded(self, grader: Grader) -> Body:
+        holes = tuple(p for p, s in zip(self.parts, self.signs) if s < 0)
+        return replace(self, parts=tuple(p.graded(grader.part(s < 0, holes))
+                                         for p, s in zip(self.parts, self.signs)))
+
+    def _describe(self) -> str:
+        removed = sum(1 for s in self.signs if s < 0)
+        added = len(self.parts) - removed
+        holes = f" less {removed} hole{'s' if removed > 1 else ''}" if removed else ""
+        return f"{self.kind} of {added} part{'s' if added > 1 else ''}{holes}"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Assembly(_OfParts):
     """Separate parts, each its own body and material, reported part by part.
 
     Unlike a :class:`Composite`, an assembly keeps its parts' identities: the
@@ -138,8 +175,25 @@ class Assembly(Body):
         ]
         return lowest(np.concatenate(pts), down, tolerance)
 
-    def with_default_density(self, density: float) -> Body:
-        return replace(self, parts=tuple(p.with_default_density(density) for p in self.parts))
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        """In any part; a lamina in a solid assembly lies in z = 0 (within its tolerance)."""
+        pts = self._points(points)
+        inside = np.zeros(len(pts), dtype=bool)
+        for part in self.parts:
+            tol = part._contains_tolerance(tolerance)
+            flat = np.all(np.abs(pts[:, part.dim:]) <= tol, axis=1)
+            if flat.any():
+                inside[flat] |= part.contains(pts[flat, :part.dim], tol)
+        return inside
+
+    def graded(self, grader: Grader) -> Body:
+        return replace(self, parts=tuple(p.graded(grader.separate()) for p in self.parts))
+
+    def _describe(self) -> str:
+        names = [repr(p.name) for p in self.parts[:3] if p.name]
+        listed = f": {', '.join(names)}{', …' if len(self.parts) > 3 else ''}" if names else ""
+        return f"of {len(self.parts)} part{'s' if len(self.parts) > 1 else ''}{listed}"
 
 
 # ------------------------------------------------------------------ booleans
@@ -175,7 +229,7 @@ def _slack(bodies: tuple[Body, ...], geometries: list, dim: int, segments: int) 
     return abs(exact - faceted) + 1e-9 * exact
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Faceted(Body):
     """The result of a boolean computed on facets.
 
@@ -220,6 +274,33 @@ class Faceted(Body):
 
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))
+
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        """Which points lie in the faceted shape (curves cut into chords; see ``note``)."""
+        return self.shape.contains(points, tolerance)
+
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        return self.shape._contains_tolerance(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return self.shape.is_polytope
+
+    def densities(self) -> set:
+        return {self.density}
+
+    def density_cells(self) -> DensityCells:
+        raise DensityError(
+            "a density field cannot be integrated over the faceted result of a boolean of "
+            "overlapping parts: give the field to a body whose parts do not overlap")
+
+    def _describe(self) -> str:
+        what = "area" if self.dim == 2 else "volume"
+        unit = "m²" if self.dim == 2 else "m³"
+        kgs = "kg/m²" if self.dim == 2 else "kg/m³"
+        return (f"{self.kind} from a boolean on facets, {what} {self.unit_properties.measure:.3g} "
+                f"{unit}{density_words(self.density, kgs)}, relative error {self.relative_error:.1e}")
 
 
 def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
@@ -270,7 +351,44 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
 
 
 def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
-    """The union: exact when the parts do not overlap."""
+    """The union of bodies: exact when the parts do not overlap.
+
+    Parameters
+    ----------
+    *bodies : Body
+        All laminas or all solids.
+    segments : int
+        Circular segments per turn when the parts overlap and the union is
+        computed on facets (then Richardson-extrapolated from ``segments`` and
+        ``segments / 2``; the result is marked not exact).
+
+    Returns
+    -------
+    Body
+        A :class:`Composite` (exact) when no two parts overlap, else a
+        :class:`Faceted`; a single body is returned as it is.
+
+    Raises
+    ------
+    GeometryError
+        Laminas mixed with solids, or overlapping parts of different densities.
+    DensityError
+        Overlapping parts with a density field.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import box, disc
+    >>> two = union(box(1, 1, 1), box(1, 1, 1).translated([2, 0, 0]))
+    >>> type(two).__name__, two.mass_properties().exact, two.mass_properties().measure
+    ('Composite', True, 2.0)
+    >>> lens = union(disc(1), disc(1).translated([1, 0]))
+    >>> type(lens).__name__, lens.mass_properties().exact
+    ('Faceted', False)
+    >>> union(disc(1), box(1, 1, 1))
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: a boolean needs all laminas or all solids
+    """
     if len(bodies) == 1:
         return bodies[0]
     dim = _same_dim(bodies)
@@ -291,17 +409,26 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
 
 
 def leaf_densities(body: Body) -> set:
-    """The densities of a body's parts: kg/m³, areal kg/m² for laminas, None where not
-    given, "field" for a density field."""
-    from .lamina import Lamina
+    """The densities of a body's parts (see :meth:`Body.densities`): kg/m³, areal kg/m² for
+    laminas, None where not given, "field" for a density field.
 
-    parts = getattr(body, "parts", None)
-    if parts is not None:
-        return set().union(*(leaf_densities(p) for p in parts))
-    inner = getattr(body, "body", body)
-    if isinstance(inner, Lamina):
-        return {None if inner.density is None else inner.areal_density}
-    return {getattr(inner, "density", "field")}
+    Parameters
+    ----------
+    body : Body
+
+    Returns
+    -------
+    set
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import box, sphere
+    >>> sorted(leaf_densities(Assembly((box(1, 1, 1, density=2), sphere(1, density=5)))))
+    [2.0, 5.0]
+    >>> leaf_densities(box(1, 1, 1))
+    {None}
+    """
+    return body.densities()
 
 
 def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
@@ -309,6 +436,33 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
     (and the holes do not overlap each other); a hole wholly outside is ignored.
 
     A hole with no density of its own weighs what it is cut from.
+
+    Parameters
+    ----------
+    body : Body
+        What the holes are cut from.
+    *holes : Body
+        Of the same dimension as ``body``.
+    segments : int
+        Circular segments per turn when a hole crosses the boundary and the
+        difference is computed on facets (see :func:`union`).
+
+    Returns
+    -------
+    Body
+        A :class:`Composite` (holes as negative parts) when exact, ``body``
+        itself when no hole touches it, else a :class:`Faceted`.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import rectangle, disc
+    >>> washer = difference(rectangle(4, 4, density=2.0), disc(1).translated([2, 2]))
+    >>> props = washer.mass_properties()
+    >>> props.exact, bool(np.isclose(props.mass, 2 * (16 - np.pi), rtol=1e-15))
+    (True, True)
+    >>> plate = rectangle(1, 1)
+    >>> difference(plate, disc(0.1).translated([5, 5])) is plate   # a hole outside: ignored
+    True
     """
     dim = _same_dim((body,) + holes)
     parent = leaf_densities(body)
@@ -347,7 +501,32 @@ def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int) -> B
 
 
 def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
-    """The common part: exact when one part lies inside all the others."""
+    """The common part of bodies: exact when one part lies inside all the others.
+
+    Parameters
+    ----------
+    *bodies : Body
+        All laminas or all solids.
+    segments : int
+        Circular segments per turn when computed on facets (see :func:`union`).
+
+    Returns
+    -------
+    Body
+        The innermost body itself when one lies inside all the others, else a
+        :class:`Faceted`.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import disc
+    >>> small = disc(1)
+    >>> intersection(disc(2), small) is small
+    True
+    >>> intersection(disc(1), disc(1).translated([5, 0]))
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the intersection is empty: the parts do not overlap
+    """
     if len(bodies) == 1:
         return bodies[0]
     dim = _same_dim(bodies)

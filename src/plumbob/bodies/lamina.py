@@ -3,20 +3,52 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
 from ..errors import GeometryError
 from ..integrals.polygon import bulge_arc_geometry
 from ..massprops import MassProperties
-from .base import DEFAULT_DENSITY_NOTE, Body, check_density, contact_sampling, lowest
+from .base import (
+    DEFAULT_DENSITY_NOTE,
+    Body,
+    DensityCells,
+    check_density,
+    contact_sampling,
+    density_words,
+    lowest,
+    measure_words,
+)
+from .containment import region_contains
 from .region import Region
+from .tiling import region_cells
 
 __all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia", "uniform_mass_properties"]
 
 
 def second_moments_to_inertia(central: np.ndarray) -> np.ndarray:
-    """Inertia tensor (3, 3) from central second moments ``∫ r rᵀ dm`` (2, 2) or (3, 3)."""
+    """The inertia tensor ``tr(C) 1 − C`` from second moments ``C = ∫ r rᵀ dm``.
+
+    Parameters
+    ----------
+    central : ndarray, shape (2, 2) or (3, 3)
+        kg·m²; a plane body's (2, 2) moments lie in z = 0.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        kg·m².
+
+    Examples
+    --------
+    A unit mass at (1, 0): no inertia about x, 1 about y and z.
+
+    >>> second_moments_to_inertia(np.array([[1.0, 0.0], [0.0, 0.0]]))
+    array([[0., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
     c = np.zeros((3, 3))
     n = central.shape[0]
     c[:n, :n] = central
@@ -34,8 +66,33 @@ def uniform_mass_properties(
     relative_error: float = 0.0,
     note: str | None = None,
 ) -> MassProperties:
-    """Mass properties of a uniform body from its size (m² or m³), centre and central
-    second moments ``∫ r rᵀ`` of the region; ``density`` None means not given (1)."""
+    """Mass properties of a uniform body from its geometry's moments.
+
+    Parameters
+    ----------
+    dim : int
+        2 (lamina) or 3 (solid).
+    measure : float
+        Area, m², or volume, m³.
+    centre : ndarray, shape (dim,)
+        The centroid, m.
+    central : ndarray, shape (dim, dim)
+        ``∫ r rᵀ`` over the region about the centroid (m⁴ or m⁵).
+    density : float or None
+        kg/m² or kg/m³; None: not given, 1 is used and a note says so.
+    exact, relative_error, note
+        Carried into the result.
+
+    Returns
+    -------
+    MassProperties
+
+    Examples
+    --------
+    >>> p = uniform_mass_properties(2, 2.0, np.array([1.0, 0.5]), np.eye(2), None)
+    >>> p.mass, p.notes
+    (2.0, ('no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed',))
+    """
     rho = 1.0 if density is None else density
     notes = [] if density is not None else [DEFAULT_DENSITY_NOTE]
     if note:
@@ -47,7 +104,35 @@ def uniform_mass_properties(
 def lamina_mass_properties(
     region: Region, areal_density: float
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
+    """The exact area moments of a region.
+
+    Parameters
+    ----------
+    region : Region
+    areal_density : float
+        Not used: the moments are of the region alone.
+
+    Returns
+    -------
+    area : float
+        m².
+    centre : ndarray, shape (2,)
+        m.
+    central : ndarray, shape (2, 2)
+        ``∫ r rᵀ dA`` about the centre, m⁴.
+
+    Raises
+    ------
+    GeometryError
+        A region with no area, or rings running the wrong way.
+
+    Examples
+    --------
+    >>> from plumbob.bodies.primitives import rectangle_region
+    >>> area, centre, central = lamina_mass_properties(rectangle_region(2, 1), 1.0)
+    >>> area, centre.tolist(), central.round(12).tolist()   # b h³/12 about the centre
+    (2.0, [1.0, 0.5], [[0.666666666667, 0.0], [0.0, 0.166666666667]])
+    """
     origin = region.local_origin()
     m = region.moments(origin)
     if not m.m0 > 0:
@@ -60,7 +145,7 @@ def lamina_mass_properties(
     return m.m0, origin + centre, central
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Lamina(Body):
     """A plane region with uniform areal density.
 
@@ -128,3 +213,27 @@ class Lamina(Body):
 
     def to_geometry(self, segments: int = 128):
         return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)), segments)
+
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        return region_contains(self.region, self._points(points), self._contains_tolerance(tolerance))
+
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        return 1e-6 * self.region.size if tolerance is None else float(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return not self.region.is_curved
+
+    def density_cells(self) -> DensityCells:
+        origin = self.region.local_origin()
+        return DensityCells(origin, self.region.size, partial(region_cells, self.region, origin),
+                            self.hull_points)
+
+    def densities(self) -> set:
+        return {None if self.density is None else self.areal_density}
+
+    def _describe(self) -> str:
+        thick = "" if self.thickness is None else f", thickness {self.thickness:.4g} m"
+        unit = "kg/m³" if self.thickness is not None else "kg/m²"
+        return f"{self.region.describe()}, {measure_words(self)}{thick}{density_words(self.density, unit)}"

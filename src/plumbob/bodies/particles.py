@@ -6,14 +6,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties
-from .base import Body
+from .base import Body, DensityCells
 
 __all__ = ["ParticleSystem"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class ParticleSystem(Body):
     """Point masses with positions and (optionally) velocities.
 
@@ -151,3 +151,36 @@ class ParticleSystem(Body):
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         """(n, d) points whose convex hull is the system's."""
         return self.positions
+
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        """Which points coincide with a particle, within ``tolerance`` (m; default 1e-6 of
+        the system's size): the particles are all the system occupies.
+
+        >>> ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]]).contains([[1, 0], [0.5, 0]]).tolist()
+        [True, False]
+        """
+        pts = self._points(points)
+        tol = self._contains_tolerance(tolerance)
+        inside = np.zeros(len(pts), dtype=bool)
+        step = max(1, (1 << 16) // len(pts))  # particles per pass
+        for start in range(0, len(self.positions), step):
+            gap = pts[:, None, :] - self.positions[None, start:start + step]
+            inside |= (np.einsum("mki,mki->mk", gap, gap) <= tol * tol).any(axis=1)
+        return inside
+
+    @property
+    def is_polytope(self) -> bool:
+        return True
+
+    def density_cells(self) -> DensityCells:
+        raise DensityError("particles have their own masses: a density field needs a lamina or a solid")
+
+    def densities(self) -> set:
+        return set()
+
+    def _describe(self) -> str:
+        n = len(self.masses)
+        moving = "" if self.velocities is None or not self.velocities.any() else ", moving"
+        return (f"{n} particle{'s' if n > 1 else ''} in {self.dim}D, "
+                f"mass {self.total_mass:.4g} kg{moving}")

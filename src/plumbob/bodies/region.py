@@ -38,7 +38,14 @@ def _frozen(array: np.ndarray | None) -> np.ndarray | None:
     return array
 
 
-@dataclass(frozen=True, eq=False)
+def _edge_words(edges: int, arcs: int, beziers: int) -> str:
+    """``"4 edges (2 arcs, 1 Bézier)"``."""
+    curved = [f"{n} {what}{'s' if n > 1 else ''}" for n, what in ((arcs, "arc"), (beziers, "Bézier"))
+              if n]
+    return f"{edges} edge{'s' if edges > 1 else ''}" + (f" ({', '.join(curved)})" if curved else "")
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class Ring:
     """A closed boundary.
 
@@ -89,6 +96,19 @@ class Ring:
     @property
     def is_curved(self) -> bool:
         return self.bulges is not None or self.controls is not None
+
+    def edge_counts(self) -> tuple[int, int, int]:
+        """(edges, circular arcs, Bézier curves).
+
+        >>> Ring(np.array([[1.0, 0.0], [-1.0, 0.0]]), bulges=np.array([1.0, 1.0])).edge_counts()
+        (2, 2, 0)
+        """
+        arcs = 0 if self.bulges is None else int(np.count_nonzero(self.bulges))
+        beziers = 0 if self.controls is None else int((~np.isnan(self.controls).any(axis=(1, 2))).sum())
+        return len(self.vertices), arcs, beziers
+
+    def __repr__(self) -> str:
+        return f"<Ring {_edge_words(*self.edge_counts())}>"
 
     def _ends(self, mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         idx = np.flatnonzero(mask)
@@ -165,7 +185,7 @@ class Ring:
         return np.concatenate(pieces)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Region:
     """A plane region: outer rings counter-clockwise, hole rings clockwise."""
 
@@ -179,6 +199,20 @@ class Region:
     @property
     def is_curved(self) -> bool:
         return any(r.is_curved for r in self.rings)
+
+    def describe(self) -> str:
+        """Its rings and edges in a few words, for reprs.
+
+        >>> from plumbob.bodies.primitives import annulus, rectangle_region
+        >>> rectangle_region(2, 1).describe(), annulus(1, 2).region.describe()
+        ('1 ring of 4 edges', '2 rings of 4 edges (4 arcs)')
+        """
+        counts = np.array([r.edge_counts() for r in self.rings]).sum(axis=0)
+        rings = len(self.rings)
+        return f"{rings} ring{'s' if rings > 1 else ''} of {_edge_words(*counts)}"
+
+    def __repr__(self) -> str:
+        return f"<Region {self.describe()}>"
 
     @property
     def bounds(self) -> np.ndarray:

@@ -9,20 +9,56 @@ and a solid of revolution from the exact area moments of their profile
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, partial
 
 import numpy as np
 
 from ..errors import GeometryError
-from ..integrals.mesh import VolumeMoments, triangle_soup_moments
+from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
-from .base import Body, check_density, contact_sampling, lowest
+from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
+from .containment import mesh_contains, region_contains
 from .lamina import lamina_mass_properties, uniform_mass_properties
 from .region import Region
+from .tiling import mesh_cells, prism_cells, revolution_cells
 
-__all__ = ["MeshSolid", "Extrusion", "Revolution", "CLOSURE_TOLERANCE"]
+__all__ = ["MeshSolid", "Extrusion", "Revolution", "CLOSURE_TOLERANCE", "require_closed"]
 
 CLOSURE_TOLERANCE = 1e-9  # |vector area| / area above which a surface is open
+
+
+def require_closed(vector_area: np.ndarray, area: float) -> None:
+    """Raise a :class:`GeometryError` unless a surface of vector area ``vector_area`` (3,)
+    and area ``area`` is closed (its vector area vanishes, to ``CLOSURE_TOLERANCE``).
+
+    An open surface encloses no volume: any volume would depend on the origin.
+
+    >>> require_closed(np.zeros(3), 6.0)
+    >>> require_closed(np.array([0.0, 0.0, 1.0]), 6.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the mesh is not closed (...): repair it or pass --repair
+    """
+    if not np.all(np.isfinite(vector_area)):
+        raise GeometryError("the mesh has a coordinate that is not a finite number")
+    if np.linalg.norm(vector_area) > CLOSURE_TOLERANCE * max(area, 1e-300):
+        raise GeometryError(
+            "the mesh is not closed (its faces do not enclose a volume, so any "
+            "volume would depend on the origin): repair it or pass --repair"
+        )
+
+
+def _closed_mesh_cells(triangles: np.ndarray, origin: np.ndarray) -> list:
+    """The mesh's tetrahedra from ``origin``, once its closure is checked (in chunks)."""
+    vector = np.zeros(3)
+    area = 0.0
+    for start in range(0, len(triangles), CHUNK):
+        t = triangles[start:start + CHUNK].astype(float, copy=False)
+        normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+        vector += normal.sum(axis=0)
+        area += float(np.sqrt(np.einsum("ij,ij->i", normal, normal)).sum())
+    require_closed(vector, area)
+    return mesh_cells(triangles, origin)
 
 
 class _UniformSolid(Body):
@@ -41,6 +77,15 @@ class _UniformSolid(Body):
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))
 
+    def densities(self) -> set:
+        return {self.density}
+
+    def _describe(self) -> str:
+        return f"{self._shape_words()}, {measure_words(self)}{density_words(self.density)}"
+
+    def _shape_words(self) -> str:
+        return "solid"
+
 
 def _circle_steps(radius: float, tolerance: float) -> int:
     """Points per turn so that chords stay within ``tolerance`` of a circle."""
@@ -49,7 +94,7 @@ def _circle_steps(radius: float, tolerance: float) -> int:
     return int(min(4096, max(8, np.ceil(np.pi / np.arccos(1 - tolerance / radius)))))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class MeshSolid(_UniformSolid):
     """A solid bounded by a closed, outward-wound triangle mesh.
 
@@ -82,11 +127,7 @@ class MeshSolid(_UniformSolid):
         m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)
         if not np.isfinite(m.m0):
             raise GeometryError("the mesh has a coordinate that is not a finite number")
-        if np.linalg.norm(m.vector_area) > CLOSURE_TOLERANCE * max(m.area, 1e-300):
-            raise GeometryError(
-                "the mesh is not closed (its faces do not enclose a volume, so any "
-                "volume would depend on the origin): repair it or pass --repair"
-            )
+        require_closed(m.vector_area, m.area)
         if not m.m0 > 0:
             raise GeometryError(
                 "the mesh encloses no volume"
@@ -132,6 +173,24 @@ class MeshSolid(_UniformSolid):
         )
         return manifold3d.Manifold(mesh)
 
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        return mesh_contains(self.triangles, self._points(points), self._contains_tolerance(tolerance))
+
+    @property
+    def is_polytope(self) -> bool:
+        return True
+
+    def density_cells(self) -> DensityCells:
+        tri = self.triangles
+        origin = tri[: min(len(tri), 1024)].reshape(-1, 3).mean(axis=0, dtype=float)
+        size = float(np.linalg.norm(np.ptp(tri[: min(len(tri), 4096)].reshape(-1, 3), axis=0)))
+        return DensityCells(origin, size, partial(_closed_mesh_cells, tri, origin),
+                            lambda: tri.reshape(-1, 3).astype(float), triangles=tri)
+
+    def _shape_words(self) -> str:
+        return f"{len(self.triangles)} triangles"
+
 
 def _cross_section(region: Region, segments: int):
     import manifold3d
@@ -141,7 +200,7 @@ def _cross_section(region: Region, segments: int):
     return manifold3d.CrossSection(rings, manifold3d.FillRule.Positive)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Extrusion(_UniformSolid):
     """A prism: ``profile`` (in the xy-plane) swept from z = 0 to z = ``height`` (m)."""
 
@@ -198,8 +257,30 @@ class Extrusion(_UniformSolid):
 
         return manifold3d.Manifold.extrude(_cross_section(self.profile, segments), self.height)
 
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        pts = self._points(points)
+        tol = self._contains_tolerance(tolerance)
+        z = pts[:, 2]
+        return region_contains(self.profile, pts, tol) & (z >= -tol) & (z <= self.height + tol)
 
-@dataclass(frozen=True, eq=False)
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        return 1e-6 * self.profile.size if tolerance is None else float(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return not self.profile.is_curved
+
+    def density_cells(self) -> DensityCells:
+        o2 = self.profile.local_origin()
+        return DensityCells(np.append(o2, 0.0), float(np.hypot(self.profile.size, self.height)),
+                            partial(prism_cells, self.profile, self.height, o2), self.hull_points)
+
+    def _shape_words(self) -> str:
+        return f"prism of {self.profile.describe()}, height {self.height:.4g} m"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class Revolution(_UniformSolid):
     """The solid swept by ``profile`` — a region in the (r, z) half-plane r ≥ 0,
     given as (x, y) = (r, z) — turning a full circle about the z-axis.
@@ -278,3 +359,24 @@ class Revolution(_UniformSolid):
         import manifold3d
 
         return manifold3d.Manifold.revolve(_cross_section(self.profile, segments), segments)
+
+    # ------------------------------------------------------------ questions
+    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        pts = self._points(points)
+        rz = np.stack((np.hypot(pts[:, 0], pts[:, 1]), pts[:, 2]), axis=1)
+        return region_contains(self.profile, rz, self._contains_tolerance(tolerance))
+
+    def _contains_tolerance(self, tolerance: float | None) -> float:
+        return 1e-6 * self.profile.size if tolerance is None else float(tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return False
+
+    def density_cells(self) -> DensityCells:
+        z0 = float(self.profile.local_origin()[1])
+        return DensityCells(np.array([0.0, 0.0, z0]), 2 * self.profile.size,
+                            partial(revolution_cells, self.profile, z0), self.hull_points)
+
+    def _shape_words(self) -> str:
+        return f"turned profile of {self.profile.describe()}"

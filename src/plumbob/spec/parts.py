@@ -238,7 +238,8 @@ def _apply_material(spec: SpecContext, body: Body, mat: _Material, where: str) -
 
 def _apply_field(spec: SpecContext, body: Body, mat: _Material, where: str) -> Body:
     """A density field over ``body`` in the spec's frame (x, y, z after placement)."""
-    from ..bodies.graded import DensityField, with_density_field
+    from ..bodies.density_field import DensityField
+    from ..bodies.graded import with_density_field
 
     scale = mat.thickness if (mat.thickness is not None and body.dim == 2) else 1.0
     with spec.at(f"{where}.density"):

@@ -328,31 +328,14 @@ def _edges(kind: str, v: np.ndarray, dim: int):
 
 
 def is_polytope(body, size: float) -> bool:
-    """Whether the body's hull points are exact: meshes, polygons, boxes, particles and
-    their placements and unions — no curved surface. Known kinds of body are answered
-    from their structure; any other is exact when its hull points do not change with
-    the sampling tolerance."""
-    from ..bodies.base import Transformed
-    from ..bodies.csg import Assembly, Composite
-    from ..bodies.lamina import Lamina
-    from ..bodies.particles import ParticleSystem
-    from ..bodies.solid import Extrusion, MeshSolid, Revolution
+    """Whether the body's hull points are exact: no curved surface sampled.
 
-    if isinstance(body, (MeshSolid, ParticleSystem)):
-        return True
-    if isinstance(body, Revolution):
-        return False
-    if isinstance(body, Lamina):
-        return not body.region.is_curved
-    if isinstance(body, Extrusion):
-        return not body.profile.is_curved
-    if isinstance(body, Transformed):
-        return is_polytope(body.body, size)
-    if isinstance(body, (Composite, Assembly)):
-        return all(is_polytope(part, size) for part in body.parts)
-    base = getattr(body, "base", None)  # a graded body: its geometry's
-    if isinstance(base, Body):
-        return is_polytope(base, size)
+    A :class:`Body` answers itself (:attr:`Body.is_polytope`); any other object
+    with hull points is measured: exact when its hull points do not change with
+    the sampling tolerance (``size``, m, sets the two tolerances).
+    """
+    if isinstance(body, Body):
+        return body.is_polytope
     coarse = hull_points(body, 1e-3 * size)
     return len(coarse) == len(hull_points(body, 2.5e-4 * size))
 
