@@ -6,12 +6,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_stability_support import SCULPTURE, A, H
 
-import plumbob.stability.poses as poses_module
+import plumbob.stability.poses.basins as basins_module
 from plumbob.bodies.primitives import box, cylinder, polygon, pyramid, rectangle, sphere
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError, PlumbobError, StabilityError
 from plumbob.massprops import rotation_matrix
 from plumbob.stability import check, poses_from_points, resting_poses
+from plumbob.stability.poses.basins import basins3, sampled_basins
+from plumbob.stability.poses.hull import build_hull3, physical_faces
+from plumbob.stability.poses.landscape import landscape2
+from plumbob.stability.poses.vectors import solid_angle
 
 G = 9.81
 CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
@@ -282,7 +286,7 @@ def test_slivers_do_not_lose_probability():
 def test_the_sampled_fallback_agrees(monkeypatch):
     X, com = random_body(7, 25)
     exact = poses_from_points(X, com)
-    monkeypatch.setattr(poses_module, "_AREA_CHECK", -1.0)  # refuse the traced areas
+    monkeypatch.setattr(basins_module, "_AREA_CHECK", -1.0)  # refuse the traced areas
     sampled = poses_from_points(X, com, samples=40_000)
     assert sampled.method == "sampled" and any("could not be traced" in n for n in sampled.notes)
     assert np.allclose(sampled.probabilities, exact.probabilities, atol=0.01)
@@ -399,3 +403,86 @@ def test_a_weighted_ball_has_one_self_righting_pose():
     assert poses[0].probability == pytest.approx(1.0)
     assert np.degrees(np.arccos(-poses[0].down[2])) < 2.0
     assert poses[0].critical_tilt_deg == pytest.approx(np.degrees(np.arcsin(d)), abs=1.0)
+
+
+# -------------------------------------------------------- the pieces, one at a time
+def test_a_cubes_hull_has_six_faces_and_paired_edges():
+    h = build_hull3(CUBE - 0.5, 1e-12)
+    assert len(h.normals) == 6 and len(h.ea) == 24  # qhull's 12 triangles merged in pairs
+    assert np.allclose(h.heights, 0.5) and np.allclose(h.areas, 1.0)
+    assert np.array_equal(h.ea[h.twin], h.eb) and np.array_equal(h.eb[h.twin], h.ea)
+    assert np.array_equal(h.ef[h.twin], h.eg) and np.array_equal(h.und, h.und[h.twin])
+    assert np.array_equal(h.degree, np.full(8, 3))
+    assert sorted(map(tuple, h.normals.round(12))) == sorted(
+        map(tuple, np.vstack((np.eye(3), -np.eye(3)))))
+
+
+def test_physical_faces_merge_what_is_coplanar_within_the_tolerance():
+    """A cube whose top is bent by 1e-9 m along a diagonal: two exact faces there, one
+    physical face at a tolerance of 1e-6 m, and still two at 1e-12 m."""
+    X = CUBE - 0.5
+    X[7, 2] += 1e-9
+    h = build_hull3(X, 1e-14)
+    assert len(h.normals) == 7
+    group, normals, heights = physical_faces(h, 1e-6)
+    assert len(normals) == 6 and len(np.unique(group)) == 6
+    top = group[np.argmax(h.normals[:, 2])]
+    assert np.count_nonzero(group == top) == 2 and normals[top] @ [0, 0, 1] > 1 - 1e-12
+    assert len(physical_faces(h, 1e-12)[1]) == 7
+
+
+def test_each_face_of_a_regular_tetrahedron_has_a_quarter_of_the_sphere():
+    h = build_hull3(TETRA, 1e-12)
+    found = basins3(h, 1e-12, None)
+    assert found is not None and found.roller.stable.all()
+    assert np.allclose(found.area / (4 * np.pi), 0.25, rtol=0, atol=1e-14)
+    assert len(found.saddles) == 6 and found.error < 1e-14
+    sampled = sampled_basins(h, found.roller, 20_000)
+    assert sampled.sum() == pytest.approx(4 * np.pi)
+    assert np.allclose(sampled / (4 * np.pi), 0.25, atol=2e-3)
+
+
+def test_the_roller_lands_every_face_on_a_stable_one():
+    X, com = random_body(3, 40)
+    h = build_hull3(X - com, 1e-12)
+    roller = basins3(h, 1e-12, None).roller
+    sinks = roller.sinks(np.arange(len(h.normals)))
+    assert roller.stable[sinks].all()
+    assert np.array_equal(sinks[roller.stable], np.flatnonzero(roller.stable))
+
+
+def test_a_square_laminas_landscape_is_four_quarter_arcs():
+    land = landscape2(CUBE[[0, 2, 6, 4], :2] - 0.5, 1e-9)
+    assert land.stable.all() and np.allclose(land.area, np.pi / 2, rtol=0, atol=1e-15)
+    assert len(land.sh) == 4 and np.allclose(land.sh, np.sqrt(0.5))
+    margin, corners = land.margin(0)
+    assert margin == pytest.approx(0.5) and corners.shape == (2, 2)
+
+
+def test_the_spherical_triangle_of_an_octant():
+    x, y, z = np.eye(3)
+    assert solid_angle(x, y, z) == pytest.approx(np.pi / 2)
+    assert solid_angle(x, z, y) == pytest.approx(-np.pi / 2)
+
+
+# ------------------------------------------------------------------ the result
+def test_as_dict_is_the_json_of_the_command():
+    ps = poses_from_points(CUBE, [0.5, 0.5, 0.5], mass=2.0)
+    out = ps.as_dict()
+    assert list(out) == ["mass", "center_of_mass", "g", "method", "hull_faces", "poses"]
+    assert out["mass"] == 2.0 and out["hull_faces"] == 6 and len(out["poses"]) == 6
+    assert list(out["poses"][0]) == ["down", "com_height", "probability", "critical_tilt_deg",
+                                      "energy_barrier", "neutral", "face"]
+    assert out["poses"][0]["probability"] == ps[0].probability
+    with_notes = resting_poses(cylinder(1.0, 2.0)).as_dict()
+    assert list(with_notes)[-1] == "notes" and any("neutral" in n for n in with_notes["notes"])
+
+
+def test_reprs_are_one_short_line():
+    ps = resting_poses(cylinder(1.0, 2.0))
+    text = repr(ps)
+    assert text.startswith("Poses(3 pose(s), probabilities=(") and "method='exact'" in text
+    assert "\n" not in text and len(text) < 200
+    side = repr(ps[0])
+    assert side.startswith("Pose(probability=") and "neutral (" in side and len(side) < 200
+    assert "face=" not in side and "array" not in side  # no array dump

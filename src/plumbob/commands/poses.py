@@ -48,20 +48,7 @@ def run(args) -> int:
                            hull_tolerance=args.hull_tolerance, props=props)
     notes += list(result.notes)
     if args.json:
-        out = {
-            **header(reading, getattr(body, "kind", "solid")),
-            "mass": result.mass,
-            "center_of_mass": result.center_of_mass,
-            "g": result.g,
-            "method": result.method,
-            "hull_faces": result.hull_faces,
-            "poses": [
-                {"down": p.down, "com_height": p.com_height, "probability": p.probability,
-                 "critical_tilt_deg": p.critical_tilt_deg, "energy_barrier": p.energy_barrier,
-                 "neutral": p.neutral, "face": p.face}
-                for p in result.poses
-            ],
-        }
+        out = {**header(reading, getattr(body, "kind", "solid")), **result.as_dict()}
         if notes:
             out["notes"] = notes
         if reading.notices:

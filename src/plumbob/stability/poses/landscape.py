@@ -1,0 +1,179 @@
+"""The height function's landscape: poses, basin areas and saddles per physical face.
+
+:func:`landscape3` runs the 3D pipeline — exact hull (:mod:`.hull`), rolls and
+basins on it (:mod:`.rolling`, :mod:`.basins`), a nudged centre when the
+landscape is degenerate (a centre exactly above a vertex or an edge's end, as
+symmetric meshes have) — and then sums it over physical faces. :func:`landscape2`
+does the same one dimension down for a lamina: the hull's edges are the poses and
+the basins are exact arcs of the circle of directions. :func:`families` says which
+stable faces are joined by saddles so low they are one rolling surface.
+
+The result, a :class:`Landscape`, is all :mod:`.resting` needs to report poses.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import GeometryError, StabilityError
+from .basins import basins3
+from .hull import build_hull3, group_margin3, physical_faces, shifted
+from .rolling import Roller, edge_geometry
+from .vectors import dot, pointer_sinks, unit
+
+__all__ = ["Landscape", "landscape3", "landscape2", "families"]
+
+_NUDGES = (0.0, 1e-9, 1e-7, 1e-5)  # relative moves of the centre for degenerate landscapes
+_NUDGE_DIRECTION = np.array([0.5773, 0.2245, 0.7853]) / np.linalg.norm([0.5773, 0.2245, 0.7853])
+# (a fixed, deterministic direction with no special relation to any axis)
+
+
+@dataclass(frozen=True)
+class Landscape:
+    """The height function's landscape over physical faces (3D) or edges (2D).
+
+    normals, heights: (G, dim), (G,) per physical face.
+    area: (G,) area of its basin (sr, or rad for a lamina); stable: (G,) it is a minimum.
+    sa, sb, sh: saddles (maxima for a lamina) between the basins of sa and sb, at height sh.
+    margin: ``margin(g) -> (signed margin m, face corners (k, dim))``.
+    """
+
+    normals: np.ndarray
+    heights: np.ndarray
+    area: np.ndarray
+    stable: np.ndarray
+    sa: np.ndarray
+    sb: np.ndarray
+    sh: np.ndarray
+    margin: Callable[[int], tuple[float, np.ndarray]]
+    method: str
+    error: float
+
+
+def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
+    """3D: the landscape over the physical faces of the hull of ``X`` (n, 3), m, relative
+    to the centre of mass; faces coplanar within ``tol`` (m) are one. Basins are traced
+    exactly, from a centre nudged by a hair when the landscape is degenerate, and from
+    ``samples`` rolled directions when that fails too."""
+    size = float(np.linalg.norm(np.ptp(X, axis=0)))
+    eps = 1e-12 * size
+    h0 = build_hull3(X, eps)
+    inside = float(h0.heights.min())
+    if not inside > tol:
+        where = "outside" if inside < -tol else "on the surface of"
+        raise StabilityError(
+            f"the centre of mass lies {where} the body's convex hull "
+            f"(by {abs(inside):.3g} m), so the body cannot rest on any face: is the mesh "
+            "open or inside out, or a density negative?")
+    # A centre exactly above a vertex or an edge's end (symmetric meshes) is a degenerate
+    # landscape whose traces may not close: look again from a centre nudged by a hair.
+    method, found = "exact", None
+    for nudge in _NUDGES:
+        h = h0 if nudge == 0 else shifted(h0, nudge * size * _NUDGE_DIRECTION)
+        found = basins3(h, eps, None)
+        if found is not None:
+            break
+    if found is None:
+        h, method = h0, "sampled"
+        found = basins3(h, eps, samples)
+    area, roller, eg3, sad, error = found
+    stable = roller.stable
+    fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
+    if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:
+        true = Roller(h0, edge_geometry(h0), unit(h0.X), eps)  # roll it on from there
+        try:
+            landed = np.flatnonzero(area > 0)
+            area = np.bincount(true.sinks(landed), weights=area[landed], minlength=len(area))
+            fa, fb, stable = true.sinks(fa), true.sinks(fb), true.stable
+        except StabilityError:
+            pass  # the true centre's rolls are degenerate too: keep the nudged answer
+    group, gnormals, gheights = physical_faces(h0, tol)
+    ng = len(gnormals)
+    garea = np.bincount(group, weights=area, minlength=ng)
+    gstable = np.bincount(group, weights=stable.astype(float), minlength=ng) > 0
+    by_group = np.argsort(group[h0.ef], kind="stable")
+    bounds = np.searchsorted(group[h0.ef][by_group], np.arange(ng + 1))
+
+    def margin(gid: int) -> tuple[float, np.ndarray]:
+        corners = np.unique(h0.ea[by_group[bounds[gid]:bounds[gid + 1]]])
+        return group_margin3(h0.X[corners], gnormals[gid])
+
+    return Landscape(gnormals, gheights, garea, gstable & (garea > 0), group[fa], group[fb],
+                      eg3.sheight[sad], margin, method, error)
+
+
+def landscape2(X: np.ndarray, tol: float) -> Landscape:
+    """2D: hull edges are the poses; basins are arcs of the circle of directions."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(X)
+    except QhullError as exc:
+        raise GeometryError("the lamina is degenerate: its points span no area") from exc
+    V = X[hull.vertices]  # counter-clockwise
+    for _ in range(len(V)):  # drop corners lying on the line between their neighbours
+        prev, nxt = np.roll(V, 1, axis=0), np.roll(V, -1, axis=0)
+        d = nxt - prev
+        off = np.abs(d[:, 0] * (V - prev)[:, 1] - d[:, 1] * (V - prev)[:, 0])
+        off /= np.linalg.norm(d, axis=1)
+        flat = off <= tol
+        if not flat.any() or len(V) - flat.sum() < 3:
+            break
+        V = V[~(flat & ~np.roll(flat, 1))]  # the first of each run: neighbours change
+    m = len(V)
+    A, B = V, np.roll(V, -1, axis=0)
+    D = B - A
+    L = np.linalg.norm(D, axis=1)
+    normals = np.stack((D[:, 1], -D[:, 0]), axis=1) / L[:, None]
+    heights = dot(A, normals)
+    if not heights.min() > tol:
+        raise StabilityError(
+            "the centre of mass lies outside (or on) the lamina's convex hull: it cannot "
+            "rest on any edge — is a density negative?")
+    foot = heights[:, None] * normals
+    along = dot(foot - A, D) / L
+    margins = np.minimum(along, L - along)
+    stable = margins > tol
+    # unstable edges tip over the end the foot lies beyond
+    idx = np.arange(m)
+    nxt = np.where(stable, idx, np.where(along >= L / 2, (idx + 1) % m, (idx - 1) % m))
+    sink = pointer_sinks(nxt)
+    # vertex i lies between edge i-1 (normal angle a0) and edge i
+    ang = np.arctan2(normals[:, 1], normals[:, 0])
+    a0 = np.roll(ang, 1)
+    width = np.mod(ang - a0, 2 * np.pi)
+    into = np.mod(np.arctan2(V[:, 1], V[:, 0]) - a0, 2 * np.pi)
+    is_max = into < width
+    prev_edge = (idx - 1) % m
+    arc = np.zeros(m)
+    # a maximum splits its arc; otherwise the whole arc flows to its lower end
+    np.add.at(arc, sink[prev_edge[is_max]], into[is_max])
+    np.add.at(arc, sink[idx[is_max]], (width - into)[is_max])
+    lower = np.where(heights[prev_edge] <= heights, prev_edge, idx)
+    np.add.at(arc, sink[lower[~is_max]], width[~is_max])
+    error = abs(arc.sum() - 2 * np.pi) / (2 * np.pi)
+
+    def margin(gid: int) -> tuple[float, np.ndarray]:
+        return float(margins[gid]), np.array([V[gid], V[(gid + 1) % m]])
+
+    sad = np.flatnonzero(is_max)
+    return Landscape(normals, heights, arc, stable & (arc > 0), sink[prev_edge[sad]],
+                      sink[sad], np.linalg.norm(V[sad], axis=1), margin, "exact", float(error))
+
+
+def families(land: Landscape, neutral_height: float) -> np.ndarray:
+    """Per physical face, a family label: stable faces joined by saddles no higher than
+    ``neutral_height`` above them share one."""
+    n = len(land.normals)
+    if not (neutral_height > 0 and len(land.sh)):
+        return np.arange(n)
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rise = land.sh - np.maximum(land.heights[land.sa], land.heights[land.sb])
+    low = (land.sa != land.sb) & (rise <= neutral_height)
+    graph = coo_matrix((np.ones(int(low.sum())), (land.sa[low], land.sb[low])), shape=(n, n))
+    return connected_components(graph, directed=False)[1]

@@ -1,0 +1,162 @@
+"""What :func:`resting_poses` answers: the :class:`Pose` and :class:`Poses` results.
+
+Frozen dataclasses in SI units. ``as_dict()`` gives the JSON object of
+``plumbob poses --json`` (keys documented in ``docs/cli.md``; numpy arrays are
+left as arrays, :func:`plumbob.report.jsonable` turns them into lists), and the
+reprs are one short line each.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Pose", "Poses"]
+
+_SHOWN = 6  # probabilities shown in the repr of Poses
+
+
+def _short(value: float, digits: int = 4) -> str:
+    """A number in ``digits`` significant figures, round-off below 1e-12 shown as 0."""
+    value = float(value)
+    return "0" if abs(value) < 1e-12 else f"{value:.{digits}g}"
+
+
+def _vector(values: np.ndarray) -> str:
+    """A vector as ``(x, y, z)`` in :func:`_short` numbers."""
+    return "(" + ", ".join(_short(v) for v in np.asarray(values, dtype=float)) + ")"
+
+
+@dataclass(frozen=True, repr=False)
+class Pose:
+    """One stable resting pose.
+
+    Attributes
+    ----------
+    down : numpy.ndarray
+        Unit vector (dim,) in the body's frame: the outward normal of the face it rests
+        on, pointing to the ground.
+    com_height : float
+        Height of the centre of mass above the ground, m.
+    probability : float
+        Quasi-static probability of landing in this pose from a random drop.
+    critical_tilt_deg : float
+        Least tilt of the ground, over every direction, that topples it out of this
+        pose, degrees (0 for a neutral pose: it rolls).
+    energy_barrier : float or None
+        Energy to leave the pose over the lowest saddle of its basin's boundary, J;
+        None when it is the only pose.
+    face : numpy.ndarray
+        (k, dim) the vertices of the face it rests on, m, body frame.
+    neutral : bool
+        True when the pose is a rolling family (a cylinder on its side, a sphere)
+        merged from neighbouring sampled facets.
+    members : int
+        How many hull faces the pose stands for.
+    """
+
+    down: np.ndarray
+    com_height: float
+    probability: float
+    critical_tilt_deg: float
+    energy_barrier: float | None
+    face: np.ndarray
+    neutral: bool = False
+    members: int = 1
+
+    def as_dict(self) -> dict:
+        """The pose's JSON object in ``plumbob poses --json`` (SI units).
+
+        Keys: ``down``, ``com_height`` (m), ``probability``, ``critical_tilt_deg``,
+        ``energy_barrier`` (J or None), ``neutral``, ``face`` (m).
+        """
+        return {"down": self.down, "com_height": self.com_height,
+                "probability": self.probability, "critical_tilt_deg": self.critical_tilt_deg,
+                "energy_barrier": self.energy_barrier, "neutral": self.neutral,
+                "face": self.face}
+
+    def __repr__(self) -> str:
+        barrier = "None" if self.energy_barrier is None else f"{_short(self.energy_barrier)} J"
+        kind = ""
+        if self.neutral:
+            kind = f", neutral ({self.members} faces)"
+        elif self.members > 1:
+            kind = f", rocking ({self.members} faces)"
+        return (f"Pose(probability={_short(self.probability)}, down={_vector(self.down)}, "
+                f"com_height={_short(self.com_height)} m, "
+                f"critical_tilt_deg={_short(self.critical_tilt_deg)}, "
+                f"energy_barrier={barrier}{kind})")
+
+
+@dataclass(frozen=True, repr=False)
+class Poses:
+    """All stable resting poses of a body, most probable first.
+
+    Indexing and ``len`` go through :attr:`poses`.
+
+    Attributes
+    ----------
+    poses : tuple of Pose
+        The poses; their probabilities add up to 1.
+    mass : float
+        kg.
+    g : float
+        Gravitational acceleration, m/s², for the energy barriers.
+    center_of_mass : numpy.ndarray
+        (dim,) m, body frame.
+    method : str
+        ``"exact"`` (basin areas traced exactly) or ``"sampled"`` (the fallback: a
+        descent from a Fibonacci lattice of directions).
+    hull_faces : int
+        Faces of the hull after merging coplanar triangles.
+    saddles : int
+        How many saddles (3D) or maxima (2D) bound the basins.
+    area_error : float
+        |Σ basin areas − 4π| / 4π (2π for a lamina) before normalising.
+    notes : tuple of str
+        What a reader should know (merged families, fallbacks).
+    """
+
+    poses: tuple[Pose, ...]
+    mass: float
+    g: float
+    center_of_mass: np.ndarray
+    method: str
+    hull_faces: int
+    saddles: int
+    area_error: float
+    notes: tuple[str, ...] = field(default=())
+
+    def __len__(self) -> int:
+        return len(self.poses)
+
+    def __getitem__(self, index: int) -> Pose:
+        return self.poses[index]
+
+    @property
+    def probabilities(self) -> np.ndarray:
+        """(len,) the poses' probabilities, most probable first."""
+        return np.array([p.probability for p in self.poses])
+
+    def as_dict(self) -> dict:
+        """The JSON object of ``plumbob poses --json`` without the keys naming the file
+        (SI units).
+
+        Keys: ``mass`` (kg), ``center_of_mass`` (m), ``g`` (m/s²), ``method``,
+        ``hull_faces``, ``poses`` (each :meth:`Pose.as_dict`), and ``notes`` when there
+        are any.
+        """
+        out = {"mass": self.mass, "center_of_mass": self.center_of_mass, "g": self.g,
+               "method": self.method, "hull_faces": self.hull_faces,
+               "poses": [p.as_dict() for p in self.poses]}
+        if self.notes:
+            out["notes"] = list(self.notes)
+        return out
+
+    def __repr__(self) -> str:
+        shown = ", ".join(_short(p.probability) for p in self.poses[:_SHOWN])
+        more = ", …" if len(self.poses) > _SHOWN else ""
+        return (f"Poses({len(self.poses)} pose(s), probabilities=({shown}{more}), "
+                f"method={self.method!r}, mass={_short(self.mass)} kg, "
+                f"hull_faces={self.hull_faces})")

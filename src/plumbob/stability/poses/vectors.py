@@ -1,0 +1,104 @@
+"""Vectorised array helpers shared by the pose pieces.
+
+Row-wise vector algebra on (…, 3) arrays, the signed area of spherical triangles,
+per-group minima and ragged expansions of index arrays, pointer jumping to the roots
+of a forest, and a Fibonacci lattice of directions. Each works on whole arrays, so
+the hull, the roller and the basin tracer never loop over faces or edges in Python.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...errors import StabilityError
+
+__all__ = ["unit", "cross", "dot", "solid_angle", "group_first", "expand", "pointer_sinks",
+           "fibonacci_sphere"]
+
+
+def unit(v: np.ndarray) -> np.ndarray:
+    """Rows of ``v`` scaled to unit length (zero rows stay zero)."""
+    norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(norm > 0, norm, 1.0)
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross products of (…, 3) arrays (faster than ``np.cross`` for many small vectors)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise dot products of (…, 3) arrays."""
+    return (a * b).sum(axis=-1)
+
+
+def solid_angle(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Signed area of the spherical triangles (a, b, c) of unit vectors (…, 3), sr
+    (Van Oosterom and Strackee); positive when a → b → c turns counter-clockwise
+    seen from outside.
+
+    >>> x, y, z = np.eye(3)
+    >>> float(solid_angle(x, y, z) / np.pi), float(solid_angle(x, z, y) / np.pi)
+    (0.5, -0.5)
+    """
+    num = dot(a, cross(b, c))
+    den = 1.0 + dot(a, b) + dot(b, c) + dot(c, a)
+    return 2.0 * np.arctan2(num, den)
+
+
+def group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    """For each group ``0..n-1`` of ``keys``, the index (into keys) of its least value, the
+    first such on ties (−1 for an empty group).
+
+    >>> group_first(np.array([0, 0, 2, 2]), np.array([3.0, 1.0, 5.0, 5.0]), 3).tolist()
+    [1, -1, 2]
+    """
+    least = np.full(n, np.inf)
+    np.minimum.at(least, keys, values)
+    idx = np.flatnonzero(values == least[keys])[::-1]
+    first = np.full(n, -1, dtype=np.int64)
+    first[keys[idx]] = idx  # the last write wins: the first index of each group
+    if np.any(np.isinf(least)):  # groups whose values are all inf: their first member
+        allinf = np.flatnonzero(np.isinf(values) & np.isinf(least[keys]))[::-1]
+        first[keys[allinf]] = allinf
+    return first
+
+
+def expand(counts: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Ragged expansion: for each row ``i``, indices ``starts[i] .. starts[i]+counts[i]-1``.
+    Returns (row of each item, item index).
+
+    >>> [a.tolist() for a in expand(np.array([2, 0, 1]), np.array([5, 0, 9]))]
+    [[0, 0, 2], [5, 6, 9]]
+    """
+    total = int(counts.sum())
+    rows = np.repeat(np.arange(len(counts)), counts)
+    offsets = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    return rows, np.repeat(starts, counts) + offsets
+
+
+def pointer_sinks(nxt: np.ndarray) -> np.ndarray:
+    """Follow ``nxt`` (a forest whose roots point to themselves) to the roots.
+
+    >>> pointer_sinks(np.array([1, 2, 2, 0])).tolist()
+    [2, 2, 2, 2]
+    """
+    ptr = nxt.copy()
+    for _ in range(64):
+        jumped = ptr[ptr]
+        if np.array_equal(jumped, ptr):
+            return ptr
+        ptr = jumped
+    raise StabilityError("the resting poses could not be resolved: the rolling graph has a "
+                         "cycle (a degenerate hull?)")
+
+
+def fibonacci_sphere(n: int) -> np.ndarray:
+    """``n`` nearly evenly spread unit vectors (n, 3): a deterministic Fibonacci lattice."""
+    i = np.arange(n) + 0.5
+    z = 1.0 - 2.0 * i / n
+    phi = np.pi * (3.0 - np.sqrt(5.0)) * i
+    r = np.sqrt(np.maximum(0.0, 1.0 - z * z))
+    return np.stack((r * np.cos(phi), r * np.sin(phi), z), axis=1)
