@@ -7,7 +7,8 @@ import argparse
 import math
 
 from ..errors import DynamicsError
-from ..report import dump_json, format_number, format_vector, table
+from ..report import format_number, format_vector, table
+from ._common import dump_json
 
 HELP = "velocities, momentum and kinetic energy before and after a collision"
 EPILOG = """\

@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 from ..errors import DynamicsError
-from ..report import dump_json, format_number, format_vector, table
+from ..report import format_number, format_vector, table
+from ._common import dump_json
 
 HELP = "integrate a particle system (springs, rods, strings, gravity, friction) over time"
 

@@ -44,7 +44,8 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError, InputFileError, PlumbobError, SpecError
-from .motion import STANDARD_GRAVITY, Link, MotionModel, Spring
+from ..units import STANDARD_GRAVITY
+from .motion import Link, MotionModel, Spring
 
 __all__ = ["SimulationSpec", "load_simulation", "parse_simulation"]
 
