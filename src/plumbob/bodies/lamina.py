@@ -44,9 +44,7 @@ def uniform_mass_properties(
                           exact=exact, relative_error=relative_error, notes=tuple(notes))
 
 
-def lamina_mass_properties(
-    region: Region, areal_density: float
-) -> tuple[float, np.ndarray, np.ndarray]:
+def lamina_mass_properties(region: Region) -> tuple[float, np.ndarray, np.ndarray]:
     """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
     origin = region.local_origin()
     m = region.moments(origin)
@@ -92,7 +90,7 @@ class Lamina(Body):
         return rho * self.thickness if self.thickness is not None else rho
 
     def mass_properties(self) -> MassProperties:
-        area, centre, central = lamina_mass_properties(self.region, 1.0)
+        area, centre, central = lamina_mass_properties(self.region)
         return uniform_mass_properties(
             2, area, centre, central, None if self.density is None else self.areal_density,
             exact=self.exact, relative_error=self.relative_error, note=self.note)
