@@ -14,6 +14,7 @@ import sys
 from typing import Any
 
 from ..bodies.base import check_density
+from ..errors import DynamicsError
 from ..io import Reading, read
 from ..results import jsonable
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
@@ -23,6 +24,7 @@ __all__ = [
     "positive",
     "non_negative",
     "parse_vector",
+    "number_option",
     "add_body_arguments",
     "add_stability_arguments",
     "load_body",
@@ -76,6 +78,19 @@ def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
             f"expected {' or '.join(map(str, dims))} numbers, not {text!r}"
         )
     return values
+
+
+def number_option(text: str, label: str, *, infinite: bool = False) -> float:
+    """The number given as option ``label`` of the dynamics commands, or a
+    :class:`DynamicsError` naming it; ``infinite`` lets ``inf`` through (a wall's mass)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise DynamicsError(f"{label} must be a number (got {text!r})") from None
+    if math.isnan(value) or (math.isinf(value) and not infinite):
+        kind = "a number" if infinite else "a finite number"
+        raise DynamicsError(f"{label} must be {kind} (got {text!r})")
+    return value
 
 
 # ------------------------------------------------------------ body arguments
