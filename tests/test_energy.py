@@ -62,7 +62,7 @@ def test_potential_energy_is_Mgh_of_the_centre():
 def test_a_lamina_measures_height_along_y():
     plate = rectangle(2.0, 3.0, density=5.0)  # 30 kg, centre 1.5 m up
     assert potential_energy(plate, g=10.0).energy == pytest.approx(450.0)
-    assert lift_energy(plate, g=10.0).energy == pytest.approx(450.0)
+    assert lift_energy(plate, g=10.0).lift_energy == pytest.approx(450.0)
 
 
 def test_great_pyramid_lift_energy_and_crew_time():
@@ -73,8 +73,8 @@ def test_great_pyramid_lift_energy_and_crew_time():
     assert lift.mass == pytest.approx(6.48e9, rel=1e-3)
     assert lift.datum == pytest.approx(0.0, abs=1e-9)
     assert lift.com_height == pytest.approx(147 / 4, rel=1e-12)
-    assert lift.energy == pytest.approx(2.34e12, rel=2e-3)
-    time = crew_time(lift.energy, seed_work_per_day(), 1000)
+    assert lift.lift_energy == pytest.approx(2.34e12, rel=2e-3)
+    time = crew_time(lift.lift_energy, seed_work_per_day(), 1000)
     assert time.work_per_day == pytest.approx(1000 * G)
     assert time.crew_days == pytest.approx(2.4e5, rel=0.01)
     assert time.person_days == pytest.approx(1000 * time.crew_days)
@@ -84,8 +84,8 @@ def test_great_pyramid_lift_energy_and_crew_time():
 
 def test_lift_datum_defaults_to_the_ground_the_body_stands_on():
     raised = box(2, 2, 10, density=1.0).translated([0, 0, 7.0])
-    assert lift_energy(raised, g=10.0).energy == pytest.approx(40 * 10 * 5)
-    assert lift_energy(raised, g=10.0, datum=0.0).energy == pytest.approx(40 * 10 * 12)
+    assert lift_energy(raised, g=10.0).lift_energy == pytest.approx(40 * 10 * 5)
+    assert lift_energy(raised, g=10.0, datum=0.0).lift_energy == pytest.approx(40 * 10 * 12)
 
 
 @given(st.floats(0.1, 100), st.floats(0.1, 100), st.floats(-50, 50))
@@ -94,7 +94,7 @@ def test_lift_energy_of_a_stack_is_the_sum_of_its_parts(m1, m2, shift):
     upper = box(1, 1, 1, density=m2).translated([0, 0, 1.0])
     stack = Assembly((lower, upper)).translated([0, 0, shift])
     expected = G * (m1 * 0.5 + m2 * 1.5)
-    assert lift_energy(stack).energy == pytest.approx(expected, rel=1e-12)
+    assert lift_energy(stack).lift_energy == pytest.approx(expected, rel=1e-12)
 
 
 @pytest.mark.parametrize("kw", [{"g": 0.0}, {"g": -9.81}, {"g": float("nan")}])

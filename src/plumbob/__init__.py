@@ -6,6 +6,10 @@ The public API, imported lazily so ``plumbob mass part.stl`` pays only for numpy
     body = plumbob.load("shapes/l_shape.toml")
     props = plumbob.mass_properties(body)
     props.center_of_mass            # array([0.8333..., 0.8333...])
+    plumbob.check(body).verdict     # 'stands'
+    plumbob.lift(body).lift_energy  # J to raise its material into place
+
+Every result has ``as_dict()`` (the keys of the CLI's ``--json``) and a one-line repr.
 """
 
 from __future__ import annotations
@@ -28,9 +32,13 @@ __all__ = [
     "Lamina",
     "MeshSolid",
     "material",
+    "check",
+    "poses",
+    "lift",
     "collide",
 ]
 
+#: public name → (module, attribute; None for the module itself), imported on first use
 _LAZY = {
     "read": ("plumbob.loading", "read"),
     "MassProperties": ("plumbob.massprops", "MassProperties"),
@@ -44,22 +52,88 @@ _LAZY = {
     "Lamina": ("plumbob.bodies.lamina", "Lamina"),
     "MeshSolid": ("plumbob.bodies.solid", "MeshSolid"),
     "material": ("plumbob.materials", "material"),
-    "collide": ("plumbob.dynamics.collisions", "collide"),
     "check": ("plumbob.stability", "check"),
     "poses": ("plumbob.stability", "resting_poses"),
     "lift": ("plumbob.energy", "lift_energy"),
+    "collide": ("plumbob.dynamics.collisions", "collide"),
 }
 
 
 def load(path: str, **options: Any):
-    """The body described by the file at ``path`` (spec, mesh or outline)."""
+    """The body described by a file: a shape spec, a mesh or an outline.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A shape spec (``.toml``), a mesh (STL, OBJ, PLY, OFF, 3MF, GLB/glTF) or an
+        outline (GeoJSON, WKT, WKB, SVG, DXF, CSV); the extension picks the reader.
+    **options
+        ``units`` (the length unit of the file's coordinates: ``m``, ``cm``, ``mm``,
+        ``km``, ``in``, ``ft``; default the file's own, else metres) and ``repair``
+        (close small holes and fix winding in meshes).
+
+    Returns
+    -------
+    Body
+        A lamina, solid, set of particles or assembly, in metres.
+
+    Raises
+    ------
+    PlumbobError
+        For a missing, empty or unreadable file, an unknown extension or a bad shape;
+        the message names the file.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "plate.wkt")
+    >>> _ = open(path, "w").write("POLYGON ((0 0, 2 0, 2 1, 0 1, 0 0))")
+    >>> load(path).kind
+    'lamina'
+    >>> load(path, units="mm").mass_properties().center_of_mass
+    array([0.001 , 0.0005])
+    >>> load(path + ".png")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.InputFileError: ...unknown file type '.png'...
+    """
     from .loading import read
 
     return read(path, **options).body
 
 
 def mass_properties(body):
-    """The :class:`MassProperties` of ``body`` (a body, or a path to load)."""
+    """Mass, size, centre of mass and inertia of a body.
+
+    Parameters
+    ----------
+    body : Body or str
+        A plumbob body, or the path of a file to :func:`load` (in metres, or in the
+        unit the file declares).
+
+    Returns
+    -------
+    MassProperties
+        SI units; the inertia tensor about the centre of mass. A body that gives no
+        density is taken at density 1 (``notes`` says so).
+
+    Examples
+    --------
+    >>> from plumbob import primitives
+    >>> mass_properties(primitives.box(1, 1, 4, density=1000.0))
+    MassProperties(dim=3, mass=4000, volume=4, center_of_mass=[0.5, 0.5, 2], \
+principal_moments=[666.667, 5666.67, 5666.67], exact=True)
+    >>> mass_properties(primitives.box(1, 1, 1)).notes[0].startswith("no density given")
+    True
+
+    A path is loaded first:
+
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "plate.wkt")
+    >>> _ = open(path, "w").write("POLYGON ((0 0, 2 0, 2 1, 0 1, 0 0))")
+    >>> mass_properties(path).area
+    2.0
+    """
     if isinstance(body, str):
         body = load(body)
     return body.mass_properties()
@@ -71,3 +145,8 @@ def __getattr__(name: str):
     module, attribute = _LAZY[name]
     value = import_module(module)
     return value if attribute is None else getattr(value, attribute)
+
+
+def __dir__() -> list[str]:
+    """The public API (what ``dir(plumbob)`` and tab completion list)."""
+    return sorted(__all__)

@@ -40,7 +40,9 @@ class _VersionAction(argparse.Action):
         super().__init__(option_strings, dest, nargs=0, help="print the version and exit")
 
     def __call__(self, parser, namespace, values, option_string=None) -> None:
-        parser.exit(0, f"plumbob {_version()}\n")
+        # On stdout, where `plumbob --version | ...` looks (argparse's exit writes stderr).
+        print(f"plumbob {_version()}")
+        parser.exit(0)
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

@@ -20,15 +20,16 @@ Heights are along ``up``: +z for solids, +y for a lamina in its own plane.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from .errors import PlumbobError
 from .massprops import MassProperties
+from .results import Result
 from .units import STANDARD_GRAVITY
 
 __all__ = [
-    "STANDARD_GRAVITY",
     "DAYS_PER_YEAR",
     "PotentialEnergy",
     "PoseChange",
@@ -78,8 +79,8 @@ def _up(dim: int, up) -> np.ndarray:
     return v / norm
 
 
-@dataclass(frozen=True)
-class PotentialEnergy:
+@dataclass(frozen=True, repr=False)
+class PotentialEnergy(Result):
     """``energy = mass · g · height``, J; height (m) of the centre of mass above ``datum``."""
 
     energy: float
@@ -91,14 +92,35 @@ class PotentialEnergy:
 
 def potential_energy(body_or_props, *, datum: float = 0.0, g: float = STANDARD_GRAVITY,
                      up=None) -> PotentialEnergy:
-    """The potential energy ``Mg(h − datum)`` of a body (or its :class:`MassProperties`), J.
+    """The potential energy ``Mg(h − datum)`` of a body, J.
 
-    datum: height of the zero of potential energy along ``up``, m.
-    up: the upward direction (default +z, +y for a lamina).
+    Parameters
+    ----------
+    body_or_props : Body or MassProperties
+        The body, or its mass properties.
+    datum : float, default 0
+        Height of the zero of potential energy along ``up``, m.
+    g : float, default 9.81
+        m/s².
+    up : array_like, optional
+        The upward direction (default +z, +y for a lamina).
 
+    Returns
+    -------
+    PotentialEnergy
+        ``energy`` J, ``mass``, ``height`` above the datum, ``datum``, ``g``.
+
+    Examples
+    --------
     >>> from plumbob.massprops import point_mass
-    >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=10.0).energy
-    60.0
+    >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=10.0)
+    PotentialEnergy(energy=60, mass=2, height=3, datum=0, g=10)
+    >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), datum=5.0, g=10.0).energy   # below
+    -40.0
+    >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=0.0)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.PlumbobError: g must be a positive number, not 0
     """
     props = _props(body_or_props)
     g = _positive(g, "g")
@@ -107,8 +129,8 @@ def potential_energy(body_or_props, *, datum: float = 0.0, g: float = STANDARD_G
     return PotentialEnergy(props.mass * g * height, props.mass, height, float(datum), g)
 
 
-@dataclass(frozen=True)
-class PoseChange:
+@dataclass(frozen=True, repr=False)
+class PoseChange(Result):
     """From resting with ``down_from`` to resting with ``down_to`` (body-frame unit vectors).
 
     height_from, height_to: heights of the centre of mass above the plane, m.
@@ -136,14 +158,34 @@ def _rest_height(body, props: MassProperties, down) -> tuple[float, np.ndarray]:
 
 def pose_energy_change(body, down_from, down_to, *, g: float = STANDARD_GRAVITY,
                        props: MassProperties | None = None) -> PoseChange:
-    """The change in potential energy from resting with gravity along ``down_from`` to resting
-    along ``down_to`` (both in the body's frame), J.
+    """The change in potential energy between two resting poses, J.
 
+    Parameters
+    ----------
+    body : Body
+        Any plumbob body.
+    down_from, down_to : array_like, shape (dim,)
+        Gravity's direction in the body's frame, resting before and after.
+    g : float, default 9.81
+        m/s².
+    props : MassProperties, optional
+        The body's mass properties, when already computed.
+
+    Returns
+    -------
+    PoseChange
+        The heights of the centre of mass above the plane in each pose and
+        ``energy = Mg(height_to − height_from)`` (positive: work must be done).
+
+    Examples
+    --------
     >>> from plumbob.bodies.primitives import box
     >>> block = box(1, 1, 4, density=1000.0)   # mass 4000 kg, h = 1 m
     >>> change = pose_energy_change(block, [1, 0, 0], [0, 0, -1])   # lying → upright
     >>> change.height_from, change.height_to, change.energy / (4000 * 9.81)
     (0.5, 2.0, 1.5)
+    >>> pose_energy_change(block, [0, 0, -1], [0, 0, -1]).energy   # no change
+    0.0
     """
     props = body.mass_properties() if props is None else props
     g = _positive(g, "g")
@@ -152,19 +194,20 @@ def pose_energy_change(body, down_from, down_to, *, g: float = STANDARD_GRAVITY,
     return PoseChange(d0, d1, h0, h1, props.mass * g * (h1 - h0), props.mass, g)
 
 
-@dataclass(frozen=True)
-class LiftEnergy:
+@dataclass(frozen=True, repr=False)
+class LiftEnergy(Result):
     """The work to raise a structure's material from the ground datum to where it stands.
 
-    mass: kg. datum: height of the ground along ``up``, m.
+    mass: kg. center_of_mass: (dim,) m. datum: height of the ground along ``up``, m.
     com_height: height of the centre of mass above the datum, m.
-    energy: ``mass · g · com_height``, J. g: m/s².
+    lift_energy: ``mass · g · com_height``, J (the key of ``plumbob lift --json``). g: m/s².
     """
 
     mass: float
+    center_of_mass: np.ndarray
     datum: float
     com_height: float
-    energy: float
+    lift_energy: float
     g: float
 
 
@@ -172,12 +215,37 @@ def lift_energy(body, *, datum: float | None = None, g: float = STANDARD_GRAVITY
                 props: MassProperties | None = None) -> LiftEnergy:
     """The lift (build) energy ``M g z_G`` of a structure, J.
 
-    datum: the ground's height along ``up``, m; default the body's lowest point (the
+    Parameters
+    ----------
+    body : Body
+        Any plumbob body.
+    datum : float, optional
+        The ground's height along ``up``, m; default the body's lowest point (the
         ground it is built on).
+    g : float, default 9.81
+        m/s².
+    up : array_like, optional
+        The upward direction (default +z, +y for a lamina).
+    props : MassProperties, optional
+        The body's mass properties, when already computed.
 
+    Returns
+    -------
+    LiftEnergy
+        ``mass``, ``center_of_mass``, ``datum``, ``com_height`` and ``lift_energy``
+        (J), the keys of ``plumbob lift --json``.
+
+    Examples
+    --------
     >>> from plumbob.bodies.primitives import box
-    >>> lift_energy(box(2, 2, 10, density=1.0), g=10.0).energy   # 40 kg raised 5 m
-    2000.0
+    >>> lift = lift_energy(box(2, 2, 10, density=1.0), g=10.0)   # 40 kg raised 5 m
+    >>> lift
+    LiftEnergy(mass=40, center_of_mass=[1, 1, 5], datum=0, com_height=5, lift_energy=2000, g=10)
+
+    Below the datum the energy is negative (it is released):
+
+    >>> lift_energy(box(2, 2, 10, density=1.0), datum=20.0, g=10.0).lift_energy
+    -6000.0
     """
     from .stability.support import hull_points
 
@@ -187,11 +255,12 @@ def lift_energy(body, *, datum: float | None = None, g: float = STANDARD_GRAVITY
     if datum is None:
         datum = float(np.min(hull_points(body) @ u))
     height = float(props.center_of_mass @ u) - float(datum)
-    return LiftEnergy(props.mass, float(datum), height, props.mass * g * height, g)
+    return LiftEnergy(props.mass, props.center_of_mass, float(datum), height,
+                      props.mass * g * height, g)
 
 
-@dataclass(frozen=True)
-class CrewTime:
+@dataclass(frozen=True, repr=False)
+class CrewTime(Result):
     """An amount of work in days of labour.
 
     work_per_day: J one person does in a day. crew: people.
@@ -206,13 +275,41 @@ class CrewTime:
     crew_days: float
     crew_years: float
 
+    def as_dict(self) -> dict[str, Any]:
+        """The crew keys of ``plumbob lift --json`` (the energy is the lift's ``lift_energy``)."""
+        out = super().as_dict()
+        del out["energy"]
+        return out
+
 
 def crew_time(energy: float, work_per_day: float, crew: int = 1) -> CrewTime:
-    """How long a crew takes to do ``energy`` J of work at ``work_per_day`` J per person.
+    """How long a crew takes to do an amount of work.
 
+    Parameters
+    ----------
+    energy : float
+        The work, J (≥ 0).
+    work_per_day : float
+        J one person does in a day (:func:`seed_work_per_day`: 1000 kg through 1 m).
+    crew : int, default 1
+        People working at once.
+
+    Returns
+    -------
+    CrewTime
+        ``person_days``, ``crew_days`` and ``crew_years`` (of 365.25 days).
+
+    Examples
+    --------
     >>> t = crew_time(2.34e12, seed_work_per_day(), 1000)
     >>> round(t.crew_days, -3), round(t.crew_years)
     (239000.0, 653)
+    >>> crew_time(0.0, 1000.0).person_days
+    0.0
+    >>> crew_time(1e6, 1000.0, crew=0)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.PlumbobError: a crew is a whole number of people, at least 1, not 0
     """
     work = _positive(work_per_day, "the work per person per day")
     if int(crew) != crew or crew < 1:

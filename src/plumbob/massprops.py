@@ -18,10 +18,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
 from .errors import GeometryError
+from .results import Result
 
 __all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix"]
 
@@ -36,10 +38,26 @@ def _parallel_axis(mass: float, offset: np.ndarray) -> np.ndarray:
 
 
 def rotation_matrix(axis: np.ndarray | list[float], angle: float) -> np.ndarray:
-    """The 3×3 matrix turning by ``angle`` radians about ``axis`` (right-hand rule).
+    """The matrix of a turn about an axis through the origin.
 
-    >>> np.round(rotation_matrix([0, 0, 1], np.pi / 2) @ [1, 0, 0], 12)
+    Parameters
+    ----------
+    axis, angle : array_like (3,), float
+        The axis (any length but zero); radians, by the right-hand rule.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+        The rotation matrix; quarter turns are exact.
+
+    Examples
+    --------
+    >>> rotation_matrix([0, 0, 1], np.pi / 2) @ [1, 0, 0]
     array([0., 1., 0.])
+    >>> rotation_matrix([0, 0, 0], 1.0)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: a rotation axis must be a non-zero finite vector
     """
     axis = np.asarray(axis, dtype=float)
     norm = np.linalg.norm(axis)
@@ -53,23 +71,43 @@ def rotation_matrix(axis: np.ndarray | list[float], angle: float) -> np.ndarray:
     return c * np.eye(3) + s * k + (1 - c) * np.outer([x, y, z], [x, y, z])
 
 
-@dataclass(frozen=True, eq=False)
-class MassProperties:
+@dataclass(frozen=True, eq=False, repr=False)
+class MassProperties(Result):
     """Mass properties of a lamina (``dim`` 2), a solid or a set of particles (``dim`` 3).
 
-    Attributes
+    Parameters
     ----------
-    dim: 2 for a lamina in the plane z = 0, 3 otherwise (particles may have 2).
-    mass: total mass, kg.
-    measure: area (m², laminas) or volume (m³, solids); 0 for particles.
-    center_of_mass: shape (dim,), m.
-    inertia: shape (3, 3), kg·m², the inertia tensor about the centre of mass.
-    exact: False when a curved shape was approximated by facets or a density
-        field was integrated numerically.
-    relative_error: an estimate of the relative error of the mass (and so of the
-        other quantities) when not exact; 0 when exact.
-    parts: how many parts were combined.
-    notes: human-readable notes on how the numbers were obtained.
+    dim : int
+        2 for a lamina in the plane z = 0, 3 otherwise (particles may have 2).
+    mass, measure : float
+        Total mass, kg; area (m², laminas) or volume (m³, solids), 0 for particles.
+    center_of_mass, inertia : array_like, shapes (dim,) and (3, 3)
+        m; the inertia tensor about the centre of mass, kg·m² (``I_xy = −∫ x y dm``).
+    exact, relative_error : bool, float
+        False, and an estimate of the relative error of every quantity, when a curved
+        shape was faceted or a density field integrated numerically.
+    parts : int
+        How many parts were combined.
+    notes : tuple of str
+        Human-readable notes on how the numbers were obtained.
+
+    Examples
+    --------
+    A 1 m cube of water, its corner at the origin:
+
+    >>> cube = MassProperties(3, 1000.0, 1.0, [0.5, 0.5, 0.5], np.eye(3) * 1000 / 6)
+    >>> cube
+    MassProperties(dim=3, mass=1000, volume=1, center_of_mass=[0.5, 0.5, 0.5], \
+principal_moments=[166.667, 166.667, 166.667], exact=True)
+    >>> cube.density
+    1000.0
+
+    The centre must have ``dim`` coordinates:
+
+    >>> MassProperties(2, 1.0, 1.0, [0.0, 0.0, 0.0], np.zeros((3, 3)))
+    Traceback (most recent call last):
+    ...
+    ValueError: center_of_mass must have 2 coordinates
     """
 
     dim: int
@@ -94,20 +132,96 @@ class MassProperties:
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "measure", float(self.measure))
 
+    def _repr_items(self) -> list[tuple[str, Any]]:
+        # The headline numbers only: the tensor and the notes are an attribute away.
+        size = self._size_key()
+        items = [("dim", self.dim), ("mass", self.mass)]
+        items += [(size, self.measure)] if size else []
+        items += [("center_of_mass", self.center_of_mass),
+                  ("principal_moments", self.principal_moments), ("exact", self.exact)]
+        items += [] if self.exact else [("relative_error", self.relative_error)]
+        return items + ([("parts", self.parts)] if self.parts != 1 else [])
+
+    # ------------------------------------------------------------ serialising
+    def _size_key(self, kind: str | None = None) -> str | None:
+        """"area", "volume" or None (a particle has no size), as ``plumbob mass`` says it."""
+        if kind == "lamina" or (self.dim == 2 and self.measure > 0):
+            return "area"
+        if self.measure > 0 or (kind is not None and kind != "particles"):
+            return "volume"
+        return None
+
+    def as_dict(self, kind: str | None = None) -> dict[str, Any]:
+        """The mass properties keyed as ``plumbob mass --json`` prints them, SI units.
+
+        Parameters
+        ----------
+        kind : str, optional
+            The body's kind (``lamina``, ``solid``, ``particles``, ``assembly``): when
+            given it leads, and every body but particles reports a size (``volume`` 0).
+
+        Returns
+        -------
+        dict
+            ``kind`` (when given), ``mass``, ``area`` (laminas) or ``volume`` (solids;
+            neither for particles), ``center_of_mass``, ``inertia``,
+            ``principal_moments``, ``principal_axes``, ``exact``, ``relative_error``,
+            ``parts`` and, when there are any, ``notes``. Vectors and tensors are
+            numpy arrays (:func:`plumbob.results.jsonable` makes them lists).
+
+        Examples
+        --------
+        >>> d = point_mass(2.0, [1.0, 0.0]).as_dict()
+        >>> list(d)
+        ['mass', 'center_of_mass', 'inertia', 'principal_moments', 'principal_axes', \
+'exact', 'relative_error', 'parts']
+        >>> list(point_mass(2.0, [1.0, 0.0]).as_dict("assembly"))[:3]
+        ['kind', 'mass', 'volume']
+        """
+        out: dict[str, Any] = {} if kind is None else {"kind": kind}
+        out["mass"] = self.mass
+        size = self._size_key(kind)
+        if size:
+            out[size] = self.measure
+        out.update(
+            center_of_mass=self.center_of_mass,
+            inertia=self.inertia,
+            principal_moments=self.principal_moments,
+            principal_axes=self.principal_axes,
+            exact=self.exact,
+            relative_error=self.relative_error,
+            parts=self.parts,
+        )
+        if self.notes:
+            out["notes"] = list(self.notes)
+        return out
+
     # ------------------------------------------------------------------ views
     @property
     def area(self) -> float:
-        """Area in m² (laminas only; NaN for other bodies)."""
+        """Area in m² (laminas only; NaN for other bodies).
+
+        >>> point_mass(1.0, [0.0, 0.0, 0.0]).area
+        nan
+        """
         return self.measure if self.dim == 2 else float("nan")
 
     @property
     def volume(self) -> float:
-        """Volume in m³ (solids; 0 for particles, NaN for laminas)."""
+        """Volume in m³ (solids; 0 for particles, NaN for laminas).
+
+        >>> point_mass(1.0, [0.0, 0.0, 0.0]).volume, point_mass(1.0, [0.0, 0.0]).volume
+        (0.0, nan)
+        """
         return self.measure if self.dim == 3 else float("nan")
 
     @property
     def density(self) -> float:
-        """Mean density: kg/m³ for solids, kg/m² for laminas."""
+        """Mean density: kg/m³ for solids, kg/m² for laminas (NaN for particles).
+
+        >>> point_mass(1.0, [0.0, 0.0, 0.0]).density
+        nan
+        """
         return self.mass / self.measure if self.measure else float("nan")
 
     @cached_property
@@ -127,25 +241,54 @@ class MassProperties:
 
     @property
     def principal_moments(self) -> np.ndarray:
-        """Principal moments of inertia, ascending, kg·m², shape (3,)."""
+        """Principal moments of inertia, ascending, kg·m², shape (3,).
+
+        >>> MassProperties(3, 1.0, 1.0, [0, 0, 0], np.diag([3.0, 1.0, 2.0])).principal_moments
+        array([1., 2., 3.])
+        """
         return self._principal[0]
 
     @property
     def principal_axes(self) -> np.ndarray:
-        """Principal axes as rows (unit vectors), matching ``principal_moments``, shape (3, 3)."""
+        """Principal axes as rows (unit vectors, a right-handed frame), matching
+        ``principal_moments``, shape (3, 3).
+
+        >>> MassProperties(3, 1.0, 1.0, [0, 0, 0], np.diag([3.0, 1.0, 2.0])).principal_axes
+        array([[0., 1., 0.],
+               [0., 0., 1.],
+               [1., 0., 0.]])
+        """
         return self._principal[1]
 
     @property
     def center_of_mass_3d(self) -> np.ndarray:
-        """Centre of mass with z = 0 appended for a lamina, shape (3,), m."""
+        """Centre of mass with z = 0 appended for a lamina, shape (3,), m.
+
+        >>> point_mass(1.0, [1.0, 2.0]).center_of_mass_3d
+        array([1., 2., 0.])
+        """
         return _as_3d(self.center_of_mass)
 
     def inertia_about(self, point: np.ndarray | list[float]) -> np.ndarray:
-        """Inertia tensor about ``point`` (parallel axes), kg·m², shape (3, 3).
+        """Inertia tensor about another point, by the parallel-axis theorem.
 
+        Parameters
+        ----------
+        point : array_like, shape (dim,) or (3,)
+            The point, m (a lamina's point may omit z).
+
+        Returns
+        -------
+        numpy.ndarray, shape (3, 3)
+            The inertia tensor about ``point``, kg·m².
+
+        Examples
+        --------
         >>> disc = point_mass(2.0, [1.0, 0.0, 0.0])
         >>> float(disc.inertia_about([0, 0, 0])[1, 1])
         2.0
+        >>> float(disc.inertia_about([1, 0, 0])[1, 1])   # about its own centre: none
+        0.0
         """
         offset = self.center_of_mass_3d - _as_3d(np.asarray(point, dtype=float))
         return self.inertia + _parallel_axis(self.mass, offset)
@@ -153,40 +296,137 @@ class MassProperties:
     def moment_about_axis(
         self, point: np.ndarray | list[float], axis: np.ndarray | list[float]
     ) -> float:
-        """Moment of inertia about the line through ``point`` along ``axis``, kg·m²."""
+        """Moment of inertia about a line.
+
+        Parameters
+        ----------
+        point, axis : array_like
+            A point of the line, m, and its direction (any length but zero).
+
+        Returns
+        -------
+        float
+            The moment of inertia about the line through ``point`` along ``axis``, kg·m².
+
+        Examples
+        --------
+        >>> ball = point_mass(2.0, [1.0, 0.0, 0.0])
+        >>> ball.moment_about_axis([0, 0, 0], [0, 0, 5])
+        2.0
+        >>> ball.moment_about_axis([0, 0, 0], [1, 0, 0])   # on the axis: none
+        0.0
+        """
         axis = np.asarray(axis, dtype=float)
         axis = _as_3d(axis) / np.linalg.norm(axis)
         return float(axis @ self.inertia_about(point) @ axis)
 
     # ------------------------------------------------------------- algebra
     def __add__(self, other: MassProperties) -> MassProperties:
+        """Two parts as one body (equation 15; see :func:`combine`)."""
         return combine([self, other])
 
     def __sub__(self, other: MassProperties) -> MassProperties:
-        """Remove ``other`` (a hole lying inside ``self``): a part of negative mass."""
+        """Remove ``other`` (a hole lying inside ``self``): a part of negative mass.
+
+        >>> (point_mass(3.0, [0, 0, 0]) - point_mass(1.0, [2, 0, 0])).center_of_mass
+        array([-1.,  0.,  0.])
+        >>> point_mass(1.0, [0, 0, 0]) - point_mass(1.0, [0, 0, 0])
+        Traceback (most recent call last):
+        ...
+        plumbob.errors.GeometryError: the parts add up to no mass: a hole larger than its body?
+        """
         return combine([self, other], signs=[1.0, -1.0])
 
     def scaled(self, factor: float) -> MassProperties:
-        """The same shape with every mass multiplied by ``factor`` (a density change)."""
+        """Every mass multiplied by a factor (a change of density), shape unchanged.
+
+        Parameters
+        ----------
+        factor : float
+            The factor on the mass and the inertia.
+
+        Returns
+        -------
+        MassProperties
+
+        Examples
+        --------
+        >>> point_mass(2.0, [1.0, 0.0]).scaled(1.5).mass
+        3.0
+        """
         return replace(self, mass=self.mass * factor, inertia=self.inertia * factor)
 
     def with_density(self, density: float) -> MassProperties:
-        """The same shape at a uniform ``density`` (kg/m³ or kg/m² for laminas)."""
+        """The same shape at a uniform density.
+
+        Parameters
+        ----------
+        density : float
+            kg/m³, or kg/m² for a lamina.
+
+        Returns
+        -------
+        MassProperties
+            Mass ``density × measure`` and the inertia scaled with it.
+
+        Examples
+        --------
+        >>> cube = MassProperties(3, 1.0, 2.0, [0, 0, 0], np.eye(3))
+        >>> cube.with_density(7850.0).mass
+        15700.0
+        >>> point_mass(1.0, [0, 0, 0]).with_density(1000.0)
+        Traceback (most recent call last):
+        ...
+        plumbob.errors.GeometryError: a body of zero size has no density to set
+        """
         if self.measure == 0:
             raise GeometryError("a body of zero size has no density to set")
         return self.scaled(density * self.measure / self.mass)
 
     def translated(self, offset: np.ndarray | list[float]) -> MassProperties:
-        """Moved by ``offset`` (dim,), m: the tensor about the centre is unchanged."""
+        """Moved without turning: the tensor about the centre is unchanged.
+
+        Parameters
+        ----------
+        offset : array_like, shape (dim,) or (3,)
+            The displacement, m (a lamina ignores a z component).
+
+        Returns
+        -------
+        MassProperties
+
+        Examples
+        --------
+        >>> point_mass(1.0, [1.0, 2.0]).translated([1.0, 1.0, 5.0]).center_of_mass
+        array([2., 3.])
+        """
         offset = np.asarray(offset, dtype=float)
         return replace(self, center_of_mass=self.center_of_mass + offset[: self.dim])
 
     def transformed(
         self, matrix: np.ndarray, offset: np.ndarray | list[float] | None = None
     ) -> MassProperties:
-        """Turned (or mirrored) by the orthogonal ``matrix`` about the origin, then moved.
+        """Turned (or mirrored) about the origin, then moved.
 
-        ``matrix`` is (2, 2) for a lamina — it must keep the plane — or (3, 3).
+        Parameters
+        ----------
+        matrix, offset : array_like (2, 2) or (3, 3), array_like (optional)
+            An orthogonal matrix (a lamina's must keep its plane); then moved by offset, m.
+
+        Returns
+        -------
+        MassProperties
+            Centre ``matrix @ c + offset``, tensor ``matrix @ I @ matrix.T``.
+
+        Examples
+        --------
+        >>> p = point_mass(1.0, [1.0, 0.0, 0.0])
+        >>> p.transformed(np.diag([-1.0, 1.0, 1.0]), [0.0, 0.0, 1.0]).center_of_mass
+        array([-1.,  0.,  1.])
+        >>> p.transformed(2 * np.eye(3))
+        Traceback (most recent call last):
+        ...
+        plumbob.errors.GeometryError: a rigid motion needs an orthogonal matrix
         """
         matrix = np.asarray(matrix, dtype=float)
         n = matrix.shape[0]
@@ -205,28 +445,84 @@ class MassProperties:
     def rotated(
         self, angle: float, axis: np.ndarray | list[float] = (0.0, 0.0, 1.0)
     ) -> MassProperties:
-        """Turned by ``angle`` radians about ``axis`` through the origin (z for a lamina)."""
+        """Turned about an axis through the origin.
+
+        Parameters
+        ----------
+        angle, axis : float, array_like
+            Radians, by the right-hand rule, about ``axis`` (default z; a lamina's).
+
+        Returns
+        -------
+        MassProperties
+
+        Examples
+        --------
+        >>> point_mass(1.0, [1.0, 0.0]).rotated(np.pi / 2).center_of_mass
+        array([0., 1.])
+        """
         return self.transformed(rotation_matrix(axis, angle))
 
     def mirrored(self, normal: np.ndarray | list[float]) -> MassProperties:
-        """Reflected in the plane (line, for a lamina) through the origin with this normal."""
+        """Reflected in the plane (the line, for a lamina) through the origin.
+
+        Parameters
+        ----------
+        normal : array_like
+            The mirror's normal (any length but zero).
+
+        Returns
+        -------
+        MassProperties
+
+        Examples
+        --------
+        >>> point_mass(1.0, [1.0, 2.0, 3.0]).mirrored([0, 0, 1]).center_of_mass
+        array([ 1.,  2., -3.])
+        """
         normal = _as_3d(np.asarray(normal, dtype=float))
         normal = normal / np.linalg.norm(normal)
         return self.transformed(np.eye(3) - 2 * np.outer(normal, normal))
 
     def to_3d(self) -> MassProperties:
-        """A lamina seen as a (zero-thickness) body in space: centre gains z = 0."""
+        """A lamina seen as a (zero-thickness) body in space: its centre gains z = 0.
+
+        Returns
+        -------
+        MassProperties
+            ``dim`` 3; a body already in space unchanged.
+
+        Examples
+        --------
+        >>> point_mass(1.0, [1.0, 2.0]).to_3d().center_of_mass
+        array([1., 2., 0.])
+        """
         if self.dim == 3:
             return self
         return replace(self, dim=3, center_of_mass=self.center_of_mass_3d)
 
 
-
 def point_mass(mass: float, position: np.ndarray | list[float]) -> MassProperties:
     """A particle: mass at a point, no size and no inertia about itself.
 
+    Parameters
+    ----------
+    mass : float
+        kg.
+    position : array_like, shape (2,) or (3,)
+        m; two coordinates make a particle of the plane (``dim`` 2).
+
+    Returns
+    -------
+    MassProperties
+        Measure 0 and a zero inertia tensor.
+
+    Examples
+    --------
     >>> point_mass(3.0, [1, 2, 3]).center_of_mass
     array([1., 2., 3.])
+    >>> point_mass(3.0, [1, 2]).dim
+    2
     """
     position = np.asarray(position, dtype=float)
     return MassProperties(position.size, mass, 0.0, position, np.zeros((3, 3)))
@@ -235,14 +531,38 @@ def point_mass(mass: float, position: np.ndarray | list[float]) -> MassPropertie
 def combine(parts: list[MassProperties], signs: list[float] | None = None) -> MassProperties:
     """Equation (15): the parts as particles at their centres, plus their own inertia.
 
-    ``signs`` of −1 remove a part (a hole). The result's centre is the
-    mass-weighted mean of the parts' centres; the inertia is summed about it by
-    parallel axes, with offsets taken from the combined centre so nothing large
-    is subtracted.
+    The result's centre is the mass-weighted mean of the parts' centres; the
+    inertia is summed about it by parallel axes, with offsets taken from the
+    combined centre so nothing large is subtracted.
 
+    Parameters
+    ----------
+    parts : list of MassProperties
+        At least one; laminas mixed with bodies in space are seen in space (z = 0).
+    signs : list of float, optional
+        One per part: −1 removes a part (a hole). Default all +1.
+
+    Returns
+    -------
+    MassProperties
+        Exact when every part is; the notes of every part, each once.
+
+    Raises
+    ------
+    GeometryError
+        For no parts, or parts that add up to no mass (a hole larger than its body).
+
+    Examples
+    --------
     >>> a = point_mass(1.0, [0.0, 0.0, 0.0]); b = point_mass(3.0, [4.0, 0.0, 0.0])
     >>> combine([a, b]).center_of_mass
     array([3., 0., 0.])
+    >>> combine([a, point_mass(1.0, [1.0, 0.0])]).center_of_mass   # a lamina's point: z = 0
+    array([0.5, 0. , 0. ])
+    >>> combine([])
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: nothing to combine: a body needs at least one part
     """
     if not parts:
         raise GeometryError("nothing to combine: a body needs at least one part")
@@ -271,14 +591,6 @@ def combine(parts: list[MassProperties], signs: list[float] | None = None) -> Ma
     notes: tuple[str, ...] = ()
     for p in parts:
         notes += tuple(n for n in p.notes if n not in notes)
-    return MassProperties(
-        dim=dim,
-        mass=total,
-        measure=float(measures.sum()),
-        center_of_mass=anchor + com_local,
-        inertia=(inertia + inertia.T) / 2,
-        exact=exact,
-        relative_error=error,
-        parts=int(sum(p.parts for p in parts)),
-        notes=notes,
-    )
+    return MassProperties(dim, total, float(measures.sum()), anchor + com_local,
+                          (inertia + inertia.T) / 2, exact=exact, relative_error=error,
+                          parts=int(sum(p.parts for p in parts)), notes=notes)

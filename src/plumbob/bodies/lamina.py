@@ -101,38 +101,8 @@ def uniform_mass_properties(
                           exact=exact, relative_error=relative_error, notes=tuple(notes))
 
 
-def lamina_mass_properties(
-    region: Region, areal_density: float
-) -> tuple[float, np.ndarray, np.ndarray]:
-    """The exact area moments of a region.
-
-    Parameters
-    ----------
-    region : Region
-    areal_density : float
-        Not used: the moments are of the region alone.
-
-    Returns
-    -------
-    area : float
-        m².
-    centre : ndarray, shape (2,)
-        m.
-    central : ndarray, shape (2, 2)
-        ``∫ r rᵀ dA`` about the centre, m⁴.
-
-    Raises
-    ------
-    GeometryError
-        A region with no area, or rings running the wrong way.
-
-    Examples
-    --------
-    >>> from plumbob.bodies.primitives import rectangle_region
-    >>> area, centre, central = lamina_mass_properties(rectangle_region(2, 1), 1.0)
-    >>> area, centre.tolist(), central.round(12).tolist()   # b h³/12 about the centre
-    (2.0, [1.0, 0.5], [[0.666666666667, 0.0], [0.0, 0.166666666667]])
-    """
+def lamina_mass_properties(region: Region) -> tuple[float, np.ndarray, np.ndarray]:
+    """Area (m²), centre (2,) m and central second moments ``∫ r rᵀ dA`` (2, 2) m⁴."""
     origin = region.local_origin()
     m = region.moments(origin)
     if not m.m0 > 0:
@@ -177,7 +147,7 @@ class Lamina(Body):
         return rho * self.thickness if self.thickness is not None else rho
 
     def mass_properties(self) -> MassProperties:
-        area, centre, central = lamina_mass_properties(self.region, 1.0)
+        area, centre, central = lamina_mass_properties(self.region)
         return uniform_mass_properties(
             2, area, centre, central, None if self.density is None else self.areal_density,
             exact=self.exact, relative_error=self.relative_error, note=self.note)

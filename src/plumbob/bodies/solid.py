@@ -215,7 +215,7 @@ class Extrusion(_UniformSolid):
         object.__setattr__(self, "density", check_density(self.density))
 
     def mass_properties(self) -> MassProperties:
-        area, centre2, central2 = lamina_mass_properties(self.profile, 1.0)
+        area, centre2, central2 = lamina_mass_properties(self.profile)
         h = self.height
         central = np.zeros((3, 3))
         central[:2, :2] = h * central2

@@ -1,18 +1,100 @@
-"""Arguments and loading shared by the commands that read a body from a file."""
+"""What the commands share: argument types, reading the body, the JSON writer.
+
+Every command module imports from here and from the library, never from another
+command module. Only numpy and plumbob's reader load at import; the stability,
+energy and dynamics code load when a command runs.
+"""
 
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import sys
+from typing import Any
 
 from ..bodies.base import check_density
+from ..errors import DynamicsError
 from ..loading import read
 from ..reading import Reading
-from ..units import LENGTH_UNITS
+from ..results import jsonable
+from ..units import LENGTH_UNITS, STANDARD_GRAVITY
 
-__all__ = ["add_body_arguments", "load_body", "print_notices", "parse_vector"]
+__all__ = [
+    "number",
+    "positive",
+    "non_negative",
+    "parse_vector",
+    "number_option",
+    "add_body_arguments",
+    "add_stability_arguments",
+    "load_body",
+    "open_body",
+    "print_notices",
+    "header",
+    "clean",
+    "dump_json",
+    "print_json",
+]
 
 
+# ------------------------------------------------------------ argument types
+def number(text: str) -> float:
+    """An argparse type: a finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
+
+
+def positive(text: str) -> float:
+    """An argparse type: a positive finite number."""
+    value = number(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be positive, not {text}")
+    return value
+
+
+def non_negative(text: str) -> float:
+    """An argparse type: a finite number ≥ 0."""
+    value = number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
+    return value
+
+
+def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
+    """'X,Y[,Z]' → floats (for argparse ``type=``)."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected numbers separated by commas, not {text!r}"
+        ) from None
+    if len(values) not in dims:
+        raise argparse.ArgumentTypeError(
+            f"expected {' or '.join(map(str, dims))} numbers, not {text!r}"
+        )
+    return values
+
+
+def number_option(text: str, label: str, *, infinite: bool = False) -> float:
+    """The number given as option ``label`` of the dynamics commands, or a
+    :class:`DynamicsError` naming it; ``infinite`` lets ``inf`` through (a wall's mass)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise DynamicsError(f"{label} must be a number (got {text!r})") from None
+    if math.isnan(value) or (math.isinf(value) and not infinite):
+        kind = "a number" if infinite else "a finite number"
+        raise DynamicsError(f"{label} must be {kind} (got {text!r})")
+    return value
+
+
+# ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
     """PATH, --density/--material, --units, --repair, --json."""
     parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
@@ -41,6 +123,14 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
 
+def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
+    """The body arguments (PATH, --density/--material, --units, --repair, --json) and --g,
+    for the commands that put the body in a gravity field."""
+    add_body_arguments(parser)
+    parser.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
+                        help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
+
+
 def load_body(args: argparse.Namespace) -> Reading:
     """Read ``args.path`` and apply ``--density`` / ``--material``."""
     reading = read(
@@ -64,16 +154,80 @@ def print_notices(reading: Reading, stream=None) -> None:
         print(f"plumbob: note: {notice}", file=stream or sys.stderr)
 
 
-def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
-    """'X,Y[,Z]' → floats (for argparse ``type=``)."""
-    try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"expected numbers separated by commas, not {text!r}"
-        ) from None
-    if len(values) not in dims:
-        raise argparse.ArgumentTypeError(
-            f"expected {' or '.join(map(str, dims))} numbers, not {text!r}"
+def open_body(args: argparse.Namespace) -> tuple:
+    """(reading, mass properties, notes) for ``args.path``: the reader's notices go to
+    stderr (and into the JSON), the body's own notes (assumed densities, faceted
+    booleans) start the report's notes."""
+    reading = load_body(args)
+    print_notices(reading)
+    props = reading.body.mass_properties()
+    return reading, props, list(props.notes)
+
+
+# ------------------------------------------------------------------- output
+def header(reading: Reading, kind: str) -> dict[str, Any]:
+    """The keys every report on a body read from a file starts with: path, name, kind."""
+    out: dict[str, Any] = {}
+    if reading.path:
+        out["path"] = reading.path
+    name = getattr(reading.body, "name", None)
+    if name:
+        out["name"] = name
+    out["kind"] = kind
+    return out
+
+
+def clean(values, scale: float):
+    """Round-off far below ``scale`` shown as 0 in text reports (the JSON keeps every digit)."""
+    import numpy as np
+
+    values = np.asarray(values, dtype=float)
+    return np.where(np.abs(values) < 1e-9 * scale, 0.0, values)
+
+
+def _json_text(obj: Any, indent: int = 0) -> str:
+    """JSON text, indented, with short lists of numbers kept on one line."""
+    pad = "  " * (indent + 1)
+    if isinstance(obj, dict):
+        if not obj:
+            return "{}"
+        items = [f"{pad}{json.dumps(k)}: {_json_text(v, indent + 1)}" for k, v in obj.items()]
+        return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
+    if isinstance(obj, list):
+        flat = all(not isinstance(v, (dict, list)) for v in obj)
+        if flat and len(obj) <= 16:
+            return (
+                "["
+                + ", ".join(json.dumps(v, allow_nan=False, ensure_ascii=False) for v in obj)
+                + "]"
+            )
+        small = all(
+            isinstance(v, list) and all(not isinstance(u, (dict, list)) for u in v) for v in obj
         )
-    return values
+        if small and obj and len(obj) <= 4:
+            return "[" + ", ".join(_json_text(v) for v in obj) + "]"
+        if not obj:
+            return "[]"
+        return (
+            "[\n"
+            + ",\n".join(pad + _json_text(v, indent + 1) for v in obj)
+            + "\n"
+            + "  " * indent
+            + "]"
+        )
+    return json.dumps(obj, allow_nan=False, ensure_ascii=False)
+
+
+def dump_json(obj: dict, stream=None) -> None:
+    """Write exactly one JSON object (an ``as_dict()``, arrays and all) and a newline."""
+    stream = stream or sys.stdout
+    stream.write(_json_text(jsonable(obj)) + "\n")
+
+
+def print_json(out: dict, reading: Reading, notes: list[str]) -> None:
+    """A body's report as JSON: ``notes`` and the reader's ``notices`` close it."""
+    if notes:
+        out["notes"] = notes
+    if reading.notices:
+        out["notices"] = list(reading.notices)
+    dump_json(out)

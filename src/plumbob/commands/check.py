@@ -2,20 +2,26 @@
 
 Exit status 0 with the report; 1 when ``--require-tilt`` is given and the design
 fails it (so the command can gate a pipeline); 2 on bad input (handled by the CLI).
-Only the standard library is imported here; numpy and plumbob's stability code
-load when the command runs.
+plumbob's stability code loads when the command runs.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 
-from ..units import STANDARD_GRAVITY
-from ._common import add_body_arguments, load_body, parse_vector, print_notices
+from ._common import (
+    add_stability_arguments,
+    clean,
+    header,
+    non_negative,
+    number,
+    open_body,
+    parse_vector,
+    positive,
+    print_json,
+)
 
-__all__ = ["register", "run", "add_stability_arguments", "open_body", "positive",
-           "non_negative", "to_json", "clean", "header"]
+__all__ = ["register", "run"]
 
 DESCRIPTION = """\
 Will the body stand on a horizontal plane? Reports the verdict (stands, topples,
@@ -26,78 +32,6 @@ in the ground plane are angles from +x toward +y (for the default down, -z). A l
 stands in its own plane on its lowest edge (down -y by default)."""
 
 
-# ------------------------------------------------------------ shared helpers
-def _number(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
-    return value
-
-
-def positive(text: str) -> float:
-    """An argparse type: a positive finite number."""
-    value = _number(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be positive, not {text}")
-    return value
-
-
-def non_negative(text: str) -> float:
-    """An argparse type: a finite number ≥ 0."""
-    value = _number(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
-    return value
-
-
-def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
-    """The body arguments every command shares (PATH, --density/--material, --units,
-    --repair, --json) and --g."""
-    add_body_arguments(parser)
-    parser.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
-                        help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
-
-
-def open_body(args) -> tuple:
-    """(reading, mass properties, notes) for ``args.path``: the reader's notices go to
-    stderr (and into the JSON), the body's own notes (assumed densities, faceted
-    booleans) start the report's notes."""
-    reading = load_body(args)
-    print_notices(reading)
-    props = reading.body.mass_properties()
-    return reading, props, list(props.notes)
-
-
-def clean(values, scale: float):
-    """Round-off far below ``scale`` shown as 0 in text reports (the JSON keeps every digit)."""
-    import numpy as np
-
-    values = np.asarray(values, dtype=float)
-    return np.where(np.abs(values) < 1e-9 * scale, 0.0, values)
-
-
-def header(reading, kind: str) -> dict:
-    """The keys every stability and energy report starts with."""
-    out = {}
-    if reading.path:
-        out["path"] = reading.path
-    name = getattr(reading.body, "name", None)
-    if name:
-        out["name"] = name
-    out["kind"] = kind
-    return out
-
-
-def to_json(obj: dict) -> None:
-    from ..report import dump_json
-
-    dump_json(obj)
-
-
-# ------------------------------------------------------------------ command
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "check", help="will it stand? stability margin, tilt limits, tilt test",
@@ -112,7 +46,7 @@ def register(subparsers) -> None:
                             "poses')")
     parser.add_argument("--tilt", type=non_negative, metavar="DEG",
                         help="also check it on a plane tilted by DEG degrees")
-    parser.add_argument("--toward", type=_number, metavar="DEG",
+    parser.add_argument("--toward", type=number, metavar="DEG",
                         help="the tilted plane descends toward this direction, degrees from "
                              "+x toward +y (default: the worst direction)")
     parser.add_argument("--friction", type=non_negative, metavar="MU",
@@ -123,47 +57,6 @@ def register(subparsers) -> None:
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
     parser.set_defaults(func=run)
-
-
-def _verdict_dict(v, start: dict) -> dict:
-    out = {
-        **start,
-        "verdict": v.verdict,
-        "stands": v.stands,
-        "margin": v.margin,
-        "critical_tilt_deg": v.critical_tilt_deg,
-        "critical_direction": v.critical_direction,
-        "energy_to_topple": v.energy_to_topple,
-        "com_height": v.com_height,
-        "center_of_mass": v.center_of_mass,
-        "mass": v.mass,
-        "g": v.g,
-        "down": v.down,
-        "support_kind": v.support.kind,
-        "support_polygon": v.support.polygon,
-        "tolerance": v.support.tolerance,
-        "edges": [
-            {"start": e.start, "end": e.end, "normal": e.normal, "distance": e.distance,
-             "tipping_angle_deg": e.tipping_angle_deg, "energy": e.energy}
-            for e in v.edges
-        ],
-    }
-    if v.slope is not None:
-        s = v.slope
-        out["slope"] = {
-            "tilt_deg": s.tilt_deg, "toward_deg": s.toward_deg, "direction": s.direction,
-            "tipping_angle_deg": s.tipping_angle_deg, "topples": s.topples,
-            "verdict": s.verdict,
-        }
-        if s.friction is not None:
-            out["slope"].update(slides=s.slides, slides_first=s.slides_first)
-    if v.friction is not None:
-        out["friction"] = v.friction
-        out["slides_first"] = v.slides_first
-    if v.required_tilt_deg is not None:
-        out["required_tilt_deg"] = v.required_tilt_deg
-        out["passes"] = v.passes
-    return out
 
 
 def _text(v, path: str, kind: str, notes: list[str]) -> str:
@@ -260,12 +153,7 @@ def run(args) -> int:
               tolerance=args.tolerance, props=props)
     kind = getattr(body, "kind", "solid")
     if args.json:
-        out = _verdict_dict(v, header(reading, kind))
-        if notes:
-            out["notes"] = notes
-        if reading.notices:
-            out["notices"] = list(reading.notices)
-        to_json(out)
+        print_json({**header(reading, kind), **v.as_dict()}, reading, notes)
     else:
         print(_text(v, args.path, kind, notes))
     return 1 if v.passes is False else 0

@@ -7,7 +7,8 @@ import argparse
 import math
 
 from ..errors import DynamicsError
-from ..report import dump_json, format_number, format_vector, table
+from ..report import format_number, format_vector, table
+from ._common import dump_json, number_option
 
 HELP = "velocities, momentum and kinetic energy before and after a collision"
 EPILOG = """\
@@ -38,13 +39,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _scalar(text: str, label: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise DynamicsError(f"{label} must be a number (got {text!r})") from None
-    if math.isnan(value):
-        raise DynamicsError(f"{label} must be a number (got {text!r})")
-    return value
+    return number_option(text, label, infinite=True)
 
 
 def _vector(text: str, label: str) -> list[float]:

@@ -1,15 +1,14 @@
 """``plumbob lift PATH``: the energy to raise a structure's material into place, and how
 long a crew takes to do it.
 
-Only the standard library is imported here; numpy and plumbob's energy code load
-when the command runs.
+plumbob's energy code loads when the command runs.
 """
 
 from __future__ import annotations
 
 import argparse
 
-from .check import add_stability_arguments, header, open_body, positive, to_json
+from ._common import add_stability_arguments, header, open_body, positive, print_json
 
 __all__ = ["register", "run"]
 
@@ -54,9 +53,7 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
-    out = {**header(reading, getattr(body, "kind", "solid")), "mass": lift.mass,
-           "center_of_mass": props.center_of_mass, "datum": lift.datum,
-           "com_height": lift.com_height, "lift_energy": lift.energy, "g": lift.g}
+    out = {**header(reading, getattr(body, "kind", "solid")), **lift.as_dict()}
     crew = None
     if args.crew is not None or args.work_per_day is not None:
         work = args.work_per_day
@@ -64,22 +61,16 @@ def run(args) -> int:
             work = seed_work_per_day(args.g)
             notes.append(f"work per person per day not given: 1000 kg lifted 1 m, "
                          f"{work:g} J, assumed")
-        crew = crew_time(lift.energy, work, args.crew or 1)
-        out.update(work_per_day=crew.work_per_day, crew=crew.crew,
-                   person_days=crew.person_days, crew_days=crew.crew_days,
-                   crew_years=crew.crew_years)
+        crew = crew_time(lift.lift_energy, work, args.crew or 1)
+        out.update(crew.as_dict())
     if args.json:
-        if notes:
-            out["notes"] = notes
-        if reading.notices:
-            out["notices"] = list(reading.notices)
-        to_json(out)
+        print_json(out, reading, notes)
         return 0
     rows = [
         ("mass", f"{num(lift.mass)} kg"),
         ("ground datum", f"{num(lift.datum)} m"),
         ("centre of mass above it", f"{num(lift.com_height)} m"),
-        ("lift energy", f"{num(lift.energy)} J"),
+        ("lift energy", f"{num(lift.lift_energy)} J"),
     ]
     if crew is not None:
         rows += [

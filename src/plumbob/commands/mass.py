@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_body_arguments, load_body, print_notices
+from ._common import add_body_arguments, dump_json, load_body, print_notices
 
 
 def register(subparsers) -> None:
@@ -19,13 +19,13 @@ def register(subparsers) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..report import dump_json
-    from .mass_report import mass_json, mass_text
+    from .mass_report import MassReport
 
     reading = load_body(args)
     print_notices(reading)
+    report = MassReport.of(reading)
     if args.json:
-        dump_json(mass_json(reading))
+        dump_json(report.as_dict())
     else:
-        print(mass_text(reading))
+        print(report.text())
     return 0

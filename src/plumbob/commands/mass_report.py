@@ -1,7 +1,9 @@
-"""The report of ``plumbob mass``: JSON object and text table."""
+"""The report of ``plumbob mass``: a body's mass properties and, for an assembly, each
+part's, as a JSON object (:meth:`MassReport.as_dict`) or a text table."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -9,82 +11,96 @@ import numpy as np
 from ..bodies.csg import Assembly
 from ..massprops import MassProperties
 from ..reading import Reading
-from ..report import format_number, format_vector, mass_properties_dict, table
+from ..report import format_number, format_vector, table
+from ..results import Result
+from ._common import header
 
-__all__ = ["mass_json", "mass_text"]
+__all__ = ["MassReport"]
 
-
-def _parts(reading: Reading) -> list[tuple[str, str, MassProperties]]:
-    body = reading.body
-    if not isinstance(body, Assembly):
-        return []
-    return [
-        (p.name or f"part {i + 1}", p.kind, p.mass_properties()) for i, p in enumerate(body.parts)
-    ]
+#: the keys of each entry of ``part_properties`` besides its name
+_PART_KEYS = ("kind", "mass", "area", "volume", "center_of_mass", "exact")
 
 
-def mass_json(reading: Reading) -> dict[str, Any]:
-    """One JSON object: the body's mass properties, and each part of an assembly."""
-    props = reading.body.mass_properties()
-    out = mass_properties_dict(props, reading.body.kind)
-    name = getattr(reading.body, "name", None)
-    if name:
-        out = {"name": name, **out}
-    if reading.path:
-        out = {"path": reading.path, **out}
-    parts = _parts(reading)
-    if parts:
-        out["part_properties"] = [
-            {
-                "name": name,
-                **{
-                    k: v
-                    for k, v in mass_properties_dict(p, kind).items()
-                    if k in ("kind", "mass", "area", "volume", "center_of_mass", "exact")
-                },
-            }
-            for name, kind, p in parts
-        ]
-    if reading.notices:
-        out["notices"] = list(reading.notices)
-    return out
+@dataclass(frozen=True, repr=False)
+class MassReport(Result):
+    """What ``plumbob mass`` reports on a body read from a file.
 
+    reading: the body, its file and the reader's notices. props: the body's mass
+    properties. parts: (name, kind, mass properties) of each part of an assembly
+    (empty for other bodies).
+    """
 
-def mass_text(reading: Reading) -> str:
-    """A readable table."""
-    body = reading.body
-    props = body.mass_properties()
-    size_label, size_unit = ("area", "m²") if props.dim == 2 and props.measure else ("volume", "m³")
-    rows = [("kind", body.kind), ("mass", f"{format_number(props.mass)} kg")]
-    if props.measure:
-        rows.append((size_label, f"{format_number(props.measure)} {size_unit}"))
-        density_unit = "kg/m²" if props.dim == 2 else "kg/m³"
-        rows.append(("mean density", f"{format_number(props.density)} {density_unit}"))
-    # Round-off far below the body's size is shown as 0 (the JSON keeps every digit).
-    scale = float(np.abs(props.center_of_mass).max() + np.sqrt(np.trace(props.inertia) / props.mass))
-    rows.append(("centre of mass", f"{format_vector(props.center_of_mass, scale=scale)} m"))
-    inertia = np.where(np.abs(props.inertia) < 1e-12 * np.abs(props.inertia).max(), 0.0, props.inertia)
-    labels = ("inertia (about centre)", "", "")
-    for label, row in zip(labels, inertia):
-        rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row) + "]  kg·m²"))
-    rows.append(("principal moments", f"{format_vector(props.principal_moments)} kg·m²"))
-    for i, axis in enumerate(props.principal_axes):
-        rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
-    rows.append(
-        ("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})")
-    )
-    rows.append(("parts", str(props.parts)))
-    title = getattr(body, "name", None) or reading.path or "body"
-    text = table(rows, title)
-    parts = _parts(reading)
-    if parts:
-        width = max(len(n) for n, _, _ in parts)
-        lines = ["", f"{'part':<{width}}  {'mass (kg)':>12}  centre of mass (m)"]
-        lines += [
-            f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
-            for name, _, p in parts
-        ]
-        text += "\n" + "\n".join(lines)
-    for note in props.notes:
-        text += f"\nnote: {note}"
-    return text
+    reading: Reading
+    props: MassProperties
+    parts: tuple[tuple[str, str, MassProperties], ...] = ()
+
+    @classmethod
+    def of(cls, reading: Reading) -> MassReport:
+        """The report on the body of ``reading``."""
+        body = reading.body
+        parts = ()
+        if isinstance(body, Assembly):
+            parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
+                          for i, p in enumerate(body.parts))
+        return cls(reading, body.mass_properties(), parts)
+
+    @property
+    def kind(self) -> str:
+        """``lamina``, ``solid``, ``particles`` or ``assembly``."""
+        return self.reading.body.kind
+
+    def _repr_items(self) -> list[tuple[str, Any]]:
+        return [("path", self.reading.path), ("kind", self.kind), ("props", self.props),
+                ("parts", len(self.parts))]
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON object of ``plumbob mass``: ``path`` and ``name`` when known, the
+        mass properties (:meth:`MassProperties.as_dict`), ``part_properties`` for an
+        assembly (each ``name``, ``kind``, ``mass``, ``area``/``volume``,
+        ``center_of_mass``, ``exact``) and the reader's ``notices``."""
+        out = {**header(self.reading, self.kind), **self.props.as_dict(self.kind)}
+        if self.parts:
+            out["part_properties"] = [
+                {"name": name, **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
+                for name, kind, props in self.parts
+            ]
+        if self.reading.notices:
+            out["notices"] = list(self.reading.notices)
+        return out
+
+    def text(self) -> str:
+        """A readable table, then a line per part and the notes."""
+        props = self.props
+        size_label, size_unit = ("area", "m²") if props.dim == 2 and props.measure else ("volume", "m³")
+        rows = [("kind", self.kind), ("mass", f"{format_number(props.mass)} kg")]
+        if props.measure:
+            rows.append((size_label, f"{format_number(props.measure)} {size_unit}"))
+            density_unit = "kg/m²" if props.dim == 2 else "kg/m³"
+            rows.append(("mean density", f"{format_number(props.density)} {density_unit}"))
+        # Round-off far below the body's size is shown as 0 (the JSON keeps every digit).
+        scale = float(np.abs(props.center_of_mass).max() + np.sqrt(np.trace(props.inertia) / props.mass))
+        rows.append(("centre of mass", f"{format_vector(props.center_of_mass, scale=scale)} m"))
+        inertia = np.where(np.abs(props.inertia) < 1e-12 * np.abs(props.inertia).max(), 0.0, props.inertia)
+        labels = ("inertia (about centre)", "", "")
+        for label, row in zip(labels, inertia):
+            rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row) + "]  kg·m²"))
+        rows.append(("principal moments", f"{format_vector(props.principal_moments)} kg·m²"))
+        for i, axis in enumerate(props.principal_axes):
+            rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
+        rows.append(
+            ("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})")
+        )
+        rows.append(("parts", str(props.parts)))
+        title = getattr(self.reading.body, "name", None) or self.reading.path or "body"
+        text = table(rows, title)
+        if self.parts:
+            width = max(len(n) for n, _, _ in self.parts)
+            lines = ["", f"{'part':<{width}}  {'mass (kg)':>12}  centre of mass (m)"]
+            lines += [
+                f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
+                for name, _, p in self.parts
+            ]
+            text += "\n" + "\n".join(lines)
+        for note in props.notes:
+            text += f"\nnote: {note}"
+        return text

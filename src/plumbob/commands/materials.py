@@ -42,7 +42,7 @@ def _matches(entry, words: list[str], category: str | None, whole: bool) -> bool
 def run(args: argparse.Namespace) -> int:
     from ..errors import MaterialError
     from ..materials import CATEGORIES, materials, sources
-    from ..report import dump_json
+    from ._common import dump_json
 
     if args.category is not None and args.category.lower() not in CATEGORIES:
         raise MaterialError(f"unknown category {args.category!r}; categories: "

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from .check import add_stability_arguments, clean, header, open_body, positive, to_json
+from ._common import add_stability_arguments, clean, header, open_body, positive
+from ._common import dump_json as to_json
 
 __all__ = ["register", "run"]
 

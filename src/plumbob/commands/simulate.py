@@ -5,12 +5,12 @@ of the particles and of their centre of mass (JSON: ``times``, ``positions``,
 from __future__ import annotations
 
 import argparse
-import math
 
 import numpy as np
 
 from ..errors import DynamicsError
-from ..report import dump_json, format_number, format_vector, table
+from ..report import format_number, format_vector, table
+from ._common import dump_json, number_option
 
 HELP = "integrate a particle system (springs, rods, strings, gravity, friction) over time"
 
@@ -27,24 +27,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(func=run)
 
 
-def _number(text: str, label: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise DynamicsError(f"{label} must be a number (got {text!r})") from None
-    if not math.isfinite(value):
-        raise DynamicsError(f"{label} must be a finite number (got {text!r})")
-    return value
-
-
 def run(args: argparse.Namespace) -> int:
     from ..dynamics.motion import simulate
     from ..spec import load_simulation
 
-    until = _number(args.until, "--until")
+    until = number_option(args.until, "--until")
     if until <= 0:
         raise DynamicsError(f"--until must be a positive number of seconds (got {args.until})")
-    samples = _number(args.samples, "--samples")
+    samples = number_option(args.samples, "--samples")
     if samples != int(samples) or samples < 2:
         raise DynamicsError(f"--samples must be a whole number of at least 2 (got {args.samples})")
     spec = load_simulation(args.spec)

@@ -18,7 +18,7 @@ from .collisions import (
     collide,
     restitution_from_bounces,
 )
-from .motion import STANDARD_GRAVITY, Link, MotionModel, SimulationResult, Spring, simulate
+from .motion import Link, MotionModel, SimulationResult, Spring, simulate
 from .two_particle import (
     MaceBalance,
     PulleyLift,
@@ -36,7 +36,7 @@ from .two_particle import (
 __all__ = [
     "CollisionResult", "ImpactCheck", "bounce_heights", "check_impact", "collide",
     "restitution_from_bounces",
-    "STANDARD_GRAVITY", "Link", "MotionModel", "SimulationResult", "Spring", "simulate",
+    "Link", "MotionModel", "SimulationResult", "Spring", "simulate",
     "MaceBalance", "PulleyLift", "RigidPair", "VibratingMolecule", "center_of_mass_acceleration",
     "mace_balance_point", "max_pull_before_break", "partner_position", "pulley_lift",
     "rigid_pair", "spring_pair_pull",

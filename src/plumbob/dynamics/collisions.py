@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DynamicsError
+from ..results import Result
 
 __all__ = [
     "CollisionResult",
@@ -42,8 +43,8 @@ ELASTIC_RTOL = 1e-9
 Vector = Sequence[float] | np.ndarray | float
 
 
-@dataclass(frozen=True, eq=False)
-class CollisionResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class CollisionResult(Result):
     """The outcome of one instantaneous collision between body 1 and body 2.
 
     m1, m2: masses, kg (``m2`` is ``inf`` for a fixed surface).
@@ -74,13 +75,16 @@ class CollisionResult:
     momentum_after: np.ndarray
     elastic: bool
 
+    _repr_fields = ("m1", "m2", "e", "normal", "v1_after", "v2_after", "ke_loss", "elastic")
+
     @property
     def wall(self) -> bool:
         """True when body 2 is a fixed surface (infinite mass)."""
         return math.isinf(self.m2)
 
     def as_dict(self) -> dict:
-        """The JSON object of ``plumbob collide`` (SI units, snake_case keys)."""
+        """The JSON object of ``plumbob collide`` (SI units, snake_case keys; ``m2`` is
+        the string ``"inf"`` for a fixed surface, which JSON has no number for)."""
         return {
             "m1": self.m1,
             "m2": "inf" if self.wall else self.m2,
@@ -100,8 +104,8 @@ class CollisionResult:
         }
 
 
-@dataclass(frozen=True, eq=False)
-class ImpactCheck:
+@dataclass(frozen=True, eq=False, repr=False)
+class ImpactCheck(Result):
     """Before/after bookkeeping of a collision whose outcome is given (seed Exercise 26).
 
     ke_before, ke_after, ke_loss: J. momentum_before, momentum_after: (d,) kg·m/s.
@@ -166,15 +170,33 @@ def collide(m1: float, v1: Vector, m2: float, v2: Vector | None = None,
             normal: Vector | None = None, e: float = 1.0) -> CollisionResult:
     """Velocities after an instantaneous collision by Newton's law of restitution.
 
-    m1, m2: masses, kg; ``m2 = inf`` is a fixed (or uniformly moving) surface.
-    v1, v2: velocities just before impact, m/s, 1 to 3 components (``v2`` defaults to rest).
-    normal: the common normal, pointing from body 1 towards body 2 (any length).
-        Default: the direction of the relative velocity ``v1 − v2`` (a head-on impact).
-    e: coefficient of restitution in [0, 1]: 1 elastic, 0 coalescing along the normal.
+    Parameters
+    ----------
+    m1, m2 : float
+        Masses, kg; ``m2 = inf`` is a fixed (or uniformly moving) surface.
+    v1, v2 : array_like or float
+        Velocities just before impact, m/s, 1 to 3 components (``v2`` defaults to rest).
+    normal : array_like, optional
+        The common normal, pointing from body 1 towards body 2 (any length). Default:
+        the direction of the relative velocity ``v1 − v2`` (a head-on impact).
+    e : float, default 1
+        Coefficient of restitution in [0, 1]: 1 elastic, 0 coalescing along the normal.
 
-    Raises :class:`DynamicsError` for a non-positive mass, ``e`` outside [0, 1], a zero
-    normal, mismatched dimensions, or bodies not approaching along the normal.
+    Returns
+    -------
+    CollisionResult
+        The velocities after, the impulse on body 2, the kinetic energy and momentum
+        before and after, and whether it was elastic; ``as_dict()`` gives the keys of
+        ``plumbob collide --json``.
 
+    Raises
+    ------
+    DynamicsError
+        For a non-positive mass, ``e`` outside [0, 1], a zero normal, mismatched
+        dimensions, or bodies not approaching along the normal.
+
+    Examples
+    --------
     Seed Example 6 (snooker balls, elastic, head-on): A stops, B takes A's 5 m/s.
 
     >>> r = collide(0.17, [5, 0], 0.17, [0, 0])
@@ -188,8 +210,18 @@ def collide(m1: float, v1: Vector, m2: float, v2: Vector | None = None,
 
     A ball bouncing on a floor (normal from the ball into the floor, i.e. down):
 
-    >>> collide(0.1, [3, -4], float("inf"), [0, 0], normal=[0, -1], e=0.5).v1_after
-    array([3., 2.])
+    >>> collide(0.1, [3, -4], float("inf"), [0, 0], normal=[0, -1], e=0.5)
+    CollisionResult(m1=0.1, m2=inf, e=0.5, normal=[0, -1], v1_after=[3, 2], v2_after=[0, 0], \
+ke_loss=0.6, elastic=False)
+
+    Bodies moving apart do not collide:
+
+    >>> collide(1.0, [-1.0], 1.0, [1.0], normal=[1.0])
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DynamicsError: no collision: the bodies are not approaching along the \
+normal (closing speed -2 m/s). The normal points from body 1 towards body 2; reverse it \
+if you meant the other side
     """
     m1 = _mass(m1, "m1")
     m2 = _mass(m2, "m2", infinite_ok=True)

@@ -33,15 +33,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
-from ..units import STANDARD_GRAVITY
+from ..results import Result
 
 __all__ = [
-    "STANDARD_GRAVITY",
     "Spring",
     "Link",
     "MotionModel",
@@ -49,14 +49,10 @@ __all__ = [
     "simulate",
 ]
 
-#: Standard acceleration of gravity, m/s² (the seed's g).
-
 #: At t = 0 a string counts as taut when |d| ≥ L (1 − _TAUT_RTOL). During a run the
 #: threshold is 100 × rtol: a string that the solver holds at |d| ≈ L stays taut.
 _TAUT_RTOL = 1e-7
-#: A taut string must first slacken by 10 × that threshold before a re-tightening
-#: is treated as a new jerk (keeps round-off at |d| ≈ L from firing events); the
-#: instant of such a jerk is therefore located to about 1e-7 L / (closing speed).
+#: Most string jerks (restarts of the integration) in one run.
 _MAX_SEGMENTS = 10_000
 
 
@@ -196,8 +192,8 @@ class MotionModel:
         return self.friction is not None and bool(np.any(self.friction > 0))
 
 
-@dataclass(frozen=True, eq=False)
-class SimulationResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class SimulationResult(Result):
     """The paths of the particles and of their centre of mass.
 
     times: (t,) s.  names: one per particle.  masses: (n,) kg.
@@ -233,8 +229,25 @@ class SimulationResult:
         """kg."""
         return float(self.masses.sum())
 
-    def as_dict(self) -> dict:
-        """The JSON object of ``plumbob simulate`` (SI units, snake_case keys)."""
+    def _repr_items(self) -> list[tuple[str, Any]]:
+        return [("names", self.names), ("total_mass", self.total_mass),
+                ("samples", len(self.times)), ("until", float(self.times[-1])),
+                ("newton_residual", self.newton_residual),
+                ("max_constraint_error", self.max_constraint_error),
+                ("string_jerks", len(self.string_jerks))]
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON object of ``plumbob simulate`` (SI units, snake_case keys): every
+        field, the total mass after the masses, each string jerk as ``{"time", "string"}``.
+
+        >>> pair = ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]])
+        >>> run = simulate(MotionModel(pair), 1.0, samples=3)
+        >>> run
+        SimulationResult(names=('particle 1', 'particle 2'), total_mass=3, samples=3, until=1, \
+newton_residual=0, max_constraint_error=0, string_jerks=0)
+        >>> list(run.as_dict())[:4]
+        ['names', 'masses', 'total_mass', 'times']
+        """
         return {
             "names": list(self.names),
             "masses": self.masses,
@@ -511,6 +524,9 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
 
 def _string_event(dyn: _Dynamics, k: int, taut: bool):
     """Event: string k reaching its length from below (re-armed below L if taut now)."""
+    # A taut string must first slacken by 10 × the taut threshold before a re-tightening
+    # is a new jerk (so round-off at |d| ≈ L fires no events); the instant of such a
+    # jerk is therefore located to about 1e-7 L / (closing speed).
     target = dyn.ll[k] * (1.0 - 10.0 * dyn.taut_rtol) if taut else dyn.ll[k]
     nd = dyn.n * dyn.d
     i, j = int(dyn.li[k]), int(dyn.lj[k])

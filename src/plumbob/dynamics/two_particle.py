@@ -19,7 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DynamicsError
-from .motion import STANDARD_GRAVITY
+from ..results import Result
+from ..units import STANDARD_GRAVITY
 
 __all__ = [
     "PulleyLift",
@@ -47,8 +48,8 @@ def _positive(value: float, label: str, unit: str) -> float:
 
 
 # ---------------------------------------------------------------------- lift
-@dataclass(frozen=True)
-class PulleyLift:
+@dataclass(frozen=True, repr=False)
+class PulleyLift(Result):
     """A lift and a counterweight on a light inextensible cable over a light pulley.
 
     counterweight, lift: masses m₁, m₂, kg.
@@ -102,8 +103,8 @@ def pulley_lift(counterweight: float, lift: float, g: float = STANDARD_GRAVITY) 
 
 
 # ---------------------------------------------------------------------- mace
-@dataclass(frozen=True)
-class MaceBalance:
+@dataclass(frozen=True, repr=False)
+class MaceBalance(Result):
     """The balance point G of two masses on a light rod (seed equation 5).
 
     head, tail: masses m₁ (at A) and m₂ (at B), kg.  length: |AB|, m.
@@ -207,8 +208,8 @@ def spring_pair_pull(mass: float, stiffness: float, natural_length: float, pull:
 
 
 # --------------------------------------------------------- pairs moving as one
-@dataclass(frozen=True)
-class RigidPair:
+@dataclass(frozen=True, repr=False)
+class RigidPair(Result):
     """Two particles moving together (a taut string or a rod), one pulled by a force.
 
     pulled, other: masses, kg.  force: the external pull on ``pulled``, N.

@@ -11,10 +11,9 @@ Heavy dependencies (scipy) are imported only when a function needs them.
 
 from .poses import Pose, Poses, poses_from_points, resting_poses
 from .support import Support, default_down, ground_frame, support_polygon
-from .verdict import STANDARD_GRAVITY, SlopeCheck, TippingEdge, Verdict, check
+from .verdict import SlopeCheck, TippingEdge, Verdict, check
 
 __all__ = [
-    "STANDARD_GRAVITY",
     "Pose",
     "Poses",
     "SlopeCheck",

@@ -30,17 +30,18 @@ depends on its curvature, which this verdict does not judge).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from ..errors import StabilityError
 from ..massprops import MassProperties
+from ..results import Result
 from ..units import STANDARD_GRAVITY
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
 
 __all__ = [
-    "STANDARD_GRAVITY",
     "TippingEdge",
     "SlopeCheck",
     "Verdict",
@@ -49,9 +50,8 @@ __all__ = [
 ]
 
 
-
-@dataclass(frozen=True)
-class TippingEdge:
+@dataclass(frozen=True, repr=False)
+class TippingEdge(Result):
     """One edge of the support boundary a body can tip over.
 
     start, end: the edge's ends, points of the plane in the body frame (dim,) m
@@ -70,8 +70,8 @@ class TippingEdge:
     energy: float
 
 
-@dataclass(frozen=True)
-class SlopeCheck:
+@dataclass(frozen=True, repr=False)
+class SlopeCheck(Result):
     """The body on a plane tilted by ``tilt_deg`` toward ``direction``.
 
     toward_deg: the direction's angle in the ground plane from e1 toward e2, degrees.
@@ -92,17 +92,31 @@ class SlopeCheck:
     slides: bool | None = None
     slides_first: bool | None = None
 
+    _repr_fields = ("tilt_deg", "toward_deg", "verdict", "tipping_angle_deg", "friction",
+                    "slides_first")
+
     @property
     def verdict(self) -> str:
+        """``"topples"``, ``"slides"`` or ``"stands"`` at ``tilt_deg``."""
         if self.topples:
             return "topples"
         if self.slides:
             return "slides"
         return "stands"
 
+    def as_dict(self) -> dict[str, Any]:
+        """The ``slope`` object of ``plumbob check --json`` (degrees, unit vector); the
+        friction coefficient itself is the verdict's."""
+        out = {"tilt_deg": self.tilt_deg, "toward_deg": self.toward_deg,
+               "direction": self.direction, "tipping_angle_deg": self.tipping_angle_deg,
+               "topples": self.topples, "verdict": self.verdict}
+        if self.friction is not None:
+            out.update(slides=self.slides, slides_first=self.slides_first)
+        return out
 
-@dataclass(frozen=True)
-class Verdict:
+
+@dataclass(frozen=True, repr=False)
+class Verdict(Result):
     """Whether a body stands on a horizontal plane, and how far from toppling it is.
 
     verdict: ``"stands"``, ``"topples"`` or ``"neutral"``.
@@ -144,13 +158,50 @@ class Verdict:
     passes: bool | None = None
     rocking: Rocking | None = None
 
+    _repr_fields = ("verdict", "margin", "critical_tilt_deg", "critical_direction",
+                    "energy_to_topple", "com_height", "mass", "passes")
+
     @property
     def stands(self) -> bool:
+        """Whether the verdict is ``"stands"``."""
         return self.verdict == "stands"
 
     @property
     def down(self) -> np.ndarray:
+        """The direction of gravity in the body's frame, unit vector (dim,)."""
         return self.support.frame.down
+
+    def as_dict(self) -> dict[str, Any]:
+        """The verdict keyed as ``plumbob check --json`` prints it (SI units, degrees).
+
+        Returns
+        -------
+        dict
+            ``verdict``, ``stands``, ``margin``, ``critical_tilt_deg``,
+            ``critical_direction``, ``energy_to_topple``, ``com_height``,
+            ``center_of_mass``, ``mass``, ``g``, ``down``, ``support_kind``,
+            ``support_polygon``, ``tolerance``, ``edges`` (each ``start``, ``end``,
+            ``normal``, ``distance``, ``tipping_angle_deg``, ``energy``); with a tilted
+            plane ``slope``; with friction ``friction`` and ``slides_first``; with a
+            design check ``required_tilt_deg`` and ``passes``.
+        """
+        out = {
+            "verdict": self.verdict, "stands": self.stands, "margin": self.margin,
+            "critical_tilt_deg": self.critical_tilt_deg,
+            "critical_direction": self.critical_direction,
+            "energy_to_topple": self.energy_to_topple, "com_height": self.com_height,
+            "center_of_mass": self.center_of_mass, "mass": self.mass, "g": self.g,
+            "down": self.down, "support_kind": self.support.kind,
+            "support_polygon": self.support.polygon, "tolerance": self.support.tolerance,
+            "edges": [e.as_dict() for e in self.edges],
+        }
+        if self.slope is not None:
+            out["slope"] = self.slope.as_dict()
+        if self.friction is not None:
+            out.update(friction=self.friction, slides_first=self.slides_first)
+        if self.required_tilt_deg is not None:
+            out.update(required_tilt_deg=self.required_tilt_deg, passes=self.passes)
+        return out
 
     def tipping_angle_deg(self, direction) -> float:
         """The tilt, degrees, that topples the body when the plane descends toward the
@@ -277,22 +328,65 @@ def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | Non
           props: MassProperties | None = None) -> Verdict:
     """Will ``body`` stand on a horizontal plane with gravity along ``down``?
 
-    body: any plumbob body.
-    down: (dim,) the direction of gravity in the body's frame; default −z for solids,
-        −y for a lamina (in its own plane).
-    g: gravitational acceleration, m/s².
-    tilt_deg, toward_deg: also check it on a plane tilted by ``tilt_deg`` degrees,
-        descending toward ``toward_deg`` (in the ground plane, from e1 toward e2 — for
-        ``down = −z`` from +x toward +y); without ``toward_deg`` the worst direction.
-    friction: friction coefficient μ: does it slide (tan θ > μ) before it topples?
-    require_tilt_deg: the design check: it must not topple when tilted this much in
-        any direction (IEC 62368-1: 10°).
-    tolerance: contact tolerance, m (default 1e-6 of the body's size).
+    Parameters
+    ----------
+    body : Body
+        Any plumbob body.
+    down : array_like, shape (dim,), optional
+        The direction of gravity in the body's frame (any length); default −z for
+        solids, −y for a lamina (in its own plane).
+    g : float, default 9.81
+        Gravitational acceleration, m/s².
+    tilt_deg, toward_deg : float, optional
+        Also check it on a plane tilted by ``tilt_deg`` degrees, descending toward
+        ``toward_deg`` (in the ground plane, from e1 toward e2 — for ``down = −z``
+        from +x toward +y); without ``toward_deg`` the worst direction.
+    friction : float, optional
+        Friction coefficient μ: does it slide (tan θ > μ) before it topples?
+    require_tilt_deg : float, optional
+        The design check: it must not topple when tilted this much in any direction
+        (IEC 62368-1: 10°).
+    tolerance : float, optional
+        Contact tolerance, m (default 1e-6 of the body's size).
+    props : MassProperties, optional
+        The body's mass properties, when already computed.
 
-    >>> from plumbob.bodies.primitives import box
-    >>> v = check(box(1, 1, 4, density=1000.0))
+    Returns
+    -------
+    Verdict
+        ``verdict`` (``"stands"``, ``"topples"``, ``"neutral"``), the margin, the
+        critical tilt and its direction, the energy to topple, per support edge the
+        tipping angle and energy, and the slope, friction and design checks asked
+        for; ``as_dict()`` gives the keys of ``plumbob check --json``.
+
+    Raises
+    ------
+    StabilityError
+        For a body with nothing to stand on along ``down`` (particles in one plane),
+        a tilt outside [0°, 90°) or a negative friction coefficient.
+
+    Examples
+    --------
+    The seed's block, h × h × 4h upright, h = 1 m:
+
+    >>> from plumbob.bodies.primitives import box, sphere
+    >>> block = box(1, 1, 4, density=1000.0)
+    >>> v = check(block)
     >>> v.verdict, round(v.critical_tilt_deg, 2), round(v.energy_to_topple / (4000 * 9.81), 6)
     ('stands', 14.04, 0.061553)
+
+    On a 20° slope it goes over before it slides, and it fails a 15° design check:
+
+    >>> check(block, tilt_deg=20, friction=0.3).slope
+    SlopeCheck(tilt_deg=20, toward_deg=-90, verdict='topples', tipping_angle_deg=14.0362, \
+friction=0.3, slides_first=False)
+    >>> check(block, require_tilt_deg=15).passes
+    False
+
+    Balanced on an edge it topples; a ball rolls (neutral):
+
+    >>> check(block, down=[1, 0, -1]).verdict, check(sphere(1.0)).verdict
+    ('topples', 'neutral')
     """
     props = body.mass_properties() if props is None else props
     sup = support_polygon(body, down, tolerance=tolerance, props=props)

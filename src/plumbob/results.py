@@ -1,0 +1,102 @@
+"""What every result type shares: a plain-dictionary view and a short repr.
+
+A result (mass properties, a stability verdict, a lift energy, a simulation, a
+collision) answers a question in SI units. ``as_dict()`` gives that answer keyed by
+the names the CLI's ``--json`` prints (numbers, strings, flags and numpy arrays:
+:func:`jsonable` turns it into plain JSON values), and the repr names the headline
+numbers without dumping arrays, so a result printed in a notebook is one line.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import fields
+from typing import Any, ClassVar
+
+import numpy as np
+
+__all__ = ["Result", "jsonable", "short"]
+
+#: arrays with more entries than this are summarised by their shape in a repr
+_INLINE = 4
+
+
+def short(value: Any) -> str:
+    """A value as a repr shows it: numbers to 6 significant figures, small vectors
+    inline, larger arrays and sequences of objects by their size only.
+
+    >>> short(2.0), short(1 / 3), short(True), short("stands"), short(None)
+    ('2', '0.333333', 'True', "'stands'", 'None')
+    >>> short(np.array([0.0, -0.0, 2.5])), short(np.zeros((201, 3)))
+    ('[0, 0, 2.5]', 'array(201×3)')
+    >>> short(()), short(("A", "B")), short((np.zeros(2), np.ones(2)))
+    ('()', "('A', 'B')", '(2 items)')
+    >>> short(float("inf")), short(float("nan"))
+    ('inf', 'nan')
+    """
+    if isinstance(value, Result):
+        return repr(value)
+    if value is None or isinstance(value, (bool, np.bool_, str)):
+        return repr(value if not isinstance(value, np.bool_) else bool(value))
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        return f"{float(value) + 0.0:.6g}"  # + 0.0: no negative zeros
+    if isinstance(value, np.ndarray):
+        if value.ndim <= 1 and value.size <= _INLINE:
+            return "[" + ", ".join(short(v) for v in value.tolist()) + "]"
+        return "array(" + "×".join(map(str, value.shape)) + ")"
+    if isinstance(value, (tuple, list)):
+        if all(isinstance(v, (str, int, float, bool)) for v in value) and len(value) <= _INLINE:
+            inner = ", ".join(short(v) for v in value)
+            return f"({inner},)" if isinstance(value, tuple) and len(value) == 1 else (
+                f"({inner})" if isinstance(value, tuple) else f"[{inner}]")
+        return f"({len(value)} items)"
+    return f"<{type(value).__name__}>"
+
+
+def jsonable(value: Any) -> Any:
+    """Plain Python values for ``json``: arrays become lists, numpy scalars Python
+    numbers, non-finite floats ``None`` (JSON has no NaN), negative zeros zeros.
+
+    >>> jsonable({"a": np.array([1.0, -0.0]), "b": np.float64("nan"), "c": (np.int64(2),)})
+    {'a': [1.0, 0.0], 'b': None, 'c': [2]}
+    """
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return jsonable(value.tolist())
+    if isinstance(value, (np.bool_, bool)):
+        return bool(value)
+    if isinstance(value, (np.integer, int)):
+        return int(value)
+    if isinstance(value, (np.floating, float)):
+        value = float(value) + 0.0  # no negative zeros
+        return value if math.isfinite(value) else None
+    return value
+
+
+class Result:
+    """Mixin for the frozen dataclasses that hold results (declare them ``repr=False``).
+
+    ``as_dict()`` defaults to every field, in order; a result whose JSON differs
+    (renamed, derived or flattened keys) overrides it. The repr shows
+    ``_repr_items()``: the fields named in ``_repr_fields`` (default: all), leaving
+    out those that are ``None``.
+    """
+
+    _repr_fields: ClassVar[tuple[str, ...] | None] = None
+
+    def as_dict(self) -> dict[str, Any]:
+        """The result's values keyed by the CLI's JSON keys, SI units."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
+
+    def _repr_items(self) -> list[tuple[str, Any]]:
+        names = self._repr_fields or tuple(f.name for f in fields(self))  # type: ignore[arg-type]
+        return [(n, getattr(self, n)) for n in names]
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{n}={short(v)}" for n, v in self._repr_items() if v is not None)
+        return f"{type(self).__name__}({inner})"
