@@ -136,7 +136,9 @@ def test_exercise_10_pair_on_a_track():
     # The same with a rod in the simulation.
     system = ParticleSystem([4.0, 1.0], [[0.0, 0.0], [0.5, 0.0]])
     model = MotionModel(system, links=(Link(0, 1, 0.5),), forces=[[0, 0], [20.0, 0]])
-    run = simulate(model, 1.0, samples=11)
+    # The checks ask for 1e-9: the solver's tolerance must be finer than that, since the
+    # rod's drift (about 8 rtol in length) comes back as velocity through the stabilisation.
+    run = simulate(model, 1.0, samples=11, rtol=1e-11)
     np.testing.assert_allclose(run.velocities[-1, :, 0], [4.0, 4.0], rtol=1e-9)
     np.testing.assert_allclose(run.positions[-1, :, 0], [2.0, 2.5], rtol=1e-9)
 

@@ -105,7 +105,7 @@ class DensityField:
         >>> DensityField.from_expression("exp(x)").degree is None
         True
         """
-        from ..spec.expr import Expression, parse
+        from ..expr import Expression, parse
 
         if isinstance(expression, str):
             expression = parse(expression)

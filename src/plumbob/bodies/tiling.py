@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..integrals.polygon import bulge_arc_geometry
 from ..integrals.cells import ArcCells, BezierCells, Cells, ProductCells, SimplexCells
+from ..integrals.polygon import bulge_arc_geometry
 from .region import Region
 
 __all__ = ["mesh_cells", "prism_cells", "region_cells", "revolution_cells"]
