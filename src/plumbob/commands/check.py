@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from ..plot.files import add_plot_argument, write_plot
 from ..units import STANDARD_GRAVITY
 from ._common import add_body_arguments, load_body, parse_vector, print_notices
 
@@ -122,6 +123,7 @@ def register(subparsers) -> None:
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -258,6 +260,8 @@ def run(args) -> int:
     v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
               friction=args.friction, require_tilt_deg=args.require_tilt,
               tolerance=args.tolerance, props=props)
+    if args.plot:
+        write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
     if args.json:
         out = _verdict_dict(v, header(reading, kind))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..plot.files import add_plot_argument, write_plot
 from .check import add_stability_arguments, header, open_body, positive, to_json
 
 __all__ = ["register", "run"]
@@ -43,6 +44,7 @@ def register(subparsers) -> None:
                         help="work one person does in a day, J (default 1000 g: 1000 kg "
                              "through 1 m)")
     parser.add_argument("--crew", type=_crew, metavar="N", help="people working at once")
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -54,6 +56,8 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
+    if args.plot:
+        write_plot(args.plot, "lift", lift, body, props=props, path=args.path)
     out = {**header(reading, getattr(body, "kind", "solid")), "mass": lift.mass,
            "center_of_mass": props.center_of_mass, "datum": lift.datum,
            "com_height": lift.com_height, "lift_energy": lift.energy, "g": lift.g}

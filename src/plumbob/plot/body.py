@@ -47,11 +47,12 @@ def plot_body(body, ax=None, *, props=None, path: str | None = None,
     com = _com(body, props)
     colours, legend = part_colours(d.pieces)
     title = title_for(body, path, "centre of mass")
+    size = float(np.ptp(d.all_points(), axis=0).max())
     if d.dim == 2:
         fig = ax.figure if ax is not None else new_figure()
         ax = ax if ax is not None else fig.add_subplot()
         draw_outline(ax, d, colours)
-        draw_com(ax, com)
+        draw_com(ax, com, scale=size)
         label_axes(ax)
         ax.set_title(title)
         draw_legend(ax, legend if len(d.pieces) > 1 else [])
@@ -59,11 +60,11 @@ def plot_body(body, ax=None, *, props=None, path: str | None = None,
     if ax is not None:
         if hasattr(ax, "zaxis"):
             draw_3d(ax, d, colours)
-            draw_com_3d(ax, com)
+            draw_com_3d(ax, com, scale=size)
             label_axes(ax, ("x", "y", "z"))
         else:
             draw_silhouette(ax, d, colours, 0, 2)
-            draw_com(ax, com[[0, 2]], label=f"centre of mass G {fmt_point(com)} m")
+            draw_com(ax, com[[0, 2]], label=f"centre of mass G {fmt_point(com, scale=size)} m")
             label_axes(ax, ("x", "z"))
         return ax.figure
     fig = new_figure((13, 4.6))
@@ -83,7 +84,7 @@ def plot_body(body, ax=None, *, props=None, path: str | None = None,
             axk.invert_yaxis()  # seen from below, +y points down the page
         axk.set_title(name)
     draw_legend(ax3, legend if len(d.pieces) > 1 else [], loc="upper left")
-    caption = f"G = {fmt_point(com)} m"
+    caption = f"G = {fmt_point(com, scale=size)} m"
     if d.note:
         caption += f"\n{d.note}"
     fig.suptitle(title)

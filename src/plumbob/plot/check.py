@@ -34,6 +34,11 @@ _GROUND = "#9e9e9e"
 _MAX_EDGE_LABELS = 12
 
 
+def _size(verdict) -> float:
+    """The body's size, as the verdict's contact tolerance was set from it."""
+    return verdict.support.tolerance * 1e6
+
+
 def _frame(verdict) -> np.ndarray:
     return rest_frame(verdict.down, verdict.support.frame.axes)
 
@@ -77,7 +82,7 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.annotate("", xy=foot, xytext=com, zorder=18,
                 arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
     ax.plot([], [], linestyle="--", color=INK, label="line of action of the weight")
-    draw_com(ax, com)
+    draw_com(ax, com, scale=_size(verdict))
     _draw_foot(ax, foot, verdict)
     for edge in verdict.edges:
         tip = in_frame(edge.start, rows)
@@ -127,7 +132,7 @@ def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.set_aspect("equal", adjustable="datalim")
     names = _names(verdict, rows)
     label_axes(ax, names[:2])
-    ax.legend(fontsize="small", loc="best")
+    ax.legend(fontsize="small", loc="upper right")
     ax.set_title(f"ground plan ({names[0]}–{names[1]}): support and foot of G", fontsize="medium")
 
 
@@ -157,7 +162,7 @@ def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     com = in_frame(verdict.center_of_mass, rows)
     foot = in_frame(verdict.support.plane_point, rows)
     ax.plot(*np.array([com, foot]).T, linestyle="--", color=INK, label="weight", zorder=18)
-    draw_com_3d(ax, com)
+    draw_com_3d(ax, com, scale=_size(verdict))
     _draw_foot(ax, foot, verdict)
     label_axes(ax, _names(verdict, rows))
     ax.set_title("3-D view, resting on the ground", fontsize="medium")
@@ -190,7 +195,7 @@ def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
 def _summary(verdict) -> str:
     text = (f"{verdict.verdict}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
             f"{fmt(verdict.margin, 3)} m, energy to topple {fmt(verdict.energy_to_topple, 4)} J, "
-            f"G {fmt_point(verdict.center_of_mass)} m")
+            f"G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m")
     if verdict.required_tilt_deg is not None:
         text += f"; required tilt {fmt(verdict.required_tilt_deg, 3)}°: " + \
             ("PASS" if verdict.passes else "FAIL")

@@ -53,6 +53,9 @@ def write_atomic(path: str, data: bytes | None = None, writer=None) -> None:
                 writer(handle)
             else:
                 handle.write(data or b"")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # as an ordinary new file, not mkstemp's private mode
         os.replace(tmp, path)
     except OSError as exc:
         raise PlumbobError(f"cannot write {path}: {exc.strerror or exc}") from None

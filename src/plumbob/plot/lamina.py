@@ -72,10 +72,10 @@ def draw_silhouette(ax, drawing: Drawing, colours: list[str], across: int = 0,
     return artists
 
 
-def draw_com(ax, point, label: str | None = None, **style):
+def draw_com(ax, point, label: str | None = None, scale: float | None = None, **style):
     """The centre-of-mass marker (a ringed dot, gid ``"centre of mass"``) at ``point``."""
     point = np.asarray(point, dtype=float)
-    text = label if label is not None else f"centre of mass G {fmt_point(point)} m"
+    text = label if label is not None else f"centre of mass G {fmt_point(point, scale=scale)} m"
     (marker,) = ax.plot([point[0]], [point[1]], **{**COM_STYLE, **style}, label=text)
     marker.set_gid("centre of mass")
     ax.plot([point[0]], [point[1]], marker="+", color="black", markersize=9, zorder=21)
@@ -94,4 +94,4 @@ def draw_legend(ax, entries: list[tuple[str, str]], **kw) -> None:
             keep.append((Patch(facecolor=colour, edgecolor=INK), text))
             seen.add(text)
     if keep:
-        ax.legend(*zip(*keep), **{"fontsize": "small", "loc": "best", **kw})
+        ax.legend(*zip(*keep), **{"fontsize": "small", "loc": "upper left", **kw})

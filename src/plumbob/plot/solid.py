@@ -67,10 +67,10 @@ def draw_3d(ax, drawing: Drawing, colours: list[str], alpha: float = 0.55,
     return artists
 
 
-def draw_com_3d(ax, point, label: str | None = None, **style):
+def draw_com_3d(ax, point, label: str | None = None, scale: float | None = None, **style):
     """The centre-of-mass marker (gid ``"centre of mass"``) at ``point`` (3,)."""
     point = np.asarray(point, dtype=float)
-    text = label if label is not None else f"centre of mass G {fmt_point(point)} m"
+    text = label if label is not None else f"centre of mass G {fmt_point(point, scale=scale)} m"
     (marker,) = ax.plot([point[0]], [point[1]], [point[2]], **{**COM_STYLE, **style}, label=text)
     marker.set_gid("centre of mass")
     return marker

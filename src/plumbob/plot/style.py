@@ -47,8 +47,13 @@ def fmt(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
 
 
-def fmt_point(point, digits: int = 4) -> str:
-    return "(" + ", ".join(fmt(v, digits) for v in np.asarray(point, dtype=float)) + ")"
+def fmt_point(point, digits: int = 4, scale: float | None = None) -> str:
+    """``(x, y[, z])``; round-off far below ``scale`` (the body's size; default the point's
+    largest coordinate) shown as 0."""
+    point = np.asarray(point, dtype=float)
+    scale = np.abs(point).max(initial=0.0) if scale is None else scale
+    point = np.where(np.abs(point) < 1e-9 * scale, 0.0, point)
+    return "(" + ", ".join(fmt(v, digits) for v in point) + ")"
 
 
 def label_axes(ax, names=("x", "y"), unit: str = "m") -> None:
@@ -67,6 +72,10 @@ def equal_3d(ax, points: np.ndarray) -> None:
     ax.set_ylim(lo[1], lo[1] + span[1])
     ax.set_zlim(lo[2], lo[2] + span[2])
     ax.set_box_aspect(tuple(span))
+    from matplotlib.ticker import MaxNLocator
+
+    for axis, extent in zip((ax.xaxis, ax.yaxis, ax.zaxis), span):
+        axis.set_major_locator(MaxNLocator(max(2, int(6 * extent / span.max()))))
 
 
 def part_colours(pieces) -> tuple[list[str], list[tuple[str, str]]]:
