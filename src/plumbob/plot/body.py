@@ -71,7 +71,7 @@ def plot_body(body, ax=None, *, props=None, path: str | None = None,
     grid = fig.add_gridspec(1, 3, width_ratios=(1.3, 1, 1))
     ax3 = new_3d_axes(fig, grid[0, 0])
     draw_3d(ax3, d, colours)
-    draw_com_3d(ax3, com)
+    draw_com_3d(ax3, com, scale=size)
     label_axes(ax3, ("x", "y", "z"))
     ax3.set_title("3-D view")
     for k, (across, vertical, name) in enumerate(((0, 2, "from the side (x–z)"),
