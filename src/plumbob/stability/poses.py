@@ -134,6 +134,18 @@ class Poses:
     def probabilities(self) -> np.ndarray:
         return np.array([p.probability for p in self.poses])
 
+    def plot(self, fig=None, *, body=None, **options):
+        """Draw the pose gallery (the body in each pose if given); returns the matplotlib
+        figure. See :func:`plumbob.plot.plot_poses`."""
+        from ..plot.gallery import plot_poses
+
+        return plot_poses(self, body, fig, **options)
+
+    def _repr_png_(self) -> bytes:  # notebooks show the gallery
+        from ..plot.files import png_bytes
+
+        return png_bytes(self.plot())
+
 
 # ====================================================================== helpers
 def _unit(v: np.ndarray) -> np.ndarray:
