@@ -101,7 +101,9 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
 def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     """The ground seen from above: footprint, support polygon, foot of G, critical direction."""
     if d is not None:
-        draw_silhouette(ax, d, ["#dddddd"] * len(d.pieces), 0, 1)
+        shapes = draw_silhouette(ax, d, ["#dddddd"] * len(d.pieces), 0, 1)
+        for k, artist in enumerate(shapes):  # one legend entry for the whole footprint
+            artist.set_label("footprint" if k == 0 else "_footprint")
     support = in_frame(verdict.support.polygon, rows)[:, :2]
     foot = in_frame(verdict.support.plane_point, rows)[:2]
     colour = STATUS_COLOURS[status(verdict)]

@@ -48,11 +48,11 @@ def fmt(value: float, digits: int = 4) -> str:
 
 
 def fmt_point(point, digits: int = 4, scale: float | None = None) -> str:
-    """``(x, y[, z])``; round-off far below ``scale`` (the body's size; default the point's
-    largest coordinate) shown as 0."""
+    """``(x, y[, z])``; values far below ``scale`` (the body's size; default the point's
+    largest coordinate), which the few digits of a label cannot show, shown as 0."""
     point = np.asarray(point, dtype=float)
     scale = np.abs(point).max(initial=0.0) if scale is None else scale
-    point = np.where(np.abs(point) < 1e-9 * scale, 0.0, point)
+    point = np.where(np.abs(point) < 1e-7 * scale, 0.0, point)
     return "(" + ", ".join(fmt(v, digits) for v in point) + ")"
 
 
