@@ -126,7 +126,7 @@ def decimate(triangles: np.ndarray, target: int = DISPLAY_FACES) -> np.ndarray:
     lo = pts.min(axis=0)
     span = np.ptp(pts, axis=0)
     span = np.where(span > 0, span, 1.0)
-    cells = max(4, int(np.sqrt(target / 2.0)))
+    cells = max(4, int(np.sqrt(target / 5.0)))  # about 2 triangles per surface cell
     for _ in range(8):
         out = _cluster(pts, lo, span, cells)
         if len(out) <= target or cells == 4:
