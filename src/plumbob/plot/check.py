@@ -50,6 +50,12 @@ def _names(verdict, rows: np.ndarray) -> tuple[str, ...]:
     return ("e1", "e2", "up") if len(rows) == 3 else ("e1", "up")
 
 
+def _com_label(verdict, rows: np.ndarray) -> str:
+    """G in the body's own coordinates, whatever frame the picture is drawn in."""
+    where = "" if np.allclose(rows, np.eye(len(rows))) else " (body frame)"
+    return f"centre of mass G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m{where}"
+
+
 def _foot_label(verdict) -> str:
     word = STATUS_WORDS[status(verdict)] if verdict.verdict != "neutral" else "neutral"
     return f"foot of G: {word}, margin {fmt(verdict.margin, 3)} m"
@@ -82,7 +88,7 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.annotate("", xy=foot, xytext=com, zorder=18,
                 arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
     ax.plot([], [], linestyle="--", color=INK, label="line of action of the weight")
-    draw_com(ax, com, scale=_size(verdict))
+    draw_com(ax, com, label=_com_label(verdict, rows))
     _draw_foot(ax, foot, verdict)
     for edge in verdict.edges:
         tip = in_frame(edge.start, rows)
@@ -164,7 +170,7 @@ def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     com = in_frame(verdict.center_of_mass, rows)
     foot = in_frame(verdict.support.plane_point, rows)
     ax.plot(*np.array([com, foot]).T, linestyle="--", color=INK, label="weight", zorder=18)
-    draw_com_3d(ax, com, scale=_size(verdict))
+    draw_com_3d(ax, com, label=_com_label(verdict, rows))
     _draw_foot(ax, foot, verdict)
     label_axes(ax, _names(verdict, rows))
     ax.set_title("3-D view, resting on the ground", fontsize="medium")

@@ -69,8 +69,9 @@ def _view_3d(d: Drawing, rows: np.ndarray, com, verdict):
     colours, _ = part_colours(d.pieces)
     for piece, colour in zip(d.pieces, colours):
         if piece.triangles is not None and len(piece.triangles):
-            t = in_frame(piece.triangles, rows).reshape(-1, 3)
-            k = np.arange(0, len(t), 3)
+            # single precision is plenty on screen and halves the page
+            t = in_frame(piece.triangles, rows).reshape(-1, 3).astype(np.float32)
+            k = np.arange(0, len(t), 3, dtype=np.int32)
             fig.add_trace(go.Mesh3d(x=t[:, 0], y=t[:, 1], z=t[:, 2], i=k, j=k + 1, k=k + 2,
                                     color=colour, opacity=0.6, flatshading=True, name=piece.label,
                                     showlegend=True))
