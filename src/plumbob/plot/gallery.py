@@ -60,6 +60,9 @@ def _panel_2d(ax, pose, com, base: Drawing | None, colours) -> None:
     face = in_frame(pose.face, rows)
     if base is not None:
         draw_outline(ax, base.moved(rows), colours)
+    else:
+        ax.update_datalim(np.vstack((face, c[None], [c[0], ground])))
+        ax.set_aspect("equal", adjustable="datalim")
     ax.axhline(ground, color=INK, linewidth=1)
     ax.plot(face[:, 0], np.full(len(face), ground), color=INK, linewidth=4)
     draw_com(ax, c, label="centre of mass", markersize=7)
@@ -122,7 +125,7 @@ def plot_poses(poses, body=None, fig=None, *, path: str | None = None,
             _panel_3d(ax, pose, com, base, colours)
         else:
             ax = fig.add_subplot(nrows, ncols, k)
-            if body is not None:
+            if dim == 2:  # a lamina: its ground line, the face on it, and G
                 _panel_2d(ax, pose, com, base, colours)
             else:
                 _panel_plan(ax, pose, com)

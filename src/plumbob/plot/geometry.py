@@ -127,12 +127,19 @@ def decimate(triangles: np.ndarray, target: int = DISPLAY_FACES) -> np.ndarray:
     span = np.ptp(pts, axis=0)
     span = np.where(span > 0, span, 1.0)
     cells = max(4, int(np.sqrt(target / 5.0)))  # about 2 triangles per surface cell
-    for _ in range(8):
+    best = None  # the most detailed result within the target so far
+    for _ in range(6):
         out = _cluster(pts, lo, span, cells)
-        if len(out) <= target or cells == 4:
-            return out if len(out) else tri[:: max(1, len(tri) // target)]
-        cells = max(4, int(cells * np.sqrt(target / len(out)) * 0.97))
-    return out
+        if len(out) <= target and (best is None or len(out) > len(best)):
+            best = out
+        if best is not None and (len(best) >= target // 2 or len(out) > target):
+            break  # close enough, or the finer grid overshot: keep the best within
+        if len(out) <= target and cells >= 4096:
+            break
+        cells = max(4, int(cells * np.sqrt(target / max(len(out), 1)) * 0.97))
+    if best is None or not len(best):
+        return tri[:: max(1, len(tri) // target)]
+    return best
 
 
 def _cluster(pts: np.ndarray, lo: np.ndarray, span: np.ndarray, cells: int) -> np.ndarray:

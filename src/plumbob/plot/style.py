@@ -67,10 +67,11 @@ def label_axes(ax, names=("x", "y"), unit: str = "m") -> None:
 def equal_3d(ax, points: np.ndarray) -> None:
     """Equal scales on a 3-D axes spanning ``points`` (n, 3)."""
     lo, hi = points.min(axis=0), points.max(axis=0)
-    span = np.maximum(hi - lo, 1e-3 * max(float(np.max(hi - lo)), 1e-12))
-    ax.set_xlim(lo[0], lo[0] + span[0])
-    ax.set_ylim(lo[1], lo[1] + span[1])
-    ax.set_zlim(lo[2], lo[2] + span[2])
+    span = np.maximum(hi - lo, 0.08 * max(float(np.max(hi - lo)), 1e-12))  # a flat body stays visible
+    mid = (lo + hi) / 2
+    ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
+    ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
+    ax.set_zlim(mid[2] - span[2] / 2, mid[2] + span[2] / 2)
     ax.set_box_aspect(tuple(span))
     from matplotlib.ticker import MaxNLocator
 
