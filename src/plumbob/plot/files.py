@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import io
 import os
-import tempfile
 from importlib import import_module
 
 from ..errors import PlumbobError
@@ -41,6 +40,8 @@ def add_plot_argument(parser: argparse.ArgumentParser) -> None:
 def write_atomic(path: str, data: bytes | None = None, writer=None) -> None:
     """Write ``data`` (or call ``writer(file)``) to ``path`` through a temporary file in the
     same folder, renamed over ``path`` only once complete."""
+    import tempfile  # here: the commands import this module on every run
+
     folder = os.path.dirname(os.path.abspath(path))
     try:
         fd, tmp = tempfile.mkstemp(prefix=".plumbob-", suffix=os.path.splitext(path)[1],
