@@ -139,7 +139,7 @@ def test_toppling_is_red_and_amber_below_required():
 def test_assembly_parts_are_coloured_by_material_with_a_legend():
     body = plumbob.load(os.path.join(SHAPES, "mace_assembly.toml"))
     fig = plot_body(body)
-    texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    texts = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
     assert any(t.startswith("shaft (760") for t in texts)
     assert any(t.startswith("head (7850") for t in texts)
 

@@ -7,7 +7,7 @@ import numpy as np
 from .geometry import DISPLAY_FACES, drawing
 from .lamina import draw_com, draw_legend, draw_outline, draw_silhouette
 from .solid import draw_3d, draw_com_3d, new_3d_axes
-from .style import fmt_point, label_axes, new_figure, part_colours, title_for
+from .style import caption, fmt_point, label_axes, new_figure, part_colours, title_for
 
 __all__ = ["plot_body"]
 
@@ -83,10 +83,10 @@ def plot_body(body, ax=None, *, props=None, path: str | None = None,
         if vertical == 1:
             axk.invert_yaxis()  # seen from below, +y points down the page
         axk.set_title(name)
-    draw_legend(ax3, legend if len(d.pieces) > 1 else [], loc="upper left")
-    caption = f"G = {fmt_point(com, scale=size)} m"
+    draw_legend(fig.axes[1], legend if len(d.pieces) > 1 else [], loc="upper right")
+    text = f"G = {fmt_point(com, scale=size)} m"
     if d.note:
-        caption += f"\n{d.note}"
+        text += f"\n{d.note}"
     fig.suptitle(title)
-    fig.text(0.01, 0.01, caption, fontsize="small", va="bottom")
+    caption(fig, text)
     return fig

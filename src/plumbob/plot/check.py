@@ -19,6 +19,7 @@ from .style import (
     INK,
     STATUS_COLOURS,
     STATUS_WORDS,
+    caption,
     fmt,
     fmt_point,
     label_axes,
@@ -258,5 +259,5 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
     fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict),
                  fontsize="medium")
     if d is not None and d.note:
-        fig.text(0.01, 0.005, d.note, fontsize="x-small", va="bottom")
+        caption(fig, d.note)
     return fig

@@ -17,7 +17,7 @@ from matplotlib.patches import Polygon
 from .geometry import Drawing, drawing, in_frame, rest_frame
 from .lamina import draw_com, draw_outline
 from .solid import draw_3d, draw_com_3d, new_3d_axes
-from .style import INK, fmt, new_figure, part_colours, title_for
+from .style import INK, caption, fmt, new_figure, part_colours, title_for
 
 __all__ = ["plot_poses", "MAX_PANELS"]
 
@@ -141,5 +141,5 @@ def plot_poses(poses, body=None, fig=None, *, path: str | None = None,
     if base is not None and base.note:
         notes.append(base.note)
     if notes:
-        fig.text(0.01, 0.005, "; ".join(notes), fontsize="x-small", va="bottom")
+        caption(fig, "; ".join(notes))
     return fig

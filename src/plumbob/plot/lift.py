@@ -6,7 +6,7 @@ import numpy as np
 
 from .geometry import DISPLAY_FACES, drawing
 from .lamina import draw_com, draw_legend, draw_outline, draw_silhouette
-from .style import INK, fmt, label_axes, new_figure, part_colours, title_for
+from .style import INK, caption, fmt, label_axes, new_figure, part_colours, title_for
 
 __all__ = ["plot_lift"]
 
@@ -51,5 +51,5 @@ def plot_lift(lift, body, ax=None, *, props=None, path: str | None = None,
                  f"\nlift energy M g z_G = {fmt(lift.energy)} J (mass {fmt(lift.mass)} kg)",
                  fontsize="medium")
     if d.note:
-        fig.text(0.01, 0.005, d.note, fontsize="x-small", va="bottom")
+        caption(fig, d.note)
     return fig

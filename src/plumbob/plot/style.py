@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["STATUS_COLOURS", "PART_COLOURS", "status", "new_figure", "label_axes", "equal_3d",
-           "fmt", "fmt_point", "part_colours", "title_for"]
+           "fmt", "fmt_point", "part_colours", "title_for", "caption"]
 
 STATUS_COLOURS = {"stands": "#1a7f37", "amber": "#f0b400", "topples": "#c62828"}
 STATUS_WORDS = {"stands": "stands", "amber": "below the required tilt", "topples": "topples"}
@@ -67,7 +67,7 @@ def label_axes(ax, names=("x", "y"), unit: str = "m") -> None:
 def equal_3d(ax, points: np.ndarray) -> None:
     """Equal scales on a 3-D axes spanning ``points`` (n, 3)."""
     lo, hi = points.min(axis=0), points.max(axis=0)
-    span = np.maximum(hi - lo, 0.08 * max(float(np.max(hi - lo)), 1e-12))  # a flat body stays visible
+    span = np.maximum(hi - lo, 0.3 * max(float(np.max(hi - lo)), 1e-12))  # a flat body stays visible
     mid = (lo + hi) / 2
     ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
     ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
@@ -105,3 +105,14 @@ def title_for(body, path: str | None, what: str) -> str:
     if name:
         parts.append(name)
     return " — ".join(parts)
+
+
+def caption(fig, text: str) -> None:
+    """A small note under the figure's panels (what the picture leaves out), with room kept
+    for it so no axis label runs into it."""
+    lines = text.count("\n") + 1
+    height = fig.get_figheight()
+    engine = fig.get_layout_engine()
+    if engine is not None and hasattr(engine, "set"):
+        engine.set(rect=(0, 0.2 * lines / height, 1, 1 - 0.2 * lines / height))
+    fig.text(0.01, 0.005, text, fontsize="x-small", va="bottom")
