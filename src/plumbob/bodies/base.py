@@ -181,6 +181,13 @@ class Body(ABC):
         """This body with ``density`` wherever no density was given."""
         return self
 
+    def plot(self, ax=None, **options):
+        """Draw the body and its centre of mass; returns the matplotlib figure (``ax=None``
+        makes a new one). See :func:`plumbob.plot.plot_body`."""
+        from ..plot.body import plot_body
+
+        return plot_body(self, ax, **options)
+
     def to_geometry(self, segments: int = 128):
         """The shape for boolean operations: a shapely geometry (laminas) or a
         manifold3d ``Manifold`` (solids), curves cut into ``segments`` per turn."""

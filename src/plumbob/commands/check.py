@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..plot.files import add_plot_argument, write_plot
 from ._common import (
     add_stability_arguments,
     clean,
@@ -56,6 +57,7 @@ def register(subparsers) -> None:
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -151,6 +153,8 @@ def run(args) -> int:
     v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
               friction=args.friction, require_tilt_deg=args.require_tilt,
               tolerance=args.tolerance, props=props)
+    if args.plot:
+        write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
     if args.json:
         print_json({**header(reading, kind), **v.as_dict()}, reading, notes)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..plot.files import add_plot_argument, write_plot
 from ._common import add_stability_arguments, header, open_body, positive, print_json
 
 __all__ = ["register", "run"]
@@ -42,6 +43,7 @@ def register(subparsers) -> None:
                         help="work one person does in a day, J (default 1000 g: 1000 kg "
                              "through 1 m)")
     parser.add_argument("--crew", type=_crew, metavar="N", help="people working at once")
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -53,6 +55,8 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
+    if args.plot:
+        write_plot(args.plot, "lift", lift, body, props=props, path=args.path)
     out = {**header(reading, getattr(body, "kind", "solid")), **lift.as_dict()}
     crew = None
     if args.crew is not None or args.work_per_day is not None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..plot.files import add_plot_argument, write_plot
 from ._common import add_body_arguments, dump_json, load_body, print_notices
 
 
@@ -15,6 +16,7 @@ def register(subparsers) -> None:
         "and principal axes of the body in PATH.",
     )
     add_body_arguments(parser)
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -24,6 +26,8 @@ def run(args: argparse.Namespace) -> int:
     reading = load_body(args)
     print_notices(reading)
     report = MassReport.of(reading)
+    if args.plot:
+        write_plot(args.plot, "mass", reading.body, path=args.path)
     if args.json:
         dump_json(report.as_dict())
     else:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..plot.files import add_plot_argument, write_plot
 from ._common import add_stability_arguments, clean, header, open_body, positive
 from ._common import dump_json as to_json
 
@@ -34,6 +35,7 @@ def register(subparsers) -> None:
     parser.add_argument("--hull-tolerance", type=positive, metavar="M",
                         help="how closely curved surfaces are sampled, m (default 1e-4 of the "
                              "body's size)")
+    add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -48,6 +50,8 @@ def run(args) -> int:
     result = resting_poses(body, g=args.g, tolerance=args.tolerance,
                            hull_tolerance=args.hull_tolerance, props=props)
     notes += list(result.notes)
+    if args.plot:
+        write_plot(args.plot, "poses", result, body, path=args.path)
     if args.json:
         out = {**header(reading, getattr(body, "kind", "solid")), **result.as_dict()}
         if notes:

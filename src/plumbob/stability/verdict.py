@@ -203,6 +203,18 @@ class Verdict(Result):
             out.update(required_tilt_deg=self.required_tilt_deg, passes=self.passes)
         return out
 
+    def plot(self, ax=None, *, body=None, **options):
+        """Draw the verdict (with ``body``'s outline if given); returns the matplotlib figure.
+        See :func:`plumbob.plot.plot_check`."""
+        from ..plot.check import plot_check
+
+        return plot_check(self, body, ax, **options)
+
+    def _repr_png_(self) -> bytes:  # notebooks show the picture
+        from ..plot.files import png_bytes
+
+        return png_bytes(self.plot())
+
     def tipping_angle_deg(self, direction) -> float:
         """The tilt, degrees, that topples the body when the plane descends toward the
         horizontal ``direction`` (body frame, (dim,)); ≤ 0 when it does not stand."""

@@ -139,6 +139,18 @@ class Poses:
         """(len,) the poses' probabilities, most probable first."""
         return np.array([p.probability for p in self.poses])
 
+    def plot(self, fig=None, *, body=None, **options):
+        """Draw the pose gallery (the body in each pose if given); returns the matplotlib
+        figure. See :func:`plumbob.plot.plot_poses`."""
+        from ...plot.gallery import plot_poses
+
+        return plot_poses(self, body, fig, **options)
+
+    def _repr_png_(self) -> bytes:  # notebooks show the gallery
+        from ...plot.files import png_bytes
+
+        return png_bytes(self.plot())
+
     def as_dict(self) -> dict:
         """The JSON object of ``plumbob poses --json`` without the keys naming the file
         (SI units).

@@ -1,0 +1,71 @@
+"""``plumbob report PATH -o report.html``: one self-contained HTML page for a design review.
+
+The page holds an interactive 3-D view of the body (centre of mass, support polygon,
+ground), the mass-properties table, the stability verdict with its tilt rose and the
+pose gallery; it needs no network to view. A section that does not apply to the body
+(no resting poses for a particle system, say) is left out with a note saying why.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from ._common import add_stability_arguments, non_negative, open_body
+
+__all__ = ["register", "run"]
+
+DESCRIPTION = """\
+Write one self-contained HTML page about the body in PATH: an interactive 3-D view
+(rotate, zoom) with its centre of mass, support polygon and the ground; its mass
+properties; whether it stands, with the tilt rose (the critical tilt in every
+direction); and its resting poses with their probabilities. Large meshes are decimated
+for the view only; every number comes from the full mesh."""
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "report", help="one self-contained HTML page: 3-D view, mass properties, verdict, poses",
+        description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_stability_arguments(parser)
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="the HTML file to write (default: PATH's name with .html, here)")
+    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+                        help="draw this tilt on the tilt rose and say whether it passes")
+    parser.set_defaults(func=run)
+
+
+def _attempt(what: str, compute, notes: list[str]):
+    """A section's result, or None with a note when the body does not allow it."""
+    from ..errors import PlumbobError
+
+    try:
+        return compute()
+    except PlumbobError as error:
+        notes.append(f"{what}: not shown ({error})")
+        return None
+
+
+def run(args) -> int:
+    from ..plot.files import write_atomic
+    from ..plot.html import report_page
+    from ..report import dump_json
+    from ..stability.poses import resting_poses
+    from ..stability.verdict import check
+
+    reading, props, notes = open_body(args)
+    body = reading.body
+    verdict = _attempt("stability", lambda: check(body, g=args.g, props=props,
+                                                  require_tilt_deg=args.require_tilt), notes)
+    poses = _attempt("resting poses", lambda: resting_poses(body, g=args.g, props=props), notes)
+    if poses is not None:
+        notes += list(poses.notes)
+    output = args.output or os.path.splitext(os.path.basename(args.path))[0] + ".html"
+    page = report_page(body, props, verdict, poses, path=args.path,
+                       notes=notes + list(reading.notices))
+    write_atomic(output, page.encode("utf-8"))
+    if args.json:
+        dump_json({"path": args.path, "report": output, "bytes": len(page.encode("utf-8"))})
+    else:
+        print(f"plumbob report: wrote {output}")
+    return 0

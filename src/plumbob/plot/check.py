@@ -1,0 +1,263 @@
+"""``plot_check``: the verdict drawn — body, centre of mass, support, tipping edges, tilt rose.
+
+Everything is drawn in the verdict's ground frame (e1, e2, up), which is the body's own
+frame for the default down (−z; −y for a lamina), so the marks sit at the numbers the
+report prints. The foot of the centre of mass is coloured by margin: green stands,
+amber below the required tilt (or neutral), red topples; the words are in the legend.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.patches import Polygon
+
+from .geometry import DISPLAY_FACES, Drawing, drawing, in_frame, rest_frame
+from .lamina import draw_com, draw_legend, draw_outline, draw_silhouette
+from .rose import tilt_rose
+from .solid import draw_3d, draw_com_3d, new_3d_axes
+from .style import (
+    INK,
+    STATUS_COLOURS,
+    STATUS_WORDS,
+    caption,
+    fmt,
+    fmt_point,
+    label_axes,
+    new_figure,
+    part_colours,
+    status,
+    title_for,
+)
+
+__all__ = ["plot_check"]
+
+_GROUND = "#9e9e9e"
+_MAX_EDGE_LABELS = 12
+
+
+def _size(verdict) -> float:
+    """The body's size, as the verdict's contact tolerance was set from it."""
+    return verdict.support.tolerance * 1e6
+
+
+def _frame(verdict) -> np.ndarray:
+    return rest_frame(verdict.down, verdict.support.frame.axes)
+
+
+def _names(verdict, rows: np.ndarray) -> tuple[str, ...]:
+    """Axis names: the body's own when the frame is the identity."""
+    if np.allclose(rows, np.eye(len(rows))):
+        return ("x", "y", "z")[: len(rows)]
+    return ("e1", "e2", "up") if len(rows) == 3 else ("e1", "up")
+
+
+def _com_label(verdict, rows: np.ndarray) -> str:
+    """G in the body's own coordinates, whatever frame the picture is drawn in."""
+    where = "" if np.allclose(rows, np.eye(len(rows))) else " (body frame)"
+    return f"centre of mass G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m{where}"
+
+
+def _foot_label(verdict) -> str:
+    word = STATUS_WORDS[status(verdict)] if verdict.verdict != "neutral" else "neutral"
+    return f"foot of G: {word}, margin {fmt(verdict.margin, 3)} m"
+
+
+def _draw_foot(ax, point, verdict) -> None:
+    colour = STATUS_COLOURS[status(verdict)]
+    marker = {"stands": "s", "amber": "D", "topples": "X"}[status(verdict)]
+    (foot,) = ax.plot(*[[c] for c in point], marker=marker, markersize=10, color=colour,
+                      markeredgecolor=INK, linestyle="none", zorder=19, label=_foot_label(verdict))
+    foot.set_gid("foot")
+
+
+def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+    com = in_frame(verdict.center_of_mass, rows)
+    foot = in_frame(verdict.support.plane_point, rows)
+    support = in_frame(verdict.support.polygon, rows)
+    if d is not None:
+        colours, legend = part_colours(d.pieces)
+        draw_outline(ax, d, colours)
+    lo, hi = ax.get_xlim() if d is not None else (support[:, 0].min() - 1, support[:, 0].max() + 1)
+    width = hi - lo
+    ground = foot[1]
+    ax.axhspan(ground - 0.04 * width, ground, color=_GROUND, alpha=0.5, hatch="///",
+               linewidth=0, gid="ground")
+    ax.axhline(ground, color=INK, linewidth=1.0)
+    (base,) = ax.plot(support[:, 0], support[:, 1], color=INK, linewidth=5, solid_capstyle="butt",
+                      label=f"support ({verdict.support.kind})", zorder=15)
+    base.set_gid("support")
+    ax.annotate("", xy=foot, xytext=com, zorder=18,
+                arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
+    ax.plot([], [], linestyle="--", color=INK, label="line of action of the weight")
+    draw_com(ax, com, label=_com_label(verdict, rows))
+    _draw_foot(ax, foot, verdict)
+    for edge in verdict.edges:
+        tip = in_frame(edge.start, rows)
+        (mark,) = ax.plot([tip[0]], [tip[1]], marker="^", markersize=10, color="white",
+                          markeredgecolor=INK, linestyle="none", zorder=16)
+        mark.set_gid("tipping point")
+        ax.annotate(f"tips here at {fmt(edge.tipping_angle_deg, 3)}°", xy=tip, xytext=(0, -22),
+                    textcoords="offset points", ha="center", fontsize="small",
+                    arrowprops=dict(arrowstyle="-", color=INK, linewidth=0.6))
+    ax.update_datalim([[lo, ground - 0.12 * width]])
+    ax.autoscale_view()
+    label_axes(ax, _names(verdict, rows))
+    draw_legend(ax, legend if d is not None and len(d.pieces) > 1 else [], loc="upper left")
+
+
+def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+    """The ground seen from above: footprint, support polygon, foot of G, critical direction."""
+    if d is not None:
+        shapes = draw_silhouette(ax, d, ["#dddddd"] * len(d.pieces), 0, 1)
+        for k, artist in enumerate(shapes):  # one legend entry for the whole footprint
+            artist.set_label("footprint" if k == 0 else "_footprint")
+    support = in_frame(verdict.support.polygon, rows)[:, :2]
+    foot = in_frame(verdict.support.plane_point, rows)[:2]
+    colour = STATUS_COLOURS[status(verdict)]
+    if len(support) >= 3:
+        patch = Polygon(support, closed=True, facecolor=colour, alpha=0.25, edgecolor=INK,
+                        linewidth=2, hatch="..", label="support polygon", zorder=10)
+        patch.set_gid("support polygon")
+        ax.add_patch(patch)
+    else:
+        (line,) = ax.plot(support[:, 0], support[:, 1], color=INK, linewidth=4, marker="o",
+                          label=f"support ({verdict.support.kind})", zorder=10)
+        line.set_gid("support polygon")
+    _draw_foot(ax, foot, verdict)
+    size = float(np.ptp(ax.dataLim.get_points(), axis=0).max()) if d is not None else \
+        max(float(np.ptp(support, axis=0).max()), abs(verdict.margin), 1e-9)
+    ax.update_datalim(np.vstack((support, foot)))
+    direction = in_frame(verdict.critical_direction, rows)[:2]
+    ax.annotate(f"weakest way: {fmt(verdict.critical_tilt_deg, 3)}°", xy=foot + 0.3 * size * direction,
+                xytext=foot, zorder=21, fontsize="small", ha="center", va="top",
+                arrowprops=dict(arrowstyle="-|>", color=STATUS_COLOURS["topples"], linewidth=2))
+    if len(verdict.edges) <= _MAX_EDGE_LABELS and verdict.support.kind == "polygon":
+        for edge in verdict.edges:
+            mid = in_frame((np.asarray(edge.start) + np.asarray(edge.end)) / 2, rows)[:2]
+            ax.text(*mid, f"{fmt(edge.tipping_angle_deg, 3)}°", fontsize="x-small", ha="center",
+                    va="center", bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8),
+                    zorder=12)
+    ax.autoscale_view()
+    ax.set_aspect("equal", adjustable="datalim")
+    names = _names(verdict, rows)
+    label_axes(ax, names[:2])
+    ax.legend(fontsize="small", loc="upper right")
+    ax.set_title(f"ground plan ({names[0]}–{names[1]}): support and foot of G", fontsize="medium")
+
+
+def _ground_patch(verdict, d: Drawing | None, rows: np.ndarray) -> np.ndarray:
+    pts = d.all_points() if d is not None else in_frame(verdict.support.polygon, rows)
+    lo, hi = pts[:, :2].min(axis=0), pts[:, :2].max(axis=0)
+    pad = 0.15 * max(float(np.max(hi - lo)), 1e-9)
+    z = in_frame(verdict.support.plane_point, rows)[2]
+    return np.array([[lo[0] - pad, lo[1] - pad, z], [hi[0] + pad, lo[1] - pad, z],
+                     [hi[0] + pad, hi[1] + pad, z], [lo[0] - pad, hi[1] + pad, z]])
+
+
+def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    ground = _ground_patch(verdict, d, rows)
+    plate = Poly3DCollection([ground], facecolors=_GROUND, alpha=0.25, edgecolors="none")
+    plate.set_gid("ground")
+    ax.add_collection3d(plate)
+    if d is not None:
+        colours, _ = part_colours(d.pieces)
+        draw_3d(ax, d, colours, extra_points=ground)
+    support = in_frame(verdict.support.polygon, rows)
+    loop = np.vstack((support, support[:1])) if len(support) >= 3 else support
+    ax.plot(*loop.T, color=INK, linewidth=2.5, marker="o" if len(support) < 3 else None,
+            label="support polygon", gid="support polygon")
+    com = in_frame(verdict.center_of_mass, rows)
+    foot = in_frame(verdict.support.plane_point, rows)
+    ax.plot(*np.array([com, foot]).T, linestyle="--", color=INK, label="weight", zorder=18)
+    draw_com_3d(ax, com, label=_com_label(verdict, rows))
+    _draw_foot(ax, foot, verdict)
+    label_axes(ax, _names(verdict, rows))
+    ax.set_title("3-D view, resting on the ground", fontsize="medium")
+
+
+def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+    if d is not None:
+        colours, _ = part_colours(d.pieces)
+        draw_silhouette(ax, d, colours, 0, 2)
+    com = in_frame(verdict.center_of_mass, rows)
+    foot = in_frame(verdict.support.plane_point, rows)
+    support = in_frame(verdict.support.polygon, rows)
+    lo, hi = ax.get_xlim()
+    ax.axhline(foot[2], color=INK, linewidth=1.0)
+    ax.axhspan(foot[2] - 0.04 * (hi - lo), foot[2], color=_GROUND, alpha=0.5, hatch="///",
+               linewidth=0, gid="ground")
+    ax.plot([support[:, 0].min(), support[:, 0].max()], [foot[2]] * 2, color=INK, linewidth=5,
+            solid_capstyle="butt", label="support", gid="support")
+    ax.annotate("", xy=foot[[0, 2]], xytext=com[[0, 2]], zorder=18,
+                arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
+    draw_com(ax, com[[0, 2]], label="centre of mass G")
+    _draw_foot(ax, foot[[0, 2]], verdict)
+    ax.update_datalim([[lo, foot[2] - 0.08 * (hi - lo)]])
+    ax.autoscale_view()
+    names = _names(verdict, rows)
+    label_axes(ax, (names[0], names[2]))
+    ax.set_title(f"from the side ({names[0]}–{names[2]})", fontsize="medium")
+
+
+def _summary(verdict) -> str:
+    text = (f"{verdict.verdict}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
+            f"{fmt(verdict.margin, 3)} m, energy to topple {fmt(verdict.energy_to_topple, 4)} J, "
+            f"G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m")
+    if verdict.required_tilt_deg is not None:
+        text += f"; required tilt {fmt(verdict.required_tilt_deg, 3)}°: " + \
+            ("PASS" if verdict.passes else "FAIL")
+    return text
+
+
+def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
+               max_faces: int = DISPLAY_FACES):
+    """Draw a stability verdict; returns the figure.
+
+    Parameters
+    ----------
+    verdict : the result of :func:`plumbob.stability.check`.
+    body : the body checked, to draw its outline; without it only the support, the
+        centre of mass and the tilt rose are drawn.
+    ax : None for a new figure (a lamina and its tilt rose; a solid's 3-D view, side
+        view, ground plan and tilt rose); a given axes gets the main panel only (the
+        lamina, or the solid's ground plan — its 3-D view on a 3-D axes).
+    path : the file the body came from, for the title.
+    max_faces : triangles drawn at most.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    rows = _frame(verdict)
+    d = drawing(body, max_faces).moved(rows) if body is not None else None
+    lamina = verdict.support.frame.dim == 2
+    if ax is not None:
+        if lamina:
+            _lamina_panel(ax, verdict, d, rows)
+        elif hasattr(ax, "zaxis"):
+            _solid_3d_panel(ax, verdict, d, rows)
+        else:
+            _plan_panel(ax, verdict, d, rows)
+        return ax.figure
+    if lamina:
+        fig = new_figure((12, 5.4))
+        grid = fig.add_gridspec(1, 2, width_ratios=(1.7, 1))
+        _lamina_panel(fig.add_subplot(grid[0, 0]), verdict, d, rows)
+        tilt_rose(verdict, fig.add_subplot(grid[0, 1], projection="polar"))
+    elif d is None:
+        fig = new_figure((11, 5))
+        _plan_panel(fig.add_subplot(1, 2, 1), verdict, None, rows)
+        tilt_rose(verdict, fig.add_subplot(1, 2, 2, projection="polar"))
+    else:
+        fig = new_figure((12, 10))
+        _solid_3d_panel(new_3d_axes(fig, 2, 2, 1), verdict, d, rows)
+        _side_panel(fig.add_subplot(2, 2, 2), verdict, d, rows)
+        _plan_panel(fig.add_subplot(2, 2, 3), verdict, d, rows)
+        tilt_rose(verdict, fig.add_subplot(2, 2, 4, projection="polar"))
+    fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict),
+                 fontsize="medium")
+    if d is not None and d.note:
+        caption(fig, d.note)
+    return fig

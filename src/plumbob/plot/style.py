@@ -1,0 +1,118 @@
+"""One look for every picture: colours that survive greyscale, labels with units, figures.
+
+Verdict colours differ in lightness as well as hue (dark green, light amber, mid red)
+and every coloured mark also carries a word or a marker shape, so a greyscale print
+still reads. Figures are made with pyplot only when the caller gave no axes (the
+scipy.spatial convention), so notebooks show them; the CLI draws on the Agg backend.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["STATUS_COLOURS", "PART_COLOURS", "status", "new_figure", "label_axes", "equal_3d",
+           "fmt", "fmt_point", "part_colours", "title_for", "caption"]
+
+STATUS_COLOURS = {"stands": "#1a7f37", "amber": "#f0b400", "topples": "#c62828"}
+STATUS_WORDS = {"stands": "stands", "amber": "below the required tilt", "topples": "topples"}
+PART_COLOURS = ("#8fa8c8", "#d9a066", "#9cc89a", "#c79ac7", "#c8c070", "#e08f8f", "#7fc8c8")
+BODY_COLOUR = PART_COLOURS[0]
+COM_STYLE = dict(marker="o", markersize=9, markerfacecolor="white", markeredgecolor="black",
+                 markeredgewidth=2.0, linestyle="none", zorder=20)
+INK = "#222222"
+
+
+def status(verdict) -> str:
+    """``"stands"``, ``"amber"`` (stands, but below the required tilt, or neutral) or
+    ``"topples"``, for a verdict-like object."""
+    if verdict.verdict == "topples":
+        return "topples"
+    if verdict.verdict != "stands" or getattr(verdict, "passes", None) is False:
+        return "amber"
+    return "stands"
+
+
+def new_figure(figsize=(6.4, 4.8)):
+    """A new figure: pyplot's (shown in notebooks, ``plt.show()`` in scripts)."""
+    import matplotlib.pyplot as plt
+
+    return plt.figure(figsize=figsize, layout="constrained")
+
+
+def fmt(value: float, digits: int = 4) -> str:
+    """A number for a label: ``digits`` significant figures, no trailing noise."""
+    value = float(value)
+    if value == 0 or not np.isfinite(value):
+        return f"{value:g}"
+    return f"{value:.{digits}g}"
+
+
+def fmt_point(point, digits: int = 4, scale: float | None = None) -> str:
+    """``(x, y[, z])``; values far below ``scale`` (the body's size; default the point's
+    largest coordinate), which the few digits of a label cannot show, shown as 0."""
+    point = np.asarray(point, dtype=float)
+    scale = np.abs(point).max(initial=0.0) if scale is None else scale
+    point = np.where(np.abs(point) < 1e-7 * scale, 0.0, point)
+    return "(" + ", ".join(fmt(v, digits) for v in point) + ")"
+
+
+def label_axes(ax, names=("x", "y"), unit: str = "m") -> None:
+    """Axis labels with units (``x, m``)."""
+    ax.set_xlabel(f"{names[0]}, {unit}")
+    ax.set_ylabel(f"{names[1]}, {unit}")
+    if len(names) > 2 and hasattr(ax, "set_zlabel"):
+        ax.set_zlabel(f"{names[2]}, {unit}")
+
+
+def equal_3d(ax, points: np.ndarray) -> None:
+    """Equal scales on a 3-D axes spanning ``points`` (n, 3)."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    span = np.maximum(hi - lo, 0.3 * max(float(np.max(hi - lo)), 1e-12))  # a flat body stays visible
+    mid = (lo + hi) / 2
+    ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
+    ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
+    ax.set_zlim(mid[2] - span[2] / 2, mid[2] + span[2] / 2)
+    ax.set_box_aspect(tuple(span))
+    from matplotlib.ticker import MaxNLocator
+
+    for axis, extent in zip((ax.xaxis, ax.yaxis, ax.zaxis), span):
+        axis.set_major_locator(MaxNLocator(max(2, int(6 * extent / span.max()))))
+
+
+def part_colours(pieces) -> tuple[list[str], list[tuple[str, str]]]:
+    """A colour per piece — one per material (density), so parts of one material match —
+    and the legend entries ``(colour, text)``."""
+    colours, legend, by_density = [], [], {}
+    for piece in pieces:
+        key = None if piece.density is None else round(piece.density, 6)
+        if key not in by_density:
+            by_density[key] = PART_COLOURS[len(by_density) % len(PART_COLOURS)]
+        colours.append(by_density[key])
+        units = "kg/m³" if piece.triangles is not None else "kg/m²"
+        text = piece.label if piece.density is None else f"{piece.label} ({fmt(piece.density)} {units})"
+        legend.append((by_density[key], text))
+    return colours, legend
+
+
+def title_for(body, path: str | None, what: str) -> str:
+    """``what — file — body name`` for a figure's title."""
+    import os
+
+    parts = [what]
+    if path:
+        parts.append(os.path.basename(path))
+    name = getattr(body, "name", None) if body is not None else None
+    if name:
+        parts.append(name)
+    return " — ".join(parts)
+
+
+def caption(fig, text: str) -> None:
+    """A small note under the figure's panels (what the picture leaves out), with room kept
+    for it so no axis label runs into it."""
+    lines = text.count("\n") + 1
+    height = fig.get_figheight()
+    engine = fig.get_layout_engine()
+    if engine is not None and hasattr(engine, "set"):
+        engine.set(rect=(0, 0.2 * lines / height, 1, 1 - 0.2 * lines / height))
+    fig.text(0.01, 0.005, text, fontsize="x-small", va="bottom")
