@@ -15,6 +15,8 @@ def register(subparsers) -> None:
         "and principal axes of the body in PATH.",
     )
     add_body_arguments(parser)
+    parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
+                        help="print the simulator's inertial block instead (SI units)")
     parser.set_defaults(func=run)
 
 
@@ -24,7 +26,11 @@ def run(args: argparse.Namespace) -> int:
 
     reading = load_body(args)
     print_notices(reading)
-    if args.json:
+    if getattr(args, "format", None):
+        from ..export.inertial import inertial_xml
+
+        print(inertial_xml(reading.body.mass_properties(), args.format))
+    elif args.json:
         dump_json(mass_json(reading))
     else:
         print(mass_text(reading))
