@@ -12,8 +12,6 @@ import time
 from collections import Counter
 from dataclasses import dataclass, field
 
-from .rows import FileResult
-
 __all__ = ["Summary", "Progress"]
 
 
@@ -23,19 +21,19 @@ class Summary:
 
     files: int = 0
     resumed: int = 0
+    computed: int = 0
     statuses: Counter = field(default_factory=Counter)
     errors: Counter = field(default_factory=Counter)
     seconds: float = 0.0
 
-    def add(self, result: FileResult) -> None:
-        status = result.row.get("status") or "ok"
+    def add(self, row: dict, computed: bool = True) -> None:
+        """Count a row: one measured now, or (``computed`` False) kept from before."""
+        self.computed += computed
+        self.resumed += not computed
+        status = row.get("status") or "ok"
         self.statuses[status] += 1
         if status != "ok":
-            self.errors[result.row.get("error") or status] += 1
-
-    @property
-    def computed(self) -> int:
-        return sum(self.statuses.values())
+            self.errors[row.get("error") or status] += 1
 
     @property
     def ok(self) -> bool:
@@ -44,10 +42,10 @@ class Summary:
     def text(self) -> str:
         rate = self.computed / self.seconds if self.seconds > 0 else 0.0
         counts = ", ".join(f"{n} {s}" for s, n in sorted(self.statuses.items())) or "nothing to do"
-        line = (f"plumbob batch: {self.files} file(s): {counts} in {self.seconds:.1f} s "
-                f"({rate:.1f} files/s)")
+        line = (f"plumbob batch: {self.files} file(s): {counts}; {self.computed} measured in "
+                f"{self.seconds:.1f} s ({rate:.1f} files/s)")
         if self.resumed:
-            line += f"; {self.resumed} done before, kept"
+            line += f"; {self.resumed} of them done before, kept"
         if self.errors:
             line += "\n  not ok: " + ", ".join(f"{n} {e}" for e, n in self.errors.most_common())
         return line

@@ -14,6 +14,7 @@ import hashlib
 import os
 import time
 from dataclasses import dataclass, field
+from stat import S_ISREG
 from typing import Any
 
 from ..errors import PlumbobError
@@ -139,6 +140,8 @@ def file_identity(path: str) -> dict[str, Any]:
     """Size, modification time and SHA-256 of the file, by which ``--resume`` knows it."""
     try:
         stat = os.stat(path)
+        if not S_ISREG(stat.st_mode):  # a pipe or device: never block on it here
+            return {"file_size": None, "file_mtime_ns": None, "file_sha256": None}
         digest = hashlib.sha256()
         with open(path, "rb") as handle:
             while chunk := handle.read(1 << 20):

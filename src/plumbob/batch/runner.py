@@ -102,13 +102,14 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
         if pose_writer:
             kept_poses = [r for r in pose_writer.read() if r.get("path") in kept]
 
-    summary = Summary(files=len(files), resumed=len(kept))
+    summary = Summary(files=len(files))
     rows: dict[int, Row] = {}
     pose_rows: dict[int, list[Row]] = {}
     tasks = []
     for index, path in enumerate(files):
         if path in kept:
             rows[index] = _normal(kept[path], fields)
+            summary.add(rows[index], computed=False)
             pose_rows[index] = [r for r in kept_poses if r["path"] == path]
         else:
             tasks.append((index, path, path))
@@ -139,7 +140,7 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
                     writer.append(row)
                 rows[index] = row
                 pose_rows[index] = [_normal(p, pfields) for p in result.pose_rows]
-                summary.add(result)
+                summary.add(row)
                 bar.advance()
     finally:
         summary.seconds = time.monotonic() - began
