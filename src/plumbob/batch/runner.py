@@ -76,7 +76,8 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
         **values: Any) -> BatchResult:
     """Measure every file the inputs name; see :mod:`plumbob.batch`."""
     if options is None:
-        options = Options(pose_table=bool(pose_out) or values.pop("pose_table", False), **values)
+        pose_table = values.pop("pose_table", False) or bool(pose_out)
+        options = Options(pose_table=pose_table, **values)
     elif values:
         raise TypeError("give options or keyword options, not both")
     if pose_out and not options.pose_table:
