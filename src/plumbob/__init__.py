@@ -48,6 +48,7 @@ _LAZY = {
     "check": ("plumbob.stability", "check"),
     "poses": ("plumbob.stability", "resting_poses"),
     "lift": ("plumbob.energy", "lift_energy"),
+    "batch": ("plumbob.batch", None),
 }
 
 
