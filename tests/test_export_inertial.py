@@ -109,3 +109,14 @@ def test_unknown_format_is_refused():
     props = plumbob.load(os.path.join(SHAPES, "block.toml")).mass_properties()
     with pytest.raises(ValueError, match="urdf, sdf, mjcf"):
         inertial_xml(props, "usd")
+
+
+def test_the_batch_and_mass_commands_offer_every_format():
+    from plumbob.batch.options import INERTIAL_FORMATS
+    from plumbob.cli import build_parser
+    from plumbob.export.inertial import FORMATS
+
+    assert INERTIAL_FORMATS == FORMATS
+    mass = build_parser("mass")._subparsers._group_actions[0].choices["mass"]
+    (action,) = [a for a in mass._actions if a.dest == "format"]
+    assert tuple(action.choices) == FORMATS

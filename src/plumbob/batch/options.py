@@ -8,11 +8,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..errors import PlumbobError
 from ..units import STANDARD_GRAVITY
 
 __all__ = ["Options", "INERTIAL_FORMATS"]
 
-#: simulator inertial blocks that can be added as columns (see plumbob.export.inertial)
+#: simulator inertial blocks that can be added as columns (plumbob.export.inertial.FORMATS,
+#: written out here so that building the CLI parser imports no numpy)
 INERTIAL_FORMATS = ("urdf", "sdf", "mjcf")
 
 
@@ -49,8 +51,6 @@ class Options:
     timeout: float | None = None
 
     def __post_init__(self) -> None:
-        from ..errors import PlumbobError
-
         unknown = [f for f in self.inertial if f not in INERTIAL_FORMATS]
         if unknown:
             raise PlumbobError(f"unknown inertial format {unknown[0]!r}; use "
