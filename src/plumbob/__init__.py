@@ -56,6 +56,7 @@ _LAZY = {
     "poses": ("plumbob.stability", "resting_poses"),
     "lift": ("plumbob.energy", "lift_energy"),
     "collide": ("plumbob.dynamics.collisions", "collide"),
+    "batch": ("plumbob.batch", None),
 }
 
 

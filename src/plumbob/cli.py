@@ -16,7 +16,7 @@ import sys
 
 from .errors import PlumbobError
 
-COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate", "collide")
+COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate", "collide", "batch")
 
 
 class _Parser(argparse.ArgumentParser):

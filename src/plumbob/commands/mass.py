@@ -17,6 +17,8 @@ def register(subparsers) -> None:
     )
     add_body_arguments(parser)
     add_plot_argument(parser)
+    parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
+                        help="print the simulator's inertial block instead (SI units)")
     parser.set_defaults(func=run)
 
 
@@ -28,7 +30,11 @@ def run(args: argparse.Namespace) -> int:
     report = MassReport.of(reading)
     if args.plot:
         write_plot(args.plot, "mass", reading.body, path=args.path)
-    if args.json:
+    if getattr(args, "format", None):
+        from ..export.inertial import inertial_xml
+
+        print(inertial_xml(reading.body.mass_properties(), args.format))
+    elif args.json:
         dump_json(report.as_dict())
     else:
         print(report.text())

@@ -1,0 +1,172 @@
+"""Benchmark: ``plumbob batch`` against a trimesh loop, over a generated corpus.
+
+The corpus: ``--files`` (default 2,000) closed, non-symmetric "potatoes" written as
+binary STL, their triangle counts spread from 10 to 200,000 (log-uniform, squared
+toward the small end as real part libraries are), and about 4.5 % broken on purpose
+(truncated, open, garbage). Each file gets mass properties and resting poses:
+
+* ``plumbob batch CORPUS --poses --jobs 1`` and ``--jobs N`` (N = every core), the
+  whole command timed as a process, writing CSV;
+* ``plumbob.batch.run(..., scheduler=...)`` on a Dask ``LocalCluster`` of N
+  single-threaded worker processes (cluster start-up not timed);
+* a trimesh loop doing the same (``trimesh.load``, ``mass_properties``,
+  ``compute_stable_poses`` at the centre of mass) in a process pool of 1 and of N.
+
+Printed: files per second for each, the ratios plumbob / trimesh at 1 and at N
+processes, and the scaling from 1 to N jobs. Issue 13 asks for at least 5× trimesh
+with one process and at least 1.7× from 1 to 2 jobs on a 2-core machine.
+
+Run: ``python bench/batch.py [--files N] [--folder DIR] [--skip-trimesh] [--skip-dask]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+from _common import PYTHON, write_binary_stl
+from poses import potato
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SRC = os.path.join(os.path.dirname(HERE), "src")
+
+
+def triangle_counts(n: int, rng: np.random.Generator) -> np.ndarray:
+    """Sizes from 10 to 200k, most parts small (u² skews log-uniform to the small end)."""
+    return np.round(10 * 20_000 ** (rng.uniform(0, 1, n) ** 2)).astype(int)
+
+
+def make_corpus(folder: str, files: int, seed: int = 7) -> dict[str, int]:
+    """Write the corpus; returns counts of good and broken files and triangles."""
+    rng = np.random.default_rng(seed)
+    os.makedirs(folder, exist_ok=True)
+    broken = total = 0
+    for k, target in enumerate(triangle_counts(files, rng)):
+        rings = max(1, int(round(np.sqrt(target / 4))))
+        lon = max(3, int(round(target / (2 * rings))))
+        verts, faces = potato(rings + 1, lon, seed=k)
+        tris = verts[faces] * rng.uniform(0.02, 0.5)  # 2 cm to 50 cm
+        path = os.path.join(folder, f"part_{k:05d}.stl")
+        kind = k % 67  # about 4.5 % broken, three ways
+        if kind == 11:
+            write_binary_stl(path, tris[: len(tris) // 2])
+            with open(path, "r+b") as handle:  # header promises more than the file holds
+                handle.seek(80)
+                handle.write(np.uint32(len(tris)).tobytes())
+        elif kind == 22 and len(tris) > 20:
+            write_binary_stl(path, tris[:-3])  # an open mesh
+        elif kind == 33:
+            with open(path, "wb") as handle:
+                handle.write(rng.bytes(300))
+        else:
+            write_binary_stl(path, tris)
+            total += len(tris)
+            continue
+        broken += 1
+    return {"files": files, "broken": broken, "triangles": total}
+
+
+def _trimesh_one(path: str) -> bool:
+    """What a hand-written harness does per file: load, mass properties, stable poses."""
+    import trimesh
+
+    try:
+        mesh = trimesh.load(path, force="mesh")
+        if not mesh.is_watertight:
+            return False
+        props = mesh.mass_properties
+        trimesh.poses.compute_stable_poses(mesh, center_mass=props["center_mass"])
+        return True
+    except Exception:
+        return False
+
+
+def trimesh_loop(paths: list[str], jobs: int) -> float:
+    start = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        list(pool.map(_trimesh_one, paths, chunksize=8))
+    return time.perf_counter() - start
+
+
+def plumbob_cli(folder: str, jobs: int, out: str) -> float:
+    env = dict(os.environ, PYTHONPATH=SRC)
+    start = time.perf_counter()
+    subprocess.run([PYTHON, "-m", "plumbob.cli", "batch", folder, "--poses", "--out", out,
+                    "--jobs", str(jobs), "--quiet"], env=env, check=False)
+    return time.perf_counter() - start
+
+
+def plumbob_dask(folder: str, jobs: int) -> tuple[float, list]:
+    from distributed import LocalCluster
+
+    import plumbob.batch
+
+    with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster:
+        start = time.perf_counter()
+        result = plumbob.batch.run([folder], poses=True, scheduler=cluster.scheduler_address)
+        return time.perf_counter() - start, result.rows
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--files", type=int, default=2000)
+    parser.add_argument("--folder", help="keep the corpus here (default: a temporary folder)")
+    parser.add_argument("--jobs", type=int, default=None, help="N (default: every core)")
+    parser.add_argument("--skip-trimesh", action="store_true")
+    parser.add_argument("--skip-dask", action="store_true")
+    args = parser.parse_args(argv)
+    sys.path.insert(0, SRC)
+    from plumbob.batch import default_jobs
+
+    jobs = args.jobs or default_jobs()
+    folder = args.folder or tempfile.mkdtemp(prefix="plumbob-batch-")
+    try:
+        started = time.perf_counter()
+        info = make_corpus(os.path.join(folder, "corpus"), args.files)
+        print(f"corpus: {info['files']} STL files, {info['broken']} broken, "
+              f"{info['triangles']:,} triangles in the good ones "
+              f"(written in {time.perf_counter() - started:.1f} s)")
+        corpus = os.path.join(folder, "corpus")
+        paths = sorted(os.path.join(corpus, f) for f in os.listdir(corpus))
+        rate = {}
+
+        def report(name: str, seconds: float) -> None:
+            rate[name] = len(paths) / seconds
+            print(f"{name:<28}{seconds:9.2f} s {rate[name]:10.1f} files/s", flush=True)
+
+        report("plumbob batch --jobs 1", plumbob_cli(corpus, 1, os.path.join(folder, "1.csv")))
+        report(f"plumbob batch --jobs {jobs}",
+               plumbob_cli(corpus, jobs, os.path.join(folder, "n.csv")))
+        if not args.skip_dask:
+            seconds, _ = plumbob_dask(corpus, jobs)
+            report(f"plumbob on Dask ({jobs} workers)", seconds)
+        if not args.skip_trimesh:
+            report("trimesh loop, 1 process", trimesh_loop(paths, 1))
+            report(f"trimesh loop, {jobs} processes", trimesh_loop(paths, jobs))
+        print()
+        one, many = rate["plumbob batch --jobs 1"], rate[f"plumbob batch --jobs {jobs}"]
+        print(f"scaling, --jobs 1 -> --jobs {jobs}: {many / one:.2f}x (target 1.7x for 2 jobs)")
+        if not args.skip_trimesh:
+            print(f"plumbob / trimesh, 1 process: "
+                  f"{one / rate['trimesh loop, 1 process']:.1f}x (target 5x)")
+            print(f"plumbob / trimesh, {jobs} processes: "
+                  f"{many / rate[f'trimesh loop, {jobs} processes']:.1f}x")
+        if not args.skip_dask:
+            print(f"Dask / --jobs {jobs}: "
+                  f"{rate[f'plumbob on Dask ({jobs} workers)'] / many:.2f}x")
+    finally:
+        if not args.folder:
+            shutil.rmtree(folder, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,156 @@
+"""The columns of the results table and of the pose table, and their flat forms.
+
+A row is a JSON-like dict whose keys and values are those of the single-file
+command's ``--json`` output (vectors are lists, the inertia a 3×3 list). JSON Lines
+keeps rows as they are; CSV and Parquet need one scalar per cell, so each vector or
+matrix column is spread over named cells (``center_of_mass_x``, ``inertia_xy``,
+``principal_axes_1_x``) and lists of notes become JSON text. The schema is fixed by
+the options alone — never by which files happen to come first — so an incremental CSV
+can write its header before the first row, and every run with the same options gives
+the same columns.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+from .options import Options
+
+__all__ = ["Field", "result_fields", "pose_fields", "flatten", "unflatten", "flat_names",
+           "parse_cell"]
+
+XYZ = ("x", "y", "z")
+
+
+@dataclass(frozen=True)
+class Field:
+    """One key of a row: its value type (``str``, ``float``, ``int``, ``bool`` or
+    ``strings``, a list of text) and, for a vector or matrix, the labels of its cells."""
+
+    key: str
+    type: str
+    labels: tuple = ()  # (labels,) for a vector, (row labels, column labels) for a matrix
+
+    def names(self) -> list[str]:
+        """The flat column names of this key."""
+        if not self.labels:
+            return [self.key]
+        if len(self.labels) == 1:
+            return [f"{self.key}_{a}" for a in self.labels[0]]
+        rows, cols = self.labels
+        sep = "" if rows == XYZ else "_"
+        return [f"{self.key}_{r}{sep}{c}" for r in rows for c in cols]
+
+
+def _vec(key: str, labels=XYZ) -> Field:
+    return Field(key, "float", (labels,))
+
+
+_HEAD = [Field("path", "str"), Field("name", "str"), Field("status", "str"),
+         Field("error", "str"), Field("reason", "str")]
+_MASS = [Field("kind", "str"), Field("units", "str"), Field("mass", "float"),
+         Field("volume", "float"), Field("area", "float"), _vec("center_of_mass"),
+         Field("inertia", "float", (XYZ, XYZ)), _vec("principal_moments", ("1", "2", "3")),
+         Field("principal_axes", "float", (("1", "2", "3"), XYZ)), Field("exact", "bool"),
+         Field("relative_error", "float"), Field("parts", "int")]
+_CHECK = [Field("verdict", "str"), Field("stands", "bool"), Field("margin", "float"),
+          Field("critical_tilt_deg", "float"), _vec("critical_direction"),
+          Field("energy_to_topple", "float"), Field("com_height", "float"), _vec("down"),
+          Field("support_kind", "str")]
+_SLOPE = [Field("slope_verdict", "str"), Field("slope_topples", "bool"),
+          Field("slope_tipping_angle_deg", "float")]
+_REQUIRE = [Field("required_tilt_deg", "float"), Field("passes", "bool")]
+_POSES = [Field("poses", "int"), Field("poses_method", "str"), Field("pose_probability", "float"),
+          _vec("pose_down"), Field("pose_com_height", "float"),
+          Field("pose_critical_tilt_deg", "float"), Field("pose_energy_barrier", "float")]
+_TAIL = [Field("notes", "strings"), Field("notices", "strings"), Field("file_size", "int"),
+         Field("file_mtime_ns", "int"), Field("file_sha256", "str")]
+_POSE_TABLE = [Field("path", "str"), Field("name", "str"), Field("pose", "int"), _vec("down"),
+               Field("com_height", "float"), Field("probability", "float"),
+               Field("critical_tilt_deg", "float"), Field("energy_barrier", "float"),
+               Field("neutral", "bool")]
+
+
+def result_fields(options: Options) -> list[Field]:
+    """The keys of every results row for these options, in table order."""
+    fields = _HEAD + _MASS
+    if options.check:
+        fields = fields + _CHECK
+        if options.tilt is not None:
+            fields = fields + _SLOPE
+        if options.require_tilt is not None:
+            fields = fields + _REQUIRE
+    if options.poses:
+        fields = fields + _POSES
+    fields = fields + [Field(f"{fmt}_inertial", "str") for fmt in options.inertial]
+    return fields + _TAIL
+
+
+def pose_fields() -> list[Field]:
+    """The keys of the long-format pose table: one row per pose of every file."""
+    return list(_POSE_TABLE)
+
+
+def flat_names(fields: list[Field]) -> list[str]:
+    """The column names of the flat (CSV, Parquet) table."""
+    return [name for f in fields for name in f.names()]
+
+
+def flatten(row: dict[str, Any], fields: list[Field]) -> dict[str, Any]:
+    """One scalar per cell (missing values None)."""
+    flat: dict[str, Any] = {}
+    for f in fields:
+        value = row.get(f.key)
+        names = f.names()
+        if f.type == "strings":
+            flat[f.key] = json.dumps(value, ensure_ascii=False) if value else None
+        elif not f.labels:
+            flat[f.key] = value
+        else:
+            cells = [] if value is None else [c for r in value for c in r] \
+                if len(f.labels) == 2 else list(value)
+            flat.update(zip(names, cells + [None] * (len(names) - len(cells))))
+    return flat
+
+
+def unflatten(flat: dict[str, Any], fields: list[Field]) -> dict[str, Any]:
+    """The row again from its flat cells (a lamina's 2-vectors lose their empty z)."""
+    row: dict[str, Any] = {}
+    for f in fields:
+        if f.type == "strings":
+            text = flat.get(f.key)
+            row[f.key] = json.loads(text) if text else None
+        elif not f.labels:
+            row[f.key] = flat.get(f.key)
+        else:
+            cells = [flat.get(name) for name in f.names()]
+            if all(c is None for c in cells):
+                row[f.key] = None
+            elif len(f.labels) == 2:
+                n = len(f.labels[1])
+                row[f.key] = [cells[i:i + n] for i in range(0, len(cells), n)]
+            else:
+                while cells and cells[-1] is None:
+                    cells.pop()
+                row[f.key] = cells
+    return row
+
+
+def parse_cell(text: str | None, kind: str) -> Any:
+    """A CSV cell back to its value (empty: None); floats round-trip exactly."""
+    if text is None or text == "":
+        return None
+    if kind == "float":
+        return float(text)
+    if kind == "int":
+        return int(text)
+    if kind == "bool":
+        return text == "True"
+    return text
+
+
+def cell_types(fields: list[Field]) -> dict[str, str]:
+    """Flat column name → value type (``strings`` cells are JSON text)."""
+    return {name: ("str" if f.type == "strings" else f.type) for f in fields for name in f.names()}

@@ -1,0 +1,71 @@
+"""What a batch run computes for every file: one frozen, picklable record.
+
+The same :class:`Options` travels to every worker process or Dask worker, so every
+file is read and measured with the same units, density, down direction and tilt.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..errors import PlumbobError
+from ..units import STANDARD_GRAVITY
+
+__all__ = ["Options", "INERTIAL_FORMATS"]
+
+#: simulator inertial blocks that can be added as columns (plumbob.export.inertial.FORMATS,
+#: written out here so that building the CLI parser imports no numpy)
+INERTIAL_FORMATS = ("urdf", "sdf", "mjcf")
+
+
+@dataclass(frozen=True)
+class Options:
+    """Options applied to every file of a batch (those of the single-file commands).
+
+    units: length unit of the files' coordinates (``--units``); None: each file's own,
+        else metres.
+    material, density: the density of parts that give none (``--material``/``--density``).
+    repair: close small holes and fix winding in meshes (``--repair``).
+    check: add the stability verdict as it stands (``plumbob check``) to each row.
+    down, tilt, toward, require_tilt, g: as ``plumbob check`` (``--down``, ``--tilt``,
+        ``--toward``, ``--require-tilt``, ``--g``); ``g`` also sets the poses' barriers.
+    poses: add the resting-pose summary (``plumbob poses``) to each row.
+    pose_table: also return every pose of every file (the long-format pose table).
+    inertial: simulator inertial blocks to add as columns (``urdf``, ``sdf``, ``mjcf``).
+    timeout: seconds allowed per file; None: no limit.
+    """
+
+    units: str | None = None
+    material: str | None = None
+    density: float | None = None
+    repair: bool = False
+    check: bool = False
+    down: tuple[float, ...] | None = None
+    tilt: float | None = None
+    toward: float | None = None
+    require_tilt: float | None = None
+    g: float = STANDARD_GRAVITY
+    poses: bool = False
+    pose_table: bool = False
+    inertial: tuple[str, ...] = ()
+    timeout: float | None = None
+
+    def __post_init__(self) -> None:
+        unknown = [f for f in self.inertial if f not in INERTIAL_FORMATS]
+        if unknown:
+            raise PlumbobError(f"unknown inertial format {unknown[0]!r}; use "
+                               f"{', '.join(INERTIAL_FORMATS)}")
+        if self.material is not None and self.density is not None:
+            raise PlumbobError("give --material or --density, not both")
+        if self.timeout is not None and not self.timeout > 0:
+            raise PlumbobError(f"the time limit must be positive, not {self.timeout}")
+        if self.toward is not None and self.tilt is None:
+            raise PlumbobError("--toward needs --tilt DEG")
+        if self.down is not None:
+            object.__setattr__(self, "down", tuple(float(v) for v in self.down))
+        object.__setattr__(self, "inertial", tuple(self.inertial))
+        # A tilt, a down direction or a design check only mean something to the check.
+        if any(v is not None for v in (self.down, self.tilt, self.toward, self.require_tilt)):
+            object.__setattr__(self, "check", True)
+        if self.pose_table:
+            object.__setattr__(self, "poses", True)

@@ -1,0 +1,1 @@
+"""Mass properties written in other programs' formats (simulator inertial blocks)."""
