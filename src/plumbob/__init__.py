@@ -36,6 +36,7 @@ __all__ = [
     "poses",
     "lift",
     "collide",
+    "batch",
 ]
 
 #: public name → (module, attribute; None for the module itself), imported on first use

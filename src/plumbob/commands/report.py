@@ -49,9 +49,9 @@ def _attempt(what: str, compute, notes: list[str]):
 def run(args) -> int:
     from ..plot.files import write_atomic
     from ..plot.html import report_page
-    from ..report import dump_json
     from ..stability.poses import resting_poses
     from ..stability.verdict import check
+    from ._common import dump_json
 
     reading, props, notes = open_body(args)
     body = reading.body

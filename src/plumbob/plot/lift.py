@@ -48,7 +48,7 @@ def plot_lift(lift, body, ax=None, *, props=None, path: str | None = None,
     label_axes(ax, names)
     draw_legend(ax, legend if len(d.pieces) > 1 else [], loc="upper left")
     ax.set_title(title_for(body, path, "plumbob lift") +
-                 f"\nlift energy M g z_G = {fmt(lift.energy)} J (mass {fmt(lift.mass)} kg)",
+                 f"\nlift energy M g z_G = {fmt(lift.lift_energy)} J (mass {fmt(lift.mass)} kg)",
                  fontsize="medium")
     if d.note:
         caption(fig, d.note)
