@@ -9,19 +9,20 @@ looked up ignoring case, spaces and hyphens; a few common spellings are aliases.
 from __future__ import annotations
 
 import difflib
+import math
 import sys
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from .errors import MaterialError
+from .errors import DensityError, MaterialError
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density",
+__all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density", "check_density",
            "ALIASES", "CATEGORIES"]
 
 CATEGORIES = ("concrete", "masonry", "stone", "glass", "metal", "wood", "wood product",
@@ -150,7 +151,6 @@ def resolve_density(value: float | int | str) -> float:
     >>> resolve_density(1000), resolve_density("2.5e3"), resolve_density("water")
     (1000.0, 2500.0, 998.2)
     """
-    from .bodies.base import check_density
 
     if isinstance(value, bool):
         raise MaterialError(f"a density must be a number or a material name, not {value!r}")
@@ -161,3 +161,41 @@ def resolve_density(value: float | int | str) -> float:
     except (TypeError, ValueError):
         return density_of(value)
     return check_density(number)  # type: ignore[return-value]
+
+def check_density(density: float | None, what: str = "density") -> float | None:
+    """A density as a float, checked: a positive finite number, or None (not given).
+
+    Parameters
+    ----------
+    density : float or None
+        kg/m³ (kg/m² for a lamina given by its areal density).
+    what : str
+        How to name the value in the error message.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    DensityError
+        Not a number, not finite, zero or negative.
+
+    Examples
+    --------
+    >>> check_density("2700"), check_density(None)
+    (2700.0, None)
+    >>> check_density(0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: --density must be a positive finite number, not 0
+    """
+    if density is None:
+        return None
+    try:
+        value = float(density)
+    except (TypeError, ValueError):
+        raise DensityError(f"{what} must be a number, not {density!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise DensityError(f"{what} must be a positive finite number, not {value:g}")
+    return value

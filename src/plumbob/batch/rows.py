@@ -36,8 +36,8 @@ class FileResult:
 def read_body(path: str, options: Options):
     """The file's :class:`~plumbob.io.Reading`, with ``--density``/``--material`` applied to
     parts that give none (as the single-file commands do)."""
-    from ..bodies.base import check_density
     from ..loading import read
+    from ..materials import check_density
     from ..reading import Reading
 
     reading = read(path, units=options.units, repair=options.repair)

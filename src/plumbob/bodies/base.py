@@ -14,8 +14,9 @@ from typing import Protocol
 
 import numpy as np
 
-from ..errors import BodyQueryError, DensityError, GeometryError, PlumbobError
+from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
+from ..materials import check_density
 
 __all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE",
            "lowest", "contact_sampling"]
@@ -23,43 +24,6 @@ __all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DE
 DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed"
 
 
-def check_density(density: float | None, what: str = "density") -> float | None:
-    """A density as a float, checked: a positive finite number, or None (not given).
-
-    Parameters
-    ----------
-    density : float or None
-        kg/m³ (kg/m² for a lamina given by its areal density).
-    what : str
-        How to name the value in the error message.
-
-    Returns
-    -------
-    float or None
-
-    Raises
-    ------
-    DensityError
-        Not a number, not finite, zero or negative.
-
-    Examples
-    --------
-    >>> check_density("2700"), check_density(None)
-    (2700.0, None)
-    >>> check_density(0, "--density")
-    Traceback (most recent call last):
-    ...
-    plumbob.errors.DensityError: --density must be a positive finite number, not 0
-    """
-    if density is None:
-        return None
-    try:
-        value = float(density)
-    except (TypeError, ValueError):
-        raise DensityError(f"{what} must be a number, not {density!r}") from None
-    if not np.isfinite(value) or value <= 0:
-        raise DensityError(f"{what} must be a positive finite number, not {value:g}")
-    return value
 
 
 def contact_sampling(tolerance: float, size: float) -> float:

@@ -13,9 +13,9 @@ import math
 import sys
 from typing import Any
 
-from ..bodies.base import check_density
 from ..errors import DynamicsError
 from ..loading import read
+from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY

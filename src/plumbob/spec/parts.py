@@ -14,13 +14,14 @@ from typing import Any
 import numpy as np
 
 from ..bodies import primitives as prim
-from ..bodies.base import Body, check_density
+from ..bodies.base import Body
 from ..bodies.csg import Assembly, Composite, difference, intersection, leaf_densities, union
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..expr import Expression, parse
 from ..io import read as read_file
 from ..massprops import rotation_matrix
+from ..materials import check_density
 from ..materials import material as lookup_material
 from .values import SpecContext, suggest
 

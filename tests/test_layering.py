@@ -1,0 +1,132 @@
+"""The house's layering (docs/architecture.md), enforced over the import graph.
+
+Every ``import`` and ``from … import`` in ``src/plumbob`` counts, including those
+inside functions: a lazy import hides a cycle from Python, not from a reader.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import networkx as nx
+import pytest
+from conftest import ROOT
+
+PACKAGE = Path(ROOT) / "src" / "plumbob"
+
+#: Rooms from the bottom up: a room may import its own layer and the layers below it.
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("errors",),
+    ("units", "results", "plot"),
+    ("expr", "integrals", "massprops", "materials"),
+    ("mesh",),
+    ("bodies",),
+    ("reading",),
+    ("io",),
+    ("dynamics",),
+    ("spec",),
+    ("loading",),
+    ("stability", "energy"),
+    ("export", "batch"),
+    ("report",),
+    ("commands",),
+    ("cli",),
+)
+LAYER_OF = {room: level for level, rooms in enumerate(LAYERS) for room in rooms}
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _modules() -> dict[str, Path]:
+    return {_module_name(path): path for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+def _imports(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+    """The plumbob modules that ``name`` imports anywhere in its source."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            targets = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            # `from .bodies import csg` imports the module bodies.csg, not only the package
+            targets = [f"{target}.{alias.name}" if f"{target}.{alias.name}" in modules else target
+                       for alias in node.names]
+        else:
+            continue
+        for target in targets:
+            while target and target not in modules:
+                target = target.rpartition(".")[0]
+            if target.startswith("plumbob") and target != name:
+                found.add(target)
+    return found
+
+
+def _room(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "plumbob"
+
+
+@pytest.fixture(scope="module")
+def graph() -> nx.DiGraph:
+    modules = _modules()
+    g = nx.DiGraph()
+    g.add_nodes_from(modules)
+    for name, path in modules.items():
+        g.add_edges_from((name, target) for target in _imports(name, path, modules))
+    return g
+
+
+def test_every_room_has_a_layer(graph):
+    rooms = {_room(m) for m in graph} - {"plumbob"}
+    unplaced = sorted(rooms - set(LAYER_OF))
+    assert not unplaced, f"place these rooms in LAYERS and docs/architecture.md: {unplaced}"
+
+
+def test_no_module_imports_a_higher_layer(graph):
+    upward = sorted(
+        f"{a} -> {b}"
+        for a, b in graph.edges
+        if _room(a) != "plumbob" and _room(b) != "plumbob"
+        and LAYER_OF.get(_room(b), -1) > LAYER_OF.get(_room(a), -1)
+    )
+    assert not upward, "imports against the layering:\n" + "\n".join(upward)
+
+
+def test_nothing_imports_the_package_root(graph):
+    """``plumbob/__init__.py`` is the front door: rooms import each other, never it."""
+    assert not [a for a, b in graph.edges if b == "plumbob"]
+
+
+def test_no_import_cycle_between_modules(graph):
+    cycles = [sorted(c) for c in nx.strongly_connected_components(graph) if len(c) > 1]
+    assert not cycles, f"modules importing each other in a ring: {cycles}"
+
+
+def test_no_import_cycle_between_rooms(graph):
+    rooms = nx.DiGraph()
+    rooms.add_edges_from((_room(a), _room(b)) for a, b in graph.edges if _room(a) != _room(b))
+    cycles = [sorted(c) for c in nx.strongly_connected_components(rooms) if len(c) > 1]
+    assert not cycles, f"rooms importing each other in a ring: {cycles}"
+
+
+def test_the_graph_sees_imports_inside_functions(graph):
+    """The checker itself: a lazy import in a function body is an edge too."""
+    assert ("plumbob.cli", "plumbob.errors") in graph.edges
+    lazy = [(a, b) for a, b in graph.edges if a.startswith("plumbob.commands") and "io" in b]
+    assert lazy or any(a.startswith("plumbob.commands") and "loading" in b for a, b in graph.edges)
+
+
+def test_no_module_is_over_600_lines():
+    long = {str(p.relative_to(PACKAGE)): n for p in PACKAGE.rglob("*.py")
+            if (n := len(p.read_text(encoding="utf-8").splitlines())) > 600}
+    assert not long, f"split these modules by concern: {long}"
