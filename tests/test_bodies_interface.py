@@ -8,7 +8,6 @@ from plumbob.bodies import primitives as P
 from plumbob.bodies.base import Body, DensityCells
 from plumbob.bodies.containment import (
     mesh_contains,
-    solid_angles,
     triangle_distances,
     winding_numbers,
 )
@@ -19,6 +18,7 @@ from plumbob.bodies.particles import ParticleSystem
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import BodyQueryError, DensityError, GeometryError, PlumbobError
 from plumbob.massprops import MassProperties, rotation_matrix
+from plumbob.mesh import solid_angle
 
 RNG = np.random.default_rng(9)
 
@@ -249,7 +249,7 @@ def test_repr_says_what_the_body_is():
 # ------------------------------------------------------------------ the mesh kernels
 def test_solid_angles_of_a_cube_face_sum_to_the_sphere():
     tri = P.box(2, 2, 2).triangles - 1.0  # centred on the origin
-    omega = solid_angles(tri[:, 0], tri[:, 1], tri[:, 2])
+    omega = solid_angle(tri[:, 0], tri[:, 1], tri[:, 2])
     assert omega.sum() == pytest.approx(4 * np.pi, rel=1e-14)
     assert omega[:2].sum() == pytest.approx(4 * np.pi / 6, rel=1e-14)  # one face: a sixth
 

@@ -11,11 +11,11 @@ from plumbob.bodies.primitives import box, cylinder, polygon, pyramid, rectangle
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError, PlumbobError, StabilityError
 from plumbob.massprops import rotation_matrix
+from plumbob.mesh import solid_angle
 from plumbob.stability import check, poses_from_points, resting_poses
 from plumbob.stability.poses.basins import basins3, sampled_basins
 from plumbob.stability.poses.hull import build_hull3, physical_faces
 from plumbob.stability.poses.landscape import landscape2
-from plumbob.stability.poses.vectors import solid_angle
 
 G = 9.81
 CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)

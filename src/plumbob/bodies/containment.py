@@ -6,7 +6,7 @@ Every test takes a ``tolerance`` (m): a positive one grows the body by that much
 negative one shrinks it (a point must lie that far inside), so a composite can
 keep its holes' rims while removing their insides.
 
-One solid-angle formula serves the mesh tests (:func:`solid_angles`, Van
+One solid-angle formula serves the mesh tests (:func:`plumbob.mesh.solid_angle`, Van
 Oosterom and Strackee's): the winding number of a closed surface about a point
 is the sum of its triangles' signed solid angles over 4π.
 """
@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..mesh.winding import solid_angle
 from .region import Region
 
-__all__ = ["mesh_contains", "region_contains", "solid_angles", "triangle_distances",
+__all__ = ["mesh_contains", "region_contains", "triangle_distances",
            "winding_numbers"]
 
 _PAIRS = 1 << 16  # (point, triangle) pairs per pass: temporaries of a few MB
@@ -62,40 +63,6 @@ def region_contains(region: Region, points: np.ndarray, tolerance: float) -> np.
         geometry.boundary, where, -tolerance)
 
 
-def solid_angles(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
-    """Signed solid angles (sr) of triangles seen from the origin, corners ``a``, ``b``, ``c``.
-
-    Van Oosterom and Strackee's formula,
-    ``Ω = 2 atan2(a · (b × c), |a||b||c| + (a·b)|c| + (a·c)|b| + (b·c)|a|)``:
-    positive when the corners run counter-clockwise seen from the origin. A
-    triangle through the origin subtends 0.
-
-    Parameters
-    ----------
-    a, b, c : ndarray, shape (..., 3)
-        The corners relative to the point of view, m (broadcast together).
-
-    Returns
-    -------
-    ndarray, shape (...)
-        In (−2π, 2π].
-
-    Examples
-    --------
-    An octant's face seen from the origin is an eighth of the sphere:
-
-    >>> float(solid_angles(np.array([1.0, 0, 0]), np.array([0, 1.0, 0]), np.array([0, 0, 1.0])))
-    1.5707963267948966
-    >>> float(solid_angles(np.zeros(3), np.array([0, 1.0, 0]), np.array([0, 0, 1.0])))
-    0.0
-    """
-    la, lb, lc = (np.sqrt(np.einsum("...i,...i->...", v, v)) for v in (a, b, c))
-    num = np.einsum("...i,...i->...", a, np.cross(b, c))
-    den = (la * lb * lc + np.einsum("...i,...i->...", a, b) * lc
-           + np.einsum("...i,...i->...", a, c) * lb + np.einsum("...i,...i->...", b, c) * la)
-    return 2.0 * np.arctan2(num, den)
-
-
 def _chunk(points: int) -> int:
     """Triangles per pass over ``points`` points: about ``_PAIRS`` pairs."""
     return max(1, _PAIRS // max(points, 1))
@@ -129,7 +96,7 @@ def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
     step = _chunk(len(points))
     for start in range(0, len(triangles), step):
         t = triangles[start:start + step].astype(float)[None] - points[:, None, None, :]
-        total += solid_angles(t[:, :, 0], t[:, :, 1], t[:, :, 2]).sum(axis=1)
+        total += solid_angle(t[:, :, 0], t[:, :, 1], t[:, :, 2]).sum(axis=1)
     return total / (4 * np.pi)
 
 

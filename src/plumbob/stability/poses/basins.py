@@ -17,9 +17,10 @@ from typing import NamedTuple
 import numpy as np
 
 from ...errors import StabilityError
+from ...mesh.winding import solid_angle
 from .hull import Hull3
 from .rolling import Edges3, Roller, edge_geometry, step
-from .vectors import cross, dot, fibonacci_sphere, solid_angle, unit
+from .vectors import cross, dot, fibonacci_sphere, unit
 
 __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 
@@ -77,8 +78,8 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
         done = ismax[va] | (dot(pa, w) >= 1.0 - 1e-24)  # at its maximum already
         if done.any():
             d = alive[done]
-            area_l = solid_angle(nl[d], pa[done], w[done])
-            area_r = solid_angle(nr[d], w[done], pa[done])
+            area_l = solid_angle(nl[d], pa[done], w[done], unit=True)
+            area_r = solid_angle(nr[d], w[done], pa[done], unit=True)
             np.add.at(area, left[d], area_l)
             np.add.at(area, right[d], area_r)
             alive, va, pa, w = alive[~done], va[~done], pa[~done], w[~done]
@@ -92,12 +93,12 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
         if lost.any():  # passes through a corner, or numerically lost: end it at w
             ok = False
             d = alive[lost]
-            np.add.at(area, left[d], solid_angle(nl[d], pa[lost], w[lost]))
-            np.add.at(area, right[d], solid_angle(nr[d], w[lost], pa[lost]))
+            np.add.at(area, left[d], solid_angle(nl[d], pa[lost], w[lost], unit=True))
+            np.add.at(area, right[d], solid_angle(nr[d], w[lost], pa[lost], unit=True))
         go = ~lost
         d = alive[go]
-        np.add.at(area, left[d], solid_angle(nl[d], pa[go], q[go]))
-        np.add.at(area, right[d], solid_angle(nr[d], q[go], pa[go]))
+        np.add.at(area, left[d], solid_angle(nl[d], pa[go], q[go], unit=True))
+        np.add.at(area, right[d], solid_angle(nr[d], q[go], pa[go], unit=True))
         v[d], p[d], exclude[d] = h.eb[e[go]], q[go], h.und[e[go]]
         alive = d
     else:

@@ -12,7 +12,7 @@ import numpy as np
 
 from ...errors import StabilityError
 
-__all__ = ["unit", "cross", "dot", "solid_angle", "group_first", "expand", "pointer_sinks",
+__all__ = ["unit", "cross", "dot", "group_first", "expand", "pointer_sinks",
            "fibonacci_sphere"]
 
 
@@ -32,20 +32,6 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise dot products of (…, 3) arrays."""
     return (a * b).sum(axis=-1)
-
-
-def solid_angle(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
-    """Signed area of the spherical triangles (a, b, c) of unit vectors (…, 3), sr
-    (Van Oosterom and Strackee); positive when a → b → c turns counter-clockwise
-    seen from outside.
-
-    >>> x, y, z = np.eye(3)
-    >>> float(solid_angle(x, y, z) / np.pi), float(solid_angle(x, z, y) / np.pi)
-    (0.5, -0.5)
-    """
-    num = dot(a, cross(b, c))
-    den = 1.0 + dot(a, b) + dot(b, c) + dot(c, a)
-    return 2.0 * np.arctan2(num, den)
 
 
 def group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
