@@ -24,6 +24,7 @@ __all__ = [
     "number",
     "positive",
     "non_negative",
+    "count",
     "parse_vector",
     "number_option",
     "add_body_arguments",
@@ -55,6 +56,17 @@ def positive(text: str) -> float:
     value = number(text)
     if value <= 0:
         raise argparse.ArgumentTypeError(f"must be positive, not {text}")
+    return value
+
+
+def count(text: str) -> int:
+    """A whole number of at least 1 (people in a crew, worker processes)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
     return value
 
 

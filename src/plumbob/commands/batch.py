@@ -9,7 +9,7 @@ import argparse
 import sys
 
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
-from ._common import non_negative, parse_vector, positive
+from ._common import count, non_negative, parse_vector, positive
 
 __all__ = ["register", "run"]
 
@@ -35,15 +35,6 @@ def _formats(text: str) -> tuple[str, ...]:
                                          f"not {text!r}")
     return formats
 
-
-def _jobs(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
-    return value
 
 
 def register(subparsers) -> None:
@@ -84,7 +75,7 @@ def register(subparsers) -> None:
     harness = parser.add_argument_group("running")
     harness.add_argument("--timeout", type=positive, metavar="S",
                          help="seconds allowed per file (default: no limit)")
-    harness.add_argument("--jobs", type=_jobs, metavar="N",
+    harness.add_argument("--jobs", type=count, metavar="N",
                          help="worker processes (default: every core)")
     harness.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                          help="run on this Dask distributed cluster (pip install "

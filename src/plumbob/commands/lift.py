@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_stability_arguments, header, open_body, positive, print_json
+from ._common import add_stability_arguments, count, header, open_body, positive, print_json
 
 __all__ = ["register", "run"]
 
@@ -20,16 +20,6 @@ the datum (the seed's Great Pyramid: about 2.34e12 J). With --crew or --work-per
 that work in days of labour; the default day of work is the seed's, lifting 1000 kg
 through 1 m (1000 g J)."""
 
-
-def _crew(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"a crew is a whole number of people, not {text!r}") \
-            from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"a crew needs at least 1 person, not {value}")
-    return value
 
 
 def register(subparsers) -> None:
@@ -42,7 +32,7 @@ def register(subparsers) -> None:
     parser.add_argument("--work-per-day", type=positive, metavar="J",
                         help="work one person does in a day, J (default 1000 g: 1000 kg "
                              "through 1 m)")
-    parser.add_argument("--crew", type=_crew, metavar="N", help="people working at once")
+    parser.add_argument("--crew", type=count, metavar="N", help="people working at once")
     add_plot_argument(parser)
     parser.set_defaults(func=run)
 
