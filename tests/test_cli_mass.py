@@ -102,3 +102,22 @@ def test_usage_errors_exit_2(capsys):
     with pytest.raises(SystemExit) as info:
         main(["mass"])
     assert info.value.code == 2
+
+
+def test_an_internal_error_is_one_line_and_status_3_never_1(monkeypatch, capsys):
+    """A bug must not look like a failed requirement (1) or bad input (2) to a CI gate."""
+    from plumbob import cli
+    from plumbob.commands import mass
+
+    def broken(args):
+        raise ZeroDivisionError("division by zero")
+
+    monkeypatch.setattr(mass, "run", broken)
+    monkeypatch.delenv("PLUMBOB_DEBUG", raising=False)
+    parser = cli.build_parser("mass")
+    monkeypatch.setattr(cli, "build_parser", lambda command=None: parser)
+    parser.set_defaults(func=broken)
+    status = cli.main(["mass", "shapes/block.toml"])
+    err = capsys.readouterr().err
+    assert status == cli.INTERNAL_ERROR == 3
+    assert err.count("\n") == 1 and "ZeroDivisionError" in err and "Traceback" not in err

@@ -11,10 +11,14 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import re
 import sys
 
 from .errors import PlumbobError
+
+#: exit status of an unexpected failure: distinct from 1 (a requirement failed), 2 (bad input)
+INTERNAL_ERROR = 3
 
 COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate", "collide", "batch")
 
@@ -87,6 +91,13 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except Exception as error:  # a bug, never a failed requirement (1) or bad input (2)
+        if os.environ.get("PLUMBOB_DEBUG"):
+            raise
+        detail = " ".join(str(error).split())[:300]
+        print(f"plumbob: internal error ({type(error).__name__}: {detail}); this is a bug in "
+              "plumbob, please report it; set PLUMBOB_DEBUG=1 for the traceback", file=sys.stderr)
+        return INTERNAL_ERROR
 
 
 if __name__ == "__main__":
