@@ -69,6 +69,15 @@ class Material:
     source: str
     category: str = "other"
 
+    def as_dict(self) -> dict[str, float | str]:
+        """The entry as ``plumbob materials --json`` lists it (density in kg/m³).
+
+        >>> Material("oak", 750.0, "oak, seasoned", "engineering-toolbox", "wood").as_dict()["density"]
+        750.0
+        """
+        return {"name": self.name, "density": self.density, "category": self.category,
+                "description": self.description, "source": self.source}
+
     @property
     def reference(self) -> str:
         """The full citation of :attr:`source`."""

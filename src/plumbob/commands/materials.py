@@ -56,9 +56,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         dump_json({
             "units": {"density": "kg/m^3"},
-            "materials": [{"name": m.name, "density": m.density, "category": m.category,
-                           "description": m.description, "source": m.source}
-                          for m in chosen],
+            "materials": [m.as_dict() for m in chosen],
             "sources": {key: refs.get(key, key) for key in used},
         })
         return 0
