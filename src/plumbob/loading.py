@@ -23,11 +23,36 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
-    ``units``: the length unit of a mesh's or outline's coordinates (``mm``, ``cm``,
-    ``m``, ``in``, ``ft``); None uses the unit the file declares, else metres (with a
-    notice). ``repair``: close small holes in open meshes. A spec gives its own units
-    and ignores both. Every failure is a :class:`~plumbob.errors.PlumbobError` naming
-    the file.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; its extension chooses the reader.
+    units : str, optional
+        The length unit of a mesh's or outline's coordinates (``mm``, ``cm``, ``m``,
+        ``in``, ``ft``); None uses the unit the file declares, else metres (with a
+        notice). A spec gives its own units.
+    repair : bool
+        Close small holes in open meshes (reported in the notices).
+
+    Returns
+    -------
+    Reading
+        The body (in metres) and the notices a user should see.
+
+    Raises
+    ------
+    PlumbobError
+        Every failure, naming the file.
+
+    Examples
+    --------
+    >>> reading = read("shapes/l_shape.toml")
+    >>> reading.body.kind, reading.body.mass_properties().center_of_mass.round(4).tolist()
+    ('lamina', [0.8333, 0.8333])
+    >>> read("missing.stl")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.InputFileError: missing.stl: no such file
     """
     path = os.fspath(path)
     if io.file_family(path, SUFFIXES) == "spec":

@@ -122,6 +122,23 @@ def sources() -> dict[str, str]:
 def material(name: str) -> Material:
     """The material called ``name`` (case, spaces and hyphens ignored).
 
+    Parameters
+    ----------
+    name : str
+        A name from ``plumbob materials`` (``"concrete"``, ``"stainless steel"``, …).
+
+    Returns
+    -------
+    Material
+        Its density (kg/m³), description, category and source.
+
+    Raises
+    ------
+    MaterialError
+        An unknown name; the message suggests the closest one.
+
+    Examples
+    --------
     >>> material("Concrete").density
     2400.0
     >>> material("stainless steel").name, material("Aluminum").name
