@@ -27,6 +27,7 @@ import numpy as np
 from .errors import PlumbobError
 from .massprops import MassProperties
 from .results import Result
+from .tolerances import contact_tolerance
 from .units import STANDARD_GRAVITY
 
 __all__ = [
@@ -151,7 +152,7 @@ def _rest_height(body, props: MassProperties, down) -> tuple[float, np.ndarray]:
     from .stability.support import body_size, support_points, unit_vector
 
     d = unit_vector(down, props.dim)
-    tol = 1e-6 * body_size(body)
+    tol = contact_tolerance(body_size(body))
     pts = support_points(body, d, tol)
     return float(np.max(pts @ d) - props.center_of_mass @ d), d
 

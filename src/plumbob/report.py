@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 
+from .tolerances import TEXT_ROUND_OFF
+
 __all__ = ["format_number", "format_vector", "table"]
 
 
@@ -26,14 +28,14 @@ def format_number(value: float | None, digits: int = 6) -> str:
 
 
 def format_vector(vector: Iterable[float], digits: int = 6, scale: float | None = None) -> str:
-    """Numbers in parentheses; with ``scale``, round-off below 1e-12 of it shown as 0.
+    """Numbers in parentheses; with ``scale``, round-off below ``TEXT_ROUND_OFF`` of it shown as 0.
 
     >>> format_vector([1.0, 1e-17, 2.5], scale=1.0)
     '(1, 0, 2.5)'
     """
     values = [float(v) for v in vector]
     if scale is not None:
-        values = [0.0 if abs(v) < 1e-12 * scale else v for v in values]
+        values = [0.0 if abs(v) < TEXT_ROUND_OFF * scale else v for v in values]
     return "(" + ", ".join(format_number(v, digits) for v in values) + ")"
 
 

@@ -17,6 +17,7 @@ import numpy as np
 from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 from ..materials import check_density
+from ..tolerances import contact_tolerance
 
 __all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE",
            "lowest", "contact_sampling"]
@@ -197,7 +198,7 @@ class Body(ABC):
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
         """The tolerance of :meth:`contains`, m: the one given, else 1e-6 of the size."""
-        return 1e-6 * self.size if tolerance is None else float(tolerance)
+        return contact_tolerance(self.size, tolerance)
 
     @property
     def is_polytope(self) -> bool:

@@ -10,6 +10,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.polygon import bulge_arc_geometry
 from ..massprops import MassProperties
+from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import (
     DEFAULT_DENSITY_NOTE,
     Body,
@@ -153,7 +154,7 @@ class Lamina(Body):
             exact=self.exact, relative_error=self.relative_error, note=self.note)
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
-        tol = self.region.size * 1e-4 if tolerance is None else tolerance
+        tol = sampling_tolerance(self.region.size, tolerance)
         return np.concatenate([r.flattened(tol) for r in self.region.rings])
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
@@ -189,7 +190,7 @@ class Lamina(Body):
         return region_contains(self.region, self._points(points), self._contains_tolerance(tolerance))
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
-        return 1e-6 * self.region.size if tolerance is None else float(tolerance)
+        return contact_tolerance(self.region.size, tolerance)
 
     @property
     def is_polytope(self) -> bool:

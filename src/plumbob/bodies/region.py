@@ -26,6 +26,7 @@ from ..integrals.polygon import (
     cubic_cap_moments,
     polygon_moments,
 )
+from ..tolerances import sampling_tolerance
 
 __all__ = ["Ring", "Region"]
 
@@ -272,7 +273,7 @@ class Region:
         (default 1e-4 of the region's size), arcs to ``segments`` per turn if given."""
         import shapely
 
-        tol = self.size * 1e-4 if tolerance is None else tolerance
+        tol = sampling_tolerance(self.size, tolerance)
         rings = [r.flattened(tol, segments) for r in self.rings]
         signs = [polygon_moments(v, v.mean(axis=0)).m0 for v in rings]
         shells = [shapely.Polygon(v) for v, s in zip(rings, signs) if s > 0]

@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
+from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
 from .containment import mesh_contains, region_contains
 from .lamina import lamina_mass_properties, uniform_mass_properties
@@ -265,7 +266,7 @@ class Extrusion(_UniformSolid):
         return region_contains(self.profile, pts, tol) & (z >= -tol) & (z <= self.height + tol)
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
-        return 1e-6 * self.profile.size if tolerance is None else float(tolerance)
+        return contact_tolerance(self.profile.size, tolerance)
 
     @property
     def is_polytope(self) -> bool:
@@ -315,7 +316,7 @@ class Revolution(_UniformSolid):
     def _rings(self, tolerance: float | None) -> tuple[np.ndarray, int]:
         from .lamina import Lamina
 
-        tol = self.profile.size * 1e-4 if tolerance is None else tolerance
+        tol = sampling_tolerance(self.profile.size, tolerance)
         pts = Lamina(self.profile).hull_points(tol)
         return pts, _circle_steps(float(pts[:, 0].max()), tol)
 
@@ -367,7 +368,7 @@ class Revolution(_UniformSolid):
         return region_contains(self.profile, rz, self._contains_tolerance(tolerance))
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
-        return 1e-6 * self.profile.size if tolerance is None else float(tolerance)
+        return contact_tolerance(self.profile.size, tolerance)
 
     @property
     def is_polytope(self) -> bool:

@@ -18,6 +18,7 @@ from ..loading import read
 from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
+from ..tolerances import TEXT_ROUND_OFF
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
 
 __all__ = [
@@ -194,7 +195,7 @@ def clean(values, scale: float):
     import numpy as np
 
     values = np.asarray(values, dtype=float)
-    return np.where(np.abs(values) < 1e-9 * scale, 0.0, values)
+    return np.where(np.abs(values) < TEXT_ROUND_OFF * scale, 0.0, values)
 
 
 def _json_text(obj: Any, indent: int = 0) -> str:

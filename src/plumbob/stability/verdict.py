@@ -37,6 +37,7 @@ import numpy as np
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
+from ..tolerances import sampling_tolerance
 from ..units import STANDARD_GRAVITY
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
@@ -411,7 +412,7 @@ friction=0.3, slides_first=False)
     if is_polytope(body, size):
         return result
     # Over a point or line of contact on a curved surface: judge by curvature.
-    sampling = 1e-4 * size
+    sampling = sampling_tolerance(size)
     points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
     rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
     return verdict_from_support(sup, props.mass, g, rocked=rocked, **options)

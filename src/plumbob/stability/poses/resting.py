@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import GeometryError
+from ...tolerances import contact_tolerance, sampling_tolerance
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
 from ..verdict import STANDARD_GRAVITY
@@ -169,7 +170,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         raise GeometryError(f"resting poses need points spanning {what}: at least "
                             f"{X.shape[1] + 1}, and this body has {len(X)}")
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
-    tol = 1e-6 * size if tolerance is None else float(tolerance)
+    tol = contact_tolerance(size, tolerance)
     if not (size > 0 and tol > 0):
         raise GeometryError("the points have no extent, or the tolerance is not positive")
     X = X - com
@@ -235,7 +236,7 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     props = body.mass_properties() if props is None else props
     dim = body_dim(body, props)
     size = body_size(body)
-    htol = 1e-4 * size if hull_tolerance is None else float(hull_tolerance)
+    htol = sampling_tolerance(size, hull_tolerance)
     pts = hull_points(body, htol)
     if neutral_height is None:  # only sampled (curved) surfaces have rolling families
         neutral_height = 0.0 if is_polytope(body, size) else 2.0 * htol

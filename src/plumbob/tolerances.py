@@ -1,0 +1,42 @@
+"""The one home of plumbob's relative tolerances.
+
+Every tolerance scales with the body, so a part drawn in millimetres and the same
+part in metres get the same answers. A tolerance given explicitly (in metres) always
+wins over these defaults.
+"""
+
+from __future__ import annotations
+
+__all__ = ["CONTACT", "HULL_SAMPLING", "TEXT_ROUND_OFF", "contact_tolerance", "sampling_tolerance"]
+
+#: Points within this fraction of the body's size of the lowest level touch the
+#: ground, and faces coplanar within it are one face: far above float64 round-off
+#: on coordinates, far below anything a maker can build.
+CONTACT = 1e-6
+
+#: Curved surfaces are sampled so no point of the body lies further than this
+#: fraction of its size outside the samples' hull.
+HULL_SAMPLING = 1e-4
+
+#: Text reports show values below this fraction of their scale as 0: round-off
+#: that six significant digits would otherwise print as noise (JSON keeps every digit).
+TEXT_ROUND_OFF = 1e-9
+
+
+def contact_tolerance(size: float, tolerance: float | None = None) -> float:
+    """The contact tolerance, m: ``tolerance`` if given, else :data:`CONTACT` of ``size`` (m).
+
+    >>> contact_tolerance(2.0), contact_tolerance(2.0, 0.5)
+    (2e-06, 0.5)
+    """
+    return CONTACT * size if tolerance is None else float(tolerance)
+
+
+def sampling_tolerance(size: float, tolerance: float | None = None) -> float:
+    """How closely curved surfaces are sampled, m: ``tolerance`` if given, else
+    :data:`HULL_SAMPLING` of ``size`` (m).
+
+    >>> sampling_tolerance(2.0)
+    0.0002
+    """
+    return HULL_SAMPLING * size if tolerance is None else float(tolerance)
