@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
+from ..mesh.closure import is_closed
 from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
 from .containment import mesh_contains, region_contains
@@ -23,14 +24,13 @@ from .lamina import lamina_mass_properties, uniform_mass_properties
 from .region import Region
 from .tiling import mesh_cells, prism_cells, revolution_cells
 
-__all__ = ["MeshSolid", "Extrusion", "Revolution", "CLOSURE_TOLERANCE", "require_closed"]
+__all__ = ["MeshSolid", "Extrusion", "Revolution", "require_closed"]
 
-CLOSURE_TOLERANCE = 1e-9  # |vector area| / area above which a surface is open
 
 
 def require_closed(vector_area: np.ndarray, area: float) -> None:
     """Raise a :class:`GeometryError` unless a surface of vector area ``vector_area`` (3,)
-    and area ``area`` is closed (its vector area vanishes, to ``CLOSURE_TOLERANCE``).
+    and area ``area`` is closed (:func:`plumbob.mesh.closure.is_closed`).
 
     An open surface encloses no volume: any volume would depend on the origin.
 
@@ -42,7 +42,7 @@ def require_closed(vector_area: np.ndarray, area: float) -> None:
     """
     if not np.all(np.isfinite(vector_area)):
         raise GeometryError("the mesh has a coordinate that is not a finite number")
-    if np.linalg.norm(vector_area) > CLOSURE_TOLERANCE * max(area, 1e-300):
+    if not is_closed(vector_area, area):
         raise GeometryError(
             "the mesh is not closed (its faces do not enclose a volume, so any "
             "volume would depend on the origin): repair it or pass --repair"
