@@ -86,6 +86,11 @@ class DynamicsError(PlumbobError):
     """Bad input to a particle simulation or a collision."""
 
 
+class LimitError(PlumbobError):
+    """An input asks for more work than plumbob's limits allow (:mod:`plumbob.limits`):
+    too many parts, too deep a nesting, too high a degree, too large an expansion."""
+
+
 class BodyQueryError(PlumbobError):
     """A kind of body cannot answer a question asked of it: it does not implement
     that part of the :class:`plumbob.bodies.base.Body` interface (for example

@@ -25,6 +25,7 @@ from collections.abc import Callable, Mapping
 from typing import TypeVar
 
 from ..errors import InputFileError, PlumbobError
+from ..files import require_regular_file
 from ..reading import Reading
 
 __all__ = ["read", "read_checked", "file_family", "SUFFIXES"]
@@ -74,16 +75,7 @@ def read_checked(path: str, reader: Callable[[], _Read]) -> _Read:
     once it is known to exist, be a file and hold something; any failure, including
     one raised below the readers (a body's own check), becomes a
     :class:`PlumbobError` naming the file."""
-    if not os.path.exists(path):
-        raise InputFileError("no such file", path=path)
-    if os.path.isdir(path):
-        raise InputFileError("is a folder, not a file", path=path)
-    try:
-        with open(path, "rb") as f:
-            empty = not f.read(1)
-    except OSError as error:
-        raise InputFileError(f"cannot be read: {error.strerror or error}", path=path) from None
-    if empty:
+    if require_regular_file(path) == 0:
         raise InputFileError("is empty (0 bytes): nothing to read", path=path)
     try:
         return reader()

@@ -1,0 +1,74 @@
+"""The one home of plumbob's work limits.
+
+Every count, expansion and degree a file, a spec or an option can ask for is checked
+against a limit here *before* the work starts, so a small hostile input ends in one
+line naming the limit (exit status 2) instead of a hang or an exhausted machine. The
+limits sit far above anything a real part needs; each is a plain module constant so
+a library user with a bigger machine can raise it.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .errors import LimitError
+
+__all__ = [
+    "MAX_ARCHIVE_BYTES",
+    "MAX_ARCHIVE_RATIO",
+    "MAX_DENSITY_DEGREE",
+    "MAX_EXPRESSION_NODES",
+    "MAX_FILE_BYTES",
+    "MAX_NESTING",
+    "MAX_OUTLINES",
+    "MAX_PARTS",
+    "MAX_SAMPLES",
+    "MAX_SIDES",
+    "MAX_TRIANGLES",
+    "check_count",
+]
+
+#: Bytes read from any one input file (8 GiB would be a 160M-triangle STL).
+MAX_FILE_BYTES = 2 * 1024**3
+#: Bytes an archive (3MF, zipped input) may expand to, all members together.
+MAX_ARCHIVE_BYTES = 1024**3
+#: How many times larger than its compressed size an archive member may expand.
+MAX_ARCHIVE_RATIO = 200
+#: Triangles in one mesh.
+MAX_TRIANGLES = 50_000_000
+#: Nodes in one spec expression (numbers, names, operators, calls).
+MAX_EXPRESSION_NODES = 2_000
+#: Depth of nesting: TOML tables and arrays, spec groups, SVG ``<use>``, DXF ``INSERT``.
+MAX_NESTING = 64
+#: Parts (or particles, or placed block copies) one spec or drawing may build.
+MAX_PARTS = 10_000
+#: Outlines (rings) one drawing may hold.
+MAX_OUTLINES = 100_000
+#: Sides of a regular polygon or segments of a tessellated curve.
+MAX_SIDES = 1_000_000
+#: Polynomial degree of a density field (a quadrature rule of this degree per cell).
+MAX_DENSITY_DEGREE = 64
+#: Samples one command may ask for (simulate --samples, sampled surfaces, drops).
+MAX_SAMPLES = 1_000_000
+
+
+def check_count(what: str, value: float, limit: float, *, hint: str = "",
+                path: str | None = None) -> int:
+    """``value`` as an int when it is a finite whole count within ``0..limit``; else a
+    :class:`LimitError` naming ``what``, the value and the limit (and ``hint``, what to do).
+
+    >>> check_count("sides", 64, MAX_SIDES)
+    64
+    >>> check_count("sides", 1e8, MAX_SIDES)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.LimitError: sides 100000000 is over plumbob's limit of 1000000
+    """
+    number = float(value)
+    if not math.isfinite(number) or number < 0 or number != int(number):
+        raise LimitError(f"{what} must be a whole number from 0 to {limit:g}, not {value!r}",
+                         path=path)
+    if number > limit:
+        message = f"{what} {int(number)} is over plumbob's limit of {int(limit)}"
+        raise LimitError(f"{message}; {hint}" if hint else message, path=path)
+    return int(number)
