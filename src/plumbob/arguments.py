@@ -269,9 +269,15 @@ def finite_result(value: Any, what: str, *, error: Error = ArgumentError) -> Any
     plumbob.errors.ArgumentError: the lift energy overflows (inf): the inputs are too large \
 to give a finite answer in double precision
     """
-    array = np.asarray(value, dtype=float)
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return value  # not numbers at all: the caller's own checks name what is wrong
     if not np.all(np.isfinite(array)):
-        bad = array[~np.isfinite(array)].reshape(-1)[0]
+        bad = float(array[~np.isfinite(array)].reshape(-1)[0])
+        if math.isnan(bad):
+            raise error(f"{what} is not a number (nan): the inputs are too large or undefined "
+                        "for a finite answer in double precision")
         raise error(f"{what} overflows ({bad:g}): the inputs are too large to give a finite "
                     "answer in double precision")
     return value

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .arguments import floats, instance, matrix, non_negative, number, unit_vector, vector
+from .arguments import finite_result, floats, instance, matrix, non_negative, number, unit_vector, vector
 from .errors import ArgumentError, GeometryError
 from .results import Result
 
@@ -123,7 +123,10 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         if self.dim not in (2, 3) or isinstance(self.dim, bool):
             raise ArgumentError(f"dim must be 2 (a lamina) or 3, not {self.dim!r}")
         com = vector(self.center_of_mass, "center_of_mass", (self.dim,)).copy()
-        inertia = matrix(self.inertia, "inertia", (3, 3))
+        inertia = floats(self.inertia, "inertia")  # an overflow is named as one:
+        finite_result(inertia if inertia.shape == (3, 3) else 0.0, "the moment of inertia")
+        finite_result([self.mass, self.measure], "the mass or size")
+        inertia = matrix(inertia, "inertia", (3, 3))
         com.setflags(write=False)
         inertia.setflags(write=False)
         object.__setattr__(self, "center_of_mass", com)

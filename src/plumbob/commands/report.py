@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from ._common import add_stability_arguments, non_negative, open_body
+from ._common import add_stability_arguments, open_body, tilt_limit
 
 __all__ = ["register", "run"]
 
@@ -30,7 +30,7 @@ def register(subparsers) -> None:
     add_stability_arguments(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="the HTML file to write (default: PATH's name with .html, here)")
-    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+    parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="draw this tilt on the tilt rose and say whether it passes")
     parser.set_defaults(func=run)
 
