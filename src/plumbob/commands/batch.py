@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..errors import printable
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
 from ._common import count, material_name, non_negative, number, parse_vector, positive, tilt_limit
 
@@ -102,6 +103,6 @@ def run(args: argparse.Namespace) -> int:
                        jobs=args.jobs, scheduler=args.scheduler, resume=args.resume,
                        resume_by=args.resume_by, progress=False if args.quiet else None)
     if not args.quiet:
-        print(result.summary.text(), file=sys.stderr)
+        print("\n".join(map(printable, result.summary.text().splitlines())), file=sys.stderr)
     failed = not result.summary.ok or any(r.get("passes") is False for r in result.rows)
     return 1 if failed else 0

@@ -66,6 +66,7 @@ def register(subparsers) -> None:
 def _text(v, path: str, kind: str, notes: list[str]) -> str:
     import numpy as np
 
+    from ..errors import printable
     from ..report import format_number, table
     from ..report import format_vector as vector
 
@@ -132,7 +133,7 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
         lines.append(f"design check, no overturning at {num(v.required_tilt_deg, 4)}° in any "
                      f"direction: {status} (critical tilt {num(v.critical_tilt_deg, 4)}°)")
     for note in notes:
-        lines.append(f"note: {note}")
+        lines.append(f"note: {printable(note)}")
     return "\n".join(lines)
 
 

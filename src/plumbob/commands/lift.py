@@ -48,6 +48,7 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from ..energy import crew_time, lift_energy, seed_work_per_day
+    from ..errors import printable
     from ..report import format_number as num
     from ..report import table
 
@@ -85,5 +86,5 @@ def run(args) -> int:
         ]
     print(table(rows, title=f"plumbob lift {args.path}"))
     for note in notes:
-        print(f"note: {note}")
+        print(f"note: {printable(note)}")
     return 0

@@ -40,7 +40,7 @@ def _matches(entry, words: list[str], category: str | None, whole: bool) -> bool
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import MaterialError, printable
+    from ..errors import MaterialError
     from ..materials import CATEGORIES, closest, materials, sources
     from ._common import dump_json
 
@@ -64,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         asked = " ".join(args.query) or args.category or ""
         close = closest(asked) if asked else []
         hint = f"try {', '.join(close)}, or " if close else "try "
-        print(f"no material matches {printable(asked)!r}; {hint}'plumbob materials' for the "
+        print(f"no material matches {asked!r}; {hint}'plumbob materials' for the "
               "whole table")
         return 0
     rows = [(m.name, f"{m.density:g}", m.category, m.description, m.source) for m in chosen]

@@ -47,6 +47,7 @@ def _attempt(what: str, compute, notes: list[str]):
 
 
 def run(args) -> int:
+    from ..errors import printable
     from ..plot.files import write_atomic
     from ..plot.html import report_page
     from ..stability.poses import resting_poses
@@ -67,5 +68,5 @@ def run(args) -> int:
     if args.json:
         dump_json({"path": args.path, "report": output, "bytes": len(page.encode("utf-8"))})
     else:
-        print(f"plumbob report: wrote {output}")
+        print(f"plumbob report: wrote {printable(output)}")
     return 0

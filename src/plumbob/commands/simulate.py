@@ -9,7 +9,7 @@ import argparse
 import numpy as np
 
 from ..arguments import count
-from ..errors import DynamicsError
+from ..errors import DynamicsError, printable
 from ..limits import MAX_SAMPLES
 from ..report import format_number, format_vector, table
 from ._common import dump_json, number_option
@@ -71,7 +71,7 @@ def _text(title: str, result) -> str:
         rows.append(("string snapped taut", f"{string} at t = {format_number(time)} s"))
     lines = [table(rows, title), "", "Paths (m)"]
     picks = np.unique(np.linspace(0, last, min(11, last + 1)).round().astype(int))
-    header = ["t (s)", "centre of mass", *result.names]
+    header = ["t (s)", "centre of mass", *map(printable, result.names)]
     body = [[format_number(float(result.times[k]), 4), format_vector(result.center_of_mass[k], 5),
              *(format_vector(p, 5) for p in result.positions[k])] for k in picks]
     widths = [max(len(row[c]) for row in [header, *body]) for c in range(len(header))]
