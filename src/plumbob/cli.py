@@ -24,9 +24,10 @@ COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate",
 
 
 class _Parser(argparse.ArgumentParser):
-    # No option of plumbob looks like a negative number, so "-1,0,0" or "-3.5" after an
-    # option is its value (argparse would otherwise take it for an unknown option).
-    _NEGATIVE_VALUE = re.compile(r"^-\.?\d[\w.,+\-]*$")
+    # No option of plumbob looks like a negative number, so "-1,0,0", "-3.5" or "-inf"
+    # after an option is its value (argparse would otherwise take it for an unknown
+    # option), for the option's type to accept or refuse.
+    _NEGATIVE_VALUE = re.compile(r"^-(\.?\d[\w.,+\-]*|inf(inity)?|nan)$", re.IGNORECASE)
 
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
