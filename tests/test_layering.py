@@ -18,7 +18,7 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 #: Rooms from the bottom up: a room may import its own layer and the layers below it.
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
-    ("units", "tolerances", "results", "plot", "limits"),
+    ("units", "tolerances", "results", "plot", "limits", "arguments"),
     ("files",),
     ("expr", "integrals", "massprops", "materials"),
     ("mesh",),
@@ -32,7 +32,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("export", "batch"),
     ("report",),
     ("commands",),
-    ("cli",),
+    ("cli", "__main__"),
 )
 LAYER_OF = {room: level for level, rooms in enumerate(LAYERS) for room in rooms}
 

@@ -121,7 +121,13 @@ def test_cli_filters(capsys):
     assert main(["materials", "pine"]) == 0
     out = capsys.readouterr().out
     assert "white_pine" in out and "steel" not in out
-    assert main(["materials", "unobtainium"]) == 1
+    # A search that matches nothing has not failed (exit 1 means a failed requirement):
+    # it says so, with the nearest names, and exits 0; the JSON list is empty.
+    assert main(["materials", "grnite"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("no material matches 'grnite'; try granite")
+    assert main(["materials", "unobtainium", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["materials"] == []
     assert main(["materials", "--category", "cheese"]) == 2
     assert "unknown category" in capsys.readouterr().err
 

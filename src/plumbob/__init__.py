@@ -99,8 +99,12 @@ def load(path: str, **options: Any):
     ...
     plumbob.errors.InputFileError: ...unknown file type '.png'...
     """
+    from .errors import ArgumentError
     from .loading import read
 
+    unknown = sorted(set(options) - {"units", "repair"})
+    if unknown:
+        raise ArgumentError(f"load() takes the options units and repair, not {unknown[0]!r}")
     return read(path, **options).body
 
 
@@ -136,9 +140,14 @@ principal_moments=[666.667, 5666.67, 5666.67], exact=True)
     >>> mass_properties(path).area
     2.0
     """
-    if isinstance(body, str):
+    from os import PathLike
+
+    from .arguments import answering
+
+    if isinstance(body, (str, PathLike)):
         body = load(body)
-    return body.mass_properties()
+    return answering(body, "body", "mass_properties", kind="a plumbob body or a file name"
+                     ).mass_properties()
 
 
 def __getattr__(name: str):

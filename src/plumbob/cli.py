@@ -15,7 +15,7 @@ import os
 import re
 import sys
 
-from .errors import PlumbobError
+from .errors import PlumbobError, printable
 
 #: exit status of an unexpected failure: distinct from 1 (a requirement failed), 2 (bad input)
 INTERNAL_ERROR = 3
@@ -24,9 +24,10 @@ COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate",
 
 
 class _Parser(argparse.ArgumentParser):
-    # No option of plumbob looks like a negative number, so "-1,0,0" or "-3.5" after an
-    # option is its value (argparse would otherwise take it for an unknown option).
-    _NEGATIVE_VALUE = re.compile(r"^-\.?\d[\w.,+\-]*$")
+    # No option of plumbob looks like a negative number, so "-1,0,0", "-3.5" or "-inf"
+    # after an option is its value (argparse would otherwise take it for an unknown
+    # option), for the option's type to accept or refuse.
+    _NEGATIVE_VALUE = re.compile(r"^-(\.?\d[\w.,+\-]*|inf(inity)?|nan)$", re.IGNORECASE)
 
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
@@ -34,7 +35,7 @@ class _Parser(argparse.ArgumentParser):
             self._negative_number_matcher = self._NEGATIVE_VALUE
 
     def error(self, message: str) -> None:  # one line, status 2, no usage dump
-        self.exit(2, f"plumbob: {message} (see '{self.prog} --help')\n")
+        self.exit(2, f"plumbob: {printable(message)} (see '{printable(self.prog)} --help')\n")
 
 
 class _VersionAction(argparse.Action):
@@ -84,7 +85,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args.func(args) or 0)
     except PlumbobError as error:
-        print(f"plumbob: {error}", file=sys.stderr)
+        print(f"plumbob: {printable(error)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("plumbob: interrupted", file=sys.stderr)
@@ -94,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as error:  # a bug, never a failed requirement (1) or bad input (2)
         if os.environ.get("PLUMBOB_DEBUG"):
             raise
-        detail = " ".join(str(error).split())[:300]
+        detail = printable(" ".join(str(error).split())[:300])
         print(f"plumbob: internal error ({type(error).__name__}: {detail}); this is a bug in "
               "plumbob, please report it; set PLUMBOB_DEBUG=1 for the traceback", file=sys.stderr)
         return INTERNAL_ERROR

@@ -19,12 +19,14 @@ Heights are along ``up``: +z for solids, +y for a lamina in its own plane.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .errors import PlumbobError
+from .arguments import answering, count, finite_result, instance, number, positive, unit_vector, vector
+from .errors import ArgumentError
 from .massprops import MassProperties
 from .results import Result
 from .tolerances import contact_tolerance
@@ -52,32 +54,32 @@ def seed_work_per_day(g: float = STANDARD_GRAVITY) -> float:
     >>> seed_work_per_day()
     9810.0
     """
-    return 1000.0 * g
+    return 1000.0 * positive(g, "g")
 
 
-def _positive(value: float, what: str) -> float:
-    value = float(value)
-    if not (np.isfinite(value) and value > 0):
-        raise PlumbobError(f"{what} must be a positive number, not {value:g}")
-    return value
-
-
-def _props(body_or_props) -> MassProperties:
-    if isinstance(body_or_props, MassProperties):
+def _props(body_or_props, given: MassProperties | None = None) -> MassProperties:
+    """The mass properties of a body (or the ones given), checked to be mass properties."""
+    if given is None and isinstance(body_or_props, MassProperties):
         return body_or_props
-    return body_or_props.mass_properties()
+    if given is not None:
+        return instance(given, "props", MassProperties)
+    return answering(body_or_props, "body", "mass_properties").mass_properties()
 
 
 def _up(dim: int, up) -> np.ndarray:
     if up is None:
         return np.array([0.0, 1.0]) if dim == 2 else np.array([0.0, 0.0, 1.0])
-    v = np.asarray(up, dtype=float).reshape(-1)
-    if dim == 2 and v.size == 3 and v[2] == 0:
+    v = vector(up, "up", (dim, 3))
+    if dim == 2 and v.size == 3:
+        if v[2] != 0:
+            raise ArgumentError(f"up must lie in a lamina's plane (z = 0), not {tuple(v)}")
         v = v[:2]
-    norm = np.linalg.norm(v)
-    if v.size != dim or not np.isfinite(norm) or norm == 0:
-        raise PlumbobError(f"up must be a non-zero vector of {dim} components")
-    return v / norm
+    return unit_vector(v, "up", (dim,))
+
+
+def _energy(mass: float, g: float, height: float, what: str) -> float:
+    """``mass · g · height``, J, refused when it overflows (g = 1e308, a datum at 1e308)."""
+    return float(finite_result(mass * g * finite_result(height, "the height"), what))
 
 
 @dataclass(frozen=True, repr=False)
@@ -121,13 +123,13 @@ def potential_energy(body_or_props, *, datum: float = 0.0, g: float = STANDARD_G
     >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=0.0)
     Traceback (most recent call last):
     ...
-    plumbob.errors.PlumbobError: g must be a positive number, not 0
+    plumbob.errors.ArgumentError: g must be a positive number, not 0
     """
     props = _props(body_or_props)
-    g = _positive(g, "g")
-    u = _up(props.dim, up)
-    height = float(props.center_of_mass @ u) - float(datum)
-    return PotentialEnergy(props.mass * g * height, props.mass, height, float(datum), g)
+    g, datum = positive(g, "g"), number(datum, "datum")
+    height = float(props.center_of_mass @ _up(props.dim, up)) - datum
+    return PotentialEnergy(_energy(props.mass, g, height, "the potential energy"), props.mass,
+                           height, datum, g)
 
 
 @dataclass(frozen=True, repr=False)
@@ -188,11 +190,12 @@ def pose_energy_change(body, down_from, down_to, *, g: float = STANDARD_GRAVITY,
     >>> pose_energy_change(block, [0, 0, -1], [0, 0, -1]).energy   # no change
     0.0
     """
-    props = body.mass_properties() if props is None else props
-    g = _positive(g, "g")
+    props = _props(body, props)
+    g = positive(g, "g")
     h0, d0 = _rest_height(body, props, down_from)
     h1, d1 = _rest_height(body, props, down_to)
-    return PoseChange(d0, d1, h0, h1, props.mass * g * (h1 - h0), props.mass, g)
+    return PoseChange(d0, d1, h0, h1, _energy(props.mass, g, h1 - h0, "the energy change"),
+                      props.mass, g)
 
 
 @dataclass(frozen=True, repr=False)
@@ -250,14 +253,13 @@ def lift_energy(body, *, datum: float | None = None, g: float = STANDARD_GRAVITY
     """
     from .stability.support import hull_points
 
-    props = body.mass_properties() if props is None else props
-    g = _positive(g, "g")
+    props = _props(body, props)
+    g = positive(g, "g")
     u = _up(props.dim, up)
-    if datum is None:
-        datum = float(np.min(hull_points(body) @ u))
-    height = float(props.center_of_mass @ u) - float(datum)
-    return LiftEnergy(props.mass, props.center_of_mass, float(datum), height,
-                      props.mass * g * height, g)
+    datum = float(np.min(hull_points(body) @ u)) if datum is None else number(datum, "datum")
+    height = float(props.center_of_mass @ u) - datum
+    return LiftEnergy(props.mass, props.center_of_mass, datum, height,
+                      _energy(props.mass, g, height, "the lift energy"), g)
 
 
 @dataclass(frozen=True, repr=False)
@@ -310,14 +312,13 @@ def crew_time(energy: float, work_per_day: float, crew: int = 1) -> CrewTime:
     >>> crew_time(1e6, 1000.0, crew=0)
     Traceback (most recent call last):
     ...
-    plumbob.errors.PlumbobError: a crew is a whole number of people, at least 1, not 0
+    plumbob.errors.ArgumentError: crew must be a whole number of at least 1, not 0
     """
-    work = _positive(work_per_day, "the work per person per day")
-    if int(crew) != crew or crew < 1:
-        raise PlumbobError(f"a crew is a whole number of people, at least 1, not {crew}")
-    energy = float(energy)
-    if not (np.isfinite(energy) and energy >= 0):
-        raise PlumbobError(f"the work to do must be a non-negative number, not {energy:g}")
-    person_days = energy / work
-    crew_days = person_days / int(crew)
-    return CrewTime(energy, work, int(crew), person_days, crew_days, crew_days / DAYS_PER_YEAR)
+    work = positive(work_per_day, "the work per person per day")
+    crew = count(crew, "crew", math.inf, minimum=1)
+    energy = number(energy, "the work to do")
+    if energy < 0:
+        raise ArgumentError(f"the work to do must not be negative, not {energy:g}")
+    person_days = float(finite_result(energy / work, "the number of person-days"))
+    crew_days = person_days / crew
+    return CrewTime(energy, work, crew, person_days, crew_days, crew_days / DAYS_PER_YEAR)

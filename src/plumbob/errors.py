@@ -91,10 +91,33 @@ class LimitError(PlumbobError):
     too many parts, too deep a nesting, too high a degree, too large an expansion."""
 
 
+class ArgumentError(PlumbobError):
+    """A library function was called with an argument of the wrong kind, shape or range
+    (``g=-9.81``, ``datum=nan``, a (1, 3) array as one velocity); the message names the
+    argument (:mod:`plumbob.arguments` checks them)."""
+
+
 class BodyQueryError(PlumbobError):
     """A kind of body cannot answer a question asked of it: it does not implement
     that part of the :class:`plumbob.bodies.base.Body` interface (for example
     ``contains`` or ``is_polytope``), so no answer is guessed."""
+
+
+def printable(text: object) -> str:
+    r"""``text`` safe to print on a terminal: control and other non-printable characters
+    (a file or part name with an ESC, a newline or a NUL) shown as Python escapes, so a
+    name can neither rewrite the terminal nor forge a line of the report. Printable
+    Unicode (``m³``, ``°``, ``é``) is kept.
+
+    >>> print(printable("part\x1b[31m red\nnext"))
+    part\x1b[31m red\nnext
+    >>> printable("bloc³ é")
+    'bloc³ é'
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def fmt_point(point: np.ndarray) -> str:

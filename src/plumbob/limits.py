@@ -22,6 +22,7 @@ __all__ = [
     "MAX_NESTING",
     "MAX_OUTLINES",
     "MAX_PARTS",
+    "MAX_PERIODS",
     "MAX_SAMPLES",
     "MAX_SIDES",
     "MAX_TRIANGLES",
@@ -50,6 +51,9 @@ MAX_SIDES = 1_000_000
 MAX_DENSITY_DEGREE = 64
 #: Samples one command may ask for (simulate --samples, sampled surfaces, drops).
 MAX_SAMPLES = 1_000_000
+#: Oscillations of the fastest spring or pendulum one simulation may span (tens of
+#: integration steps each: about a minute of work).
+MAX_PERIODS = 10_000
 
 
 def check_count(what: str, value: float, limit: float, *, hint: str = "",

@@ -8,9 +8,8 @@ files through io while io never imports spec.
 
 from __future__ import annotations
 
-import os
-
 from . import io
+from .arguments import file_path
 from .reading import Reading
 
 __all__ = ["read", "SUFFIXES"]
@@ -54,7 +53,7 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     ...
     plumbob.errors.InputFileError: missing.stl: no such file
     """
-    path = os.fspath(path)
+    path = file_path(path)
     if io.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 

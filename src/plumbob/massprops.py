@@ -22,7 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import GeometryError
+from .arguments import finite_result, floats, instance, matrix, non_negative, number, unit_vector, vector
+from .errors import ArgumentError, GeometryError
 from .results import Result
 
 __all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix"]
@@ -57,13 +58,10 @@ def rotation_matrix(axis: np.ndarray | list[float], angle: float) -> np.ndarray:
     >>> rotation_matrix([0, 0, 0], 1.0)
     Traceback (most recent call last):
     ...
-    plumbob.errors.GeometryError: a rotation axis must be a non-zero finite vector
+    plumbob.errors.GeometryError: a rotation axis must be a non-zero vector, not [0, 0, 0]
     """
-    axis = np.asarray(axis, dtype=float)
-    norm = np.linalg.norm(axis)
-    if not np.isfinite(norm) or norm == 0:
-        raise GeometryError("a rotation axis must be a non-zero finite vector")
-    x, y, z = axis / norm
+    x, y, z = unit_vector(axis, "a rotation axis", (3,), error=GeometryError)
+    angle = number(angle, "angle", error=GeometryError)
     c, s = np.cos(angle), np.sin(angle)
     # Quarter turns are exact: cos(π/2) is 6e-17 in floating point, not 0.
     c, s = (0.0 if abs(c) < 1e-15 else c), (0.0 if abs(s) < 1e-15 else s)
@@ -107,7 +105,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
     >>> MassProperties(2, 1.0, 1.0, [0.0, 0.0, 0.0], np.zeros((3, 3)))
     Traceback (most recent call last):
     ...
-    ValueError: center_of_mass must have 2 coordinates
+    plumbob.errors.ArgumentError: center_of_mass must be one vector of 2 numbers, not 3 numbers
     """
 
     dim: int
@@ -121,16 +119,20 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
     notes: tuple[str, ...] = field(default=())
 
     def __post_init__(self) -> None:
-        com = np.array(self.center_of_mass, dtype=float).reshape(-1)
-        inertia = np.array(self.inertia, dtype=float).reshape(3, 3)
-        if com.shape != (self.dim,):
-            raise ValueError(f"center_of_mass must have {self.dim} coordinates")
+        # Checked here, once, so every result built anywhere is a physical one.
+        if self.dim not in (2, 3) or isinstance(self.dim, bool):
+            raise ArgumentError(f"dim must be 2 (a lamina) or 3, not {self.dim!r}")
+        com = vector(self.center_of_mass, "center_of_mass", (self.dim,)).copy()
+        inertia = floats(self.inertia, "inertia")  # an overflow is named as one:
+        finite_result(inertia if inertia.shape == (3, 3) else 0.0, "the moment of inertia")
+        finite_result([self.mass, self.measure], "the mass or size")
+        inertia = matrix(inertia, "inertia", (3, 3))
         com.setflags(write=False)
         inertia.setflags(write=False)
         object.__setattr__(self, "center_of_mass", com)
         object.__setattr__(self, "inertia", inertia)
-        object.__setattr__(self, "mass", float(self.mass))
-        object.__setattr__(self, "measure", float(self.measure))
+        object.__setattr__(self, "mass", non_negative(self.mass, "mass"))
+        object.__setattr__(self, "measure", non_negative(self.measure, "measure"))
 
     def _repr_items(self) -> list[tuple[str, Any]]:
         # The headline numbers only: the tensor and the notes are an attribute away.
@@ -290,7 +292,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         >>> float(disc.inertia_about([1, 0, 0])[1, 1])   # about its own centre: none
         0.0
         """
-        offset = self.center_of_mass_3d - _as_3d(np.asarray(point, dtype=float))
+        offset = self.center_of_mass_3d - _as_3d(vector(point, "point", (self.dim, 3)))
         return self.inertia + _parallel_axis(self.mass, offset)
 
     def moment_about_axis(
@@ -316,8 +318,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         >>> ball.moment_about_axis([0, 0, 0], [1, 0, 0])   # on the axis: none
         0.0
         """
-        axis = np.asarray(axis, dtype=float)
-        axis = _as_3d(axis) / np.linalg.norm(axis)
+        axis = _as_3d(unit_vector(axis, "axis", (self.dim, 3)))
         return float(axis @ self.inertia_about(point) @ axis)
 
     # ------------------------------------------------------------- algebra
@@ -400,7 +401,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         >>> point_mass(1.0, [1.0, 2.0]).translated([1.0, 1.0, 5.0]).center_of_mass
         array([2., 3.])
         """
-        offset = np.asarray(offset, dtype=float)
+        offset = vector(offset, "offset", (self.dim, 3))
         return replace(self, center_of_mass=self.center_of_mass + offset[: self.dim])
 
     def transformed(
@@ -428,8 +429,8 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         ...
         plumbob.errors.GeometryError: a rigid motion needs an orthogonal matrix
         """
-        matrix = np.asarray(matrix, dtype=float)
-        n = matrix.shape[0]
+        matrix = floats(matrix, "matrix", error=GeometryError)
+        n = len(matrix) if matrix.ndim else 0
         if matrix.shape != (n, n) or n not in (2, 3) or n < self.dim:
             raise GeometryError(f"a {self.dim}D body needs a {self.dim}×{self.dim} or 3×3 matrix")
         if not np.allclose(matrix @ matrix.T, np.eye(n), atol=1e-12):
@@ -566,6 +567,8 @@ def combine(parts: list[MassProperties], signs: list[float] | None = None) -> Ma
     """
     if not parts:
         raise GeometryError("nothing to combine: a body needs at least one part")
+    for part in parts:
+        instance(part, "a part to combine", MassProperties)
     signs = [1.0] * len(parts) if signs is None else [float(s) for s in signs]
     dims = {p.dim for p in parts}
     dim = max(dims)

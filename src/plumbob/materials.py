@@ -22,8 +22,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density", "check_density",
-           "ALIASES", "CATEGORIES"]
+__all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density",
+           "check_density", "closest", "ALIASES", "CATEGORIES"]
 
 CATEGORIES = ("concrete", "masonry", "stone", "glass", "metal", "wood", "wood product",
               "plastic", "filament", "liquid", "other")
@@ -156,8 +156,7 @@ def material(name: str) -> Material:
         return table[key]
     if key in ALIASES:
         return table[ALIASES[key]]
-    close = difflib.get_close_matches(key, list(table) + list(ALIASES), n=3)
-    close = list(dict.fromkeys(ALIASES.get(c, c) for c in close))
+    close = closest(name)
     hint = f"; did you mean {', '.join(close)}?" if close else "; 'plumbob materials' lists them"
     raise MaterialError(f"unknown material {name!r}{hint}")
 
@@ -187,6 +186,18 @@ def resolve_density(value: float | int | str) -> float:
     except (TypeError, ValueError):
         return density_of(value)
     return check_density(number)  # type: ignore[return-value]
+
+def closest(word: str, n: int = 3) -> list[str]:
+    """The names in the table (aliases resolved) closest to ``word``, best first: the
+    suggestion after a mistyped name or a search that matched nothing.
+
+    >>> closest("granit")
+    ['granite']
+    """
+    table = _table()[0]
+    close = difflib.get_close_matches(_normalise(word), list(table) + list(ALIASES), n=n)
+    return list(dict.fromkeys(ALIASES.get(c, c) for c in close))
+
 
 def check_density(density: float | None, what: str = "density") -> float | None:
     """A density as a float, checked: a positive finite number, or None (not given).

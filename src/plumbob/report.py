@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 
+from .errors import printable
 from .tolerances import TEXT_ROUND_OFF
 
 __all__ = ["format_number", "format_vector", "table"]
@@ -40,7 +41,9 @@ def format_vector(vector: Iterable[float], digits: int = 6, scale: float | None 
 
 
 def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:
-    """Two aligned columns: label and value, under an underlined title.
+    """Two aligned columns: label and value, under an underlined title. Names from
+    files (a title, a part's name) may hold control characters: every cell is shown
+    through :func:`~plumbob.errors.printable`, so none reaches the terminal raw.
 
     >>> print(table([("mass", "2 kg"), ("volume", "1 m³")], "block"))
     block
@@ -48,7 +51,9 @@ def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:
     mass    2 kg
     volume  1 m³
     """
+    rows = [(printable(label), printable(value)) for label, value in rows]
     width = max((len(label) for label, _ in rows), default=0)
+    title = printable(title) if title else title
     lines = [title, "-" * len(title)] if title else []
     lines += [f"{label:<{width}}  {value}" for label, value in rows]
     return "\n".join(lines)

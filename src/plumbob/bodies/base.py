@@ -14,6 +14,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..arguments import vector
 from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 from ..materials import check_density
@@ -134,7 +135,8 @@ class Body(ABC):
 
     def translated(self, offset: np.ndarray | list[float]) -> Body:
         """This body moved by ``offset`` (dim,), m."""
-        return self.transformed(np.eye(self.dim), np.asarray(offset, dtype=float))
+        return self.transformed(np.eye(self.dim),
+                                vector(offset, "offset", (self.dim,), error=GeometryError))
 
     @property
     def size(self) -> float:

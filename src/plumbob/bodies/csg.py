@@ -19,7 +19,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..arguments import count as whole_count
 from ..errors import DensityError, GeometryError
+from ..limits import MAX_SIDES
 from ..massprops import MassProperties, combine
 from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
 
@@ -144,7 +146,7 @@ class Assembly(_OfParts):
     kind = "assembly"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "parts", tuple(self.parts))
+        object.__setattr__(self, "parts", _bodies(self.parts, "an assembly"))
         if not self.parts:
             raise GeometryError("an assembly needs at least one part")
 
@@ -215,7 +217,24 @@ def _overlap(a, b, dim: int):
     return a ^ b
 
 
-def _same_dim(bodies: tuple[Body, ...]) -> int:
+def _bodies(parts, what: str) -> tuple[Body, ...]:
+    """``parts`` as a tuple, each checked to be a plumbob body."""
+    if isinstance(parts, (str, bytes, Body)) or not hasattr(parts, "__iter__"):
+        raise GeometryError(f"{what} needs a sequence of bodies, not {type(parts).__name__}")
+    parts = tuple(parts)
+    for k, part in enumerate(parts, 1):
+        if not isinstance(part, Body):
+            raise GeometryError(f"{what}: part {k} is not a plumbob body but "
+                                f"{type(part).__name__}")
+    return parts
+
+
+def _same_dim(bodies: tuple[Body, ...], segments: int) -> int:
+    """The bodies' common dimension, after checking the arguments of a boolean."""
+    if not bodies:
+        raise GeometryError("a boolean needs at least one body")
+    _bodies(bodies, "a boolean")
+    whole_count(segments, "segments", MAX_SIDES, minimum=8, error=GeometryError)
     dims = {b.dim for b in bodies}
     if len(dims) != 1:
         raise GeometryError("a boolean needs all laminas or all solids")
@@ -389,9 +408,9 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     ...
     plumbob.errors.GeometryError: a boolean needs all laminas or all solids
     """
+    dim = _same_dim(bodies, segments)
     if len(bodies) == 1:
         return bodies[0]
-    dim = _same_dim(bodies)
     geoms = [b.to_geometry(segments) for b in bodies]
     slack = _slack(bodies, geoms, dim, segments)
     overlap = sum(
@@ -464,7 +483,7 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
     >>> difference(plate, disc(0.1).translated([5, 5])) is plate   # a hole outside: ignored
     True
     """
-    dim = _same_dim((body,) + holes)
+    dim = _same_dim((body,) + holes, segments)
     parent = leaf_densities(body)
     if len(parent) == 1 and isinstance(density := next(iter(parent)), float):
         holes = tuple(
@@ -527,9 +546,9 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     ...
     plumbob.errors.GeometryError: the intersection is empty: the parts do not overlap
     """
+    dim = _same_dim(bodies, segments)
     if len(bodies) == 1:
         return bodies[0]
-    dim = _same_dim(bodies)
     geoms = [b.to_geometry(segments) for b in bodies]
     for i, (b, g) in enumerate(zip(bodies, geoms)):
         slack = _slack((b,), [g], dim, segments)

@@ -138,6 +138,9 @@ class Lamina(Body):
     dim = 2
 
     def __post_init__(self) -> None:
+        if not isinstance(self.region, Region):
+            raise GeometryError(f"a lamina needs a Region (see plumbob.primitives."
+                                f"polygon_region), not {type(self.region).__name__}")
         object.__setattr__(self, "density", check_density(self.density))
         object.__setattr__(self, "thickness", check_density(self.thickness, "thickness"))
 

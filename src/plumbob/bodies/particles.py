@@ -6,6 +6,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..arguments import floats
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties
 from .base import Body, DensityCells
@@ -33,13 +34,14 @@ class ParticleSystem(Body):
     kind = "particles"
 
     def __post_init__(self) -> None:
-        masses = np.array(self.masses, dtype=float).reshape(-1)
-        positions = np.array(self.positions, dtype=float)
-        if positions.ndim == 1:
-            positions = positions.reshape(len(masses), -1)
+        masses = floats(self.masses, "masses", error=GeometryError).reshape(-1)
+        positions = floats(self.positions, "positions", error=GeometryError)
         if len(masses) == 0:
             raise GeometryError("a particle system needs at least one particle")
-        if positions.shape[0] != len(masses) or positions.shape[1] not in (2, 3):
+        if positions.ndim == 1 and positions.size % len(masses) == 0:
+            positions = positions.reshape(len(masses), -1)
+        if positions.ndim != 2 or positions.shape[0] != len(masses) or \
+                positions.shape[1] not in (2, 3):
             raise GeometryError("each particle needs a position with 2 or 3 coordinates")
         if not np.all(np.isfinite(masses)) or np.any(masses <= 0):
             raise GeometryError("every particle needs a positive, finite mass")
@@ -47,7 +49,13 @@ class ParticleSystem(Body):
             raise GeometryError("a particle position is not a finite number")
         velocities = self.velocities
         if velocities is not None:
-            velocities = np.array(velocities, dtype=float).reshape(positions.shape)
+            velocities = floats(velocities, "velocities", error=GeometryError)
+            if velocities.shape != positions.shape and velocities.size == positions.size == \
+                    positions.shape[1] and velocities.ndim == 1:  # one particle, one vector
+                velocities = velocities.reshape(positions.shape)
+            if velocities.shape != positions.shape:
+                raise GeometryError(f"velocities must be an array of shape {positions.shape} "
+                                    f"like the positions, not {velocities.shape}")
             if not np.all(np.isfinite(velocities)):
                 raise GeometryError("a particle velocity is not a finite number")
             velocities.setflags(write=False)

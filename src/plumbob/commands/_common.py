@@ -13,7 +13,7 @@ import math
 import sys
 from typing import Any
 
-from ..errors import DynamicsError
+from ..errors import ArgumentError, DynamicsError, printable
 from ..loading import read
 from ..materials import check_density
 from ..reading import Reading
@@ -27,6 +27,9 @@ __all__ = [
     "non_negative",
     "count",
     "parse_vector",
+    "material_name",
+    "tilt_limit",
+    "require_finite",
     "number_option",
     "add_body_arguments",
     "add_stability_arguments",
@@ -91,7 +94,26 @@ def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
         raise argparse.ArgumentTypeError(
             f"expected {' or '.join(map(str, dims))} numbers, not {text!r}"
         )
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
     return values
+
+
+def material_name(text: str) -> str:
+    """An argparse type: a material name, not empty (``--material ''`` is a mistake,
+    never "no material")."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("a material name must not be empty; "
+                                         "'plumbob materials' lists them")
+    return text
+
+
+def tilt_limit(text: str) -> float:
+    """An argparse type: a tilt in degrees from 0 to 90 (``--require-tilt``)."""
+    value = number(text)
+    if not 0 <= value <= 90:
+        raise argparse.ArgumentTypeError(f"a tilt must be from 0 to 90 degrees, not {text}")
+    return value
 
 
 def number_option(text: str, label: str, *, infinite: bool = False) -> float:
@@ -114,12 +136,13 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_mutually_exclusive_group()
     group.add_argument(
         "--density",
-        type=float,
+        type=float,  # checked by check_density (finite, positive) when it applies
         metavar="RHO",
         help="density in kg/m³ (kg/m² for a lamina) for parts that give none",
     )
     group.add_argument(
         "--material",
+        type=material_name,
         metavar="NAME",
         help="a material from 'plumbob materials' for parts that give no density",
     )
@@ -164,7 +187,7 @@ def load_body(args: argparse.Namespace) -> Reading:
 def print_notices(reading: Reading, stream=None) -> None:
     """Notices go to stderr so stdout stays one JSON object."""
     for notice in reading.notices:
-        print(f"plumbob: note: {notice}", file=stream or sys.stderr)
+        print(f"plumbob: note: {printable(notice)}", file=stream or sys.stderr)
 
 
 def open_body(args: argparse.Namespace) -> tuple:
@@ -196,6 +219,25 @@ def clean(values, scale: float):
 
     values = np.asarray(values, dtype=float)
     return np.where(np.abs(values) < TEXT_ROUND_OFF * scale, 0.0, values)
+
+
+def require_finite(out: Any, where: str = "") -> Any:
+    """``out`` (a report's ``as_dict()``) when every number in it is finite; else an
+    :class:`ArgumentError` naming the key: finite inputs whose answer overflows double
+    precision (``--g 1e308``, ``--density 1e308``) are bad input, never a ``nan``,
+    ``inf`` or JSON ``null`` with exit status 0."""
+    items = out.items() if isinstance(out, dict) else enumerate(out) \
+        if isinstance(out, (list, tuple)) else None
+    if items is not None:
+        for key, value in items:
+            require_finite(value, f"{where}.{key}" if where else str(key))
+        return out
+    import numpy as np
+
+    if isinstance(out, (float, np.floating, np.ndarray)) and not np.all(np.isfinite(out)):
+        raise ArgumentError(f"the result overflows double precision ({where} is not finite): "
+                            "an input (--g, --density, a coordinate) is too large")
+    return out
 
 
 def _json_text(obj: Any, indent: int = 0) -> str:

@@ -8,8 +8,9 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..errors import printable
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
-from ._common import count, non_negative, parse_vector, positive
+from ._common import count, material_name, non_negative, number, parse_vector, positive, tilt_limit
 
 __all__ = ["register", "run"]
 
@@ -57,7 +58,7 @@ def register(subparsers) -> None:
     density = body.add_mutually_exclusive_group()
     density.add_argument("--density", type=positive, metavar="RHO",
                          help="density in kg/m³ (kg/m² for a lamina) for parts that give none")
-    density.add_argument("--material", metavar="NAME",
+    density.add_argument("--material", type=material_name, metavar="NAME",
                          help="a material from 'plumbob materials' for parts that give none")
     body.add_argument("--units", choices=sorted(LENGTH_UNITS),
                       help="length unit of the files' coordinates (default: each file's, else m)")
@@ -66,9 +67,9 @@ def register(subparsers) -> None:
                       help="direction of gravity for --check (default -z; -y for a lamina)")
     body.add_argument("--tilt", type=non_negative, metavar="DEG",
                       help="--check also on a plane tilted DEG degrees")
-    body.add_argument("--toward", type=float, metavar="DEG",
+    body.add_argument("--toward", type=number, metavar="DEG",
                       help="the tilted plane descends toward this direction (default: worst)")
-    body.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+    body.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                       help="design check: it must not topple when tilted DEG degrees")
     body.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
                       help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
@@ -102,6 +103,6 @@ def run(args: argparse.Namespace) -> int:
                        jobs=args.jobs, scheduler=args.scheduler, resume=args.resume,
                        resume_by=args.resume_by, progress=False if args.quiet else None)
     if not args.quiet:
-        print(result.summary.text(), file=sys.stderr)
+        print("\n".join(map(printable, result.summary.text().splitlines())), file=sys.stderr)
     failed = not result.summary.ok or any(r.get("passes") is False for r in result.rows)
     return 1 if failed else 0

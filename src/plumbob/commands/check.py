@@ -20,6 +20,8 @@ from ._common import (
     parse_vector,
     positive,
     print_json,
+    require_finite,
+    tilt_limit,
 )
 
 __all__ = ["register", "run"]
@@ -52,7 +54,7 @@ def register(subparsers) -> None:
                              "+x toward +y (default: the worst direction)")
     parser.add_argument("--friction", type=non_negative, metavar="MU",
                         help="friction coefficient: does it slide before it topples?")
-    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+    parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="design check: it must not topple when tilted DEG degrees in any "
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
     parser.add_argument("--tolerance", type=positive, metavar="M",
@@ -64,6 +66,7 @@ def register(subparsers) -> None:
 def _text(v, path: str, kind: str, notes: list[str]) -> str:
     import numpy as np
 
+    from ..errors import printable
     from ..report import format_number, table
     from ..report import format_vector as vector
 
@@ -130,7 +133,7 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
         lines.append(f"design check, no overturning at {num(v.required_tilt_deg, 4)}° in any "
                      f"direction: {status} (critical tilt {num(v.critical_tilt_deg, 4)}°)")
     for note in notes:
-        lines.append(f"note: {note}")
+        lines.append(f"note: {printable(note)}")
     return "\n".join(lines)
 
 
@@ -153,6 +156,7 @@ def run(args) -> int:
     v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
               friction=args.friction, require_tilt_deg=args.require_tilt,
               tolerance=args.tolerance, props=props)
+    require_finite(v.as_dict())
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")

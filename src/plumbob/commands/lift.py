@@ -9,7 +9,16 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_stability_arguments, count, header, open_body, positive, print_json
+from ._common import (
+    add_stability_arguments,
+    count,
+    header,
+    number,
+    open_body,
+    positive,
+    print_json,
+    require_finite,
+)
 
 __all__ = ["register", "run"]
 
@@ -27,7 +36,7 @@ def register(subparsers) -> None:
         "lift", help="energy to lift a structure's material into place, and crew time",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
-    parser.add_argument("--datum", type=float, metavar="Z",
+    parser.add_argument("--datum", type=number, metavar="Z",
                         help="height of the ground, m (default: the body's lowest point)")
     parser.add_argument("--work-per-day", type=positive, metavar="J",
                         help="work one person does in a day, J (default 1000 g: 1000 kg "
@@ -39,6 +48,7 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from ..energy import crew_time, lift_energy, seed_work_per_day
+    from ..errors import printable
     from ..report import format_number as num
     from ..report import table
 
@@ -57,6 +67,7 @@ def run(args) -> int:
                          f"{work:g} J, assumed")
         crew = crew_time(lift.lift_energy, work, args.crew or 1)
         out.update(crew.as_dict())
+    require_finite(out)
     if args.json:
         print_json(out, reading, notes)
         return 0
@@ -75,5 +86,5 @@ def run(args) -> int:
         ]
     print(table(rows, title=f"plumbob lift {args.path}"))
     for note in notes:
-        print(f"note: {note}")
+        print(f"note: {printable(note)}")
     return 0

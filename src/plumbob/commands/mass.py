@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_body_arguments, dump_json, load_body, print_notices
+from ._common import add_body_arguments, dump_json, load_body, print_notices, require_finite
 
 
 def register(subparsers) -> None:
@@ -28,6 +28,7 @@ def run(args: argparse.Namespace) -> int:
     reading = load_body(args)
     print_notices(reading)
     report = MassReport.of(reading)
+    require_finite(report.as_dict())
     if args.plot:
         write_plot(args.plot, "mass", reading.body, path=args.path)
     if getattr(args, "format", None):

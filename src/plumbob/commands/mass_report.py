@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..bodies.csg import Assembly
+from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
 from ..report import format_number, format_vector, table
@@ -94,13 +95,14 @@ class MassReport(Result):
         title = getattr(self.reading.body, "name", None) or self.reading.path or "body"
         text = table(rows, title)
         if self.parts:
-            width = max(len(n) for n, _, _ in self.parts)
+            names = [printable(n) for n, _, _ in self.parts]
+            width = max(len(n) for n in names)
             lines = ["", f"{'part':<{width}}  {'mass (kg)':>12}  centre of mass (m)"]
             lines += [
                 f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
-                for name, _, p in self.parts
+                for name, (_, _, p) in zip(names, self.parts)
             ]
             text += "\n" + "\n".join(lines)
         for note in props.notes:
-            text += f"\nnote: {note}"
+            text += f"\nnote: {printable(note)}"
         return text

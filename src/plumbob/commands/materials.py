@@ -41,7 +41,7 @@ def _matches(entry, words: list[str], category: str | None, whole: bool) -> bool
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import MaterialError
-    from ..materials import CATEGORIES, materials, sources
+    from ..materials import CATEGORIES, closest, materials, sources
     from ._common import dump_json
 
     if args.category is not None and args.category.lower() not in CATEGORIES:
@@ -60,9 +60,13 @@ def run(args: argparse.Namespace) -> int:
             "sources": {key: refs.get(key, key) for key in used},
         })
         return 0
-    if not chosen:
-        print("no material matches; 'plumbob materials' lists them all")
-        return 1
+    if not chosen:  # a search that finds nothing has not failed: say so, exit status 0
+        asked = " ".join(args.query) or args.category or ""
+        close = closest(asked) if asked else []
+        hint = f"try {', '.join(close)}, or " if close else "try "
+        print(f"no material matches {asked!r}; {hint}'plumbob materials' for the "
+              "whole table")
+        return 0
     rows = [(m.name, f"{m.density:g}", m.category, m.description, m.source) for m in chosen]
     header = ("name", "kg/m³", "category", "description", "source")
     widths = [max(len(r[i]) for r in rows + [header]) for i in range(5)]

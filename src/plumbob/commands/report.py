@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from ._common import add_stability_arguments, non_negative, open_body
+from ._common import add_stability_arguments, open_body, tilt_limit
 
 __all__ = ["register", "run"]
 
@@ -30,7 +30,7 @@ def register(subparsers) -> None:
     add_stability_arguments(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="the HTML file to write (default: PATH's name with .html, here)")
-    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+    parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="draw this tilt on the tilt rose and say whether it passes")
     parser.set_defaults(func=run)
 
@@ -47,6 +47,7 @@ def _attempt(what: str, compute, notes: list[str]):
 
 
 def run(args) -> int:
+    from ..errors import printable
     from ..plot.files import write_atomic
     from ..plot.html import report_page
     from ..stability.poses import resting_poses
@@ -67,5 +68,5 @@ def run(args) -> int:
     if args.json:
         dump_json({"path": args.path, "report": output, "bytes": len(page.encode("utf-8"))})
     else:
-        print(f"plumbob report: wrote {output}")
+        print(f"plumbob report: wrote {printable(output)}")
     return 0

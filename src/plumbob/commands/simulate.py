@@ -8,7 +8,9 @@ import argparse
 
 import numpy as np
 
-from ..errors import DynamicsError
+from ..arguments import count
+from ..errors import DynamicsError, printable
+from ..limits import MAX_SAMPLES
 from ..report import format_number, format_vector, table
 from ._common import dump_json, number_option
 
@@ -34,11 +36,10 @@ def run(args: argparse.Namespace) -> int:
     until = number_option(args.until, "--until")
     if until <= 0:
         raise DynamicsError(f"--until must be a positive number of seconds (got {args.until})")
-    samples = number_option(args.samples, "--samples")
-    if samples != int(samples) or samples < 2:
-        raise DynamicsError(f"--samples must be a whole number of at least 2 (got {args.samples})")
+    samples = count(number_option(args.samples, "--samples"), "--samples", MAX_SAMPLES,
+                    minimum=2, error=DynamicsError)
     spec = load_simulation(args.spec)
-    result = simulate(spec.model, until, int(samples), **spec.options)
+    result = simulate(spec.model, until, samples, **spec.options)
     if args.json:
         out = {"spec": args.spec, "title": spec.title, "until": until}
         out.update(result.as_dict())
@@ -70,7 +71,7 @@ def _text(title: str, result) -> str:
         rows.append(("string snapped taut", f"{string} at t = {format_number(time)} s"))
     lines = [table(rows, title), "", "Paths (m)"]
     picks = np.unique(np.linspace(0, last, min(11, last + 1)).round().astype(int))
-    header = ["t (s)", "centre of mass", *result.names]
+    header = ["t (s)", "centre of mass", *map(printable, result.names)]
     body = [[format_number(float(result.times[k]), 4), format_vector(result.center_of_mass[k], 5),
              *(format_vector(p, 5) for p in result.positions[k])] for k in picks]
     widths = [max(len(row[c]) for row in [header, *body]) for c in range(len(header))]

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import finite_result, vector
 from ..errors import DynamicsError
 from ..results import Result
 
@@ -138,15 +139,8 @@ def _mass(value: float, label: str, *, infinite_ok: bool = False) -> float:
 
 
 def _vector(value: Vector, label: str) -> np.ndarray:
-    try:
-        vec = np.array(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise DynamicsError(f"{label} must be a vector of 1 to 3 numbers (got {value!r})") from None
-    if not 1 <= vec.size <= 3:
-        raise DynamicsError(f"{label} must have 1, 2 or 3 components (got {vec.size})")
-    if not np.all(np.isfinite(vec)):
-        raise DynamicsError(f"{label} has a component that is not a finite number")
-    return vec
+    """One velocity or normal of 1 to 3 finite components (a (1, 3) array is refused)."""
+    return vector(value, label, (1, 2, 3), error=DynamicsError)
 
 
 def _restitution(e: float) -> float:
@@ -231,45 +225,49 @@ if you meant the other side
     if v2.shape != v1.shape:
         raise DynamicsError(f"v1 and v2 must have the same number of components "
                             f"(got {v1.size} and {v2.size})")
-    relative = v1 - v2
-    if normal is None:
-        norm = float(np.linalg.norm(relative))
-        if norm == 0.0:
-            raise DynamicsError("no collision: the bodies have the same velocity, so they "
-                                "never meet; check v1 and v2")
-        n = relative / norm
-    else:
-        n = _vector(normal, "normal")
-        if n.shape != v1.shape:
-            raise DynamicsError(f"the normal must have {v1.size} components like the "
-                                f"velocities (got {n.size})")
-        norm = float(np.linalg.norm(n))
-        if norm == 0.0:
-            raise DynamicsError("the collision normal is the zero vector; give a direction "
-                                "perpendicular to the common tangent plane")
-        n = n / norm
-    approach = float(relative @ n)  # closing speed along the normal, m/s
-    scale = max(float(np.linalg.norm(v1)), float(np.linalg.norm(v2)))
-    if approach <= 1e-12 * scale:
-        raise DynamicsError(
-            f"no collision: the bodies are not approaching along the normal (closing speed "
-            f"{approach:.6g} m/s). The normal points from body 1 towards body 2; reverse it "
-            "if you meant the other side")
-    reduced = m1 / (1.0 + m1 / m2)  # m1 m2 / (m1 + m2); m1 for a wall
-    impulse = (1.0 + e) * reduced * approach
-    v1_after = v1 - (impulse / m1) * n
-    v2_after = v2 + (impulse / m2) * n  # unchanged for a wall (impulse / inf == 0)
-    if math.isinf(m2):
-        ke_before = _ke(m1, v1 - v2)
-        ke_after = _ke(m1, v1_after - v2_after)
-        momentum_before, momentum_after = m1 * v1, m1 * v1_after
-    else:
-        ke_before = _ke(m1, v1) + _ke(m2, v2)
-        ke_after = _ke(m1, v1_after) + _ke(m2, v2_after)
-        momentum_before = m1 * v1 + m2 * v2
-        momentum_after = m1 * v1_after + m2 * v2_after
-    ke_loss = ke_before - ke_after
-    elastic = abs(ke_loss) <= ELASTIC_RTOL * ke_before
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused below
+        relative = v1 - v2
+        if normal is None:
+            norm = float(np.linalg.norm(relative))
+            if norm == 0.0:
+                raise DynamicsError("no collision: the bodies have the same velocity, so they "
+                                    "never meet; check v1 and v2")
+            n = relative / norm
+        else:
+            n = _vector(normal, "normal")
+            if n.shape != v1.shape:
+                raise DynamicsError(f"the normal must have {v1.size} components like the "
+                                    f"velocities (got {n.size})")
+            norm = float(np.linalg.norm(n))
+            if norm == 0.0:
+                raise DynamicsError("the collision normal is the zero vector; give a direction "
+                                    "perpendicular to the common tangent plane")
+            n = n / norm
+        approach = float(relative @ n)  # closing speed along the normal, m/s
+        scale = max(float(np.linalg.norm(v1)), float(np.linalg.norm(v2)))
+        if approach <= 1e-12 * scale:
+            raise DynamicsError(
+                f"no collision: the bodies are not approaching along the normal (closing speed "
+                f"{approach:.6g} m/s). The normal points from body 1 towards body 2; reverse it "
+                "if you meant the other side")
+        reduced = m1 / (1.0 + m1 / m2)  # m1 m2 / (m1 + m2); m1 for a wall
+        impulse = (1.0 + e) * reduced * approach
+        v1_after = v1 - (impulse / m1) * n
+        v2_after = v2 + (impulse / m2) * n  # unchanged for a wall (impulse / inf == 0)
+        if math.isinf(m2):
+            ke_before = _ke(m1, v1 - v2)
+            ke_after = _ke(m1, v1_after - v2_after)
+            momentum_before, momentum_after = m1 * v1, m1 * v1_after
+        else:
+            ke_before = _ke(m1, v1) + _ke(m2, v2)
+            ke_after = _ke(m1, v1_after) + _ke(m2, v2_after)
+            momentum_before = m1 * v1 + m2 * v2
+            momentum_after = m1 * v1_after + m2 * v2_after
+        ke_loss = ke_before - ke_after
+        elastic = abs(ke_loss) <= ELASTIC_RTOL * ke_before
+    finite_result([ke_before, ke_after, impulse, *momentum_before, *momentum_after,
+                   *v1_after, *v2_after], "the collision's energy or momentum",
+                  error=DynamicsError)
     return CollisionResult(m1, m2, e, n, v1, v2, v1_after, v2_after, impulse, ke_before,
                            ke_after, ke_loss, momentum_before, momentum_after, bool(elastic))
 

@@ -37,9 +37,12 @@ from typing import Any
 
 import numpy as np
 
+from ..arguments import count
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
+from ..limits import MAX_SAMPLES
 from ..results import Result
+from .feasibility import check_feasible
 
 __all__ = [
     "Spring",
@@ -470,10 +473,10 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
         raise DynamicsError(f"the end time must be a number of seconds (got {until!r})") from None
     if not (math.isfinite(until) and until > 0):
         raise DynamicsError(f"the end time must be a positive number of seconds (got {until})")
-    if int(samples) != samples or samples < 2:
-        raise DynamicsError(f"ask for at least 2 output samples (got {samples})")
+    samples = count(samples, "samples", MAX_SAMPLES, minimum=2, error=DynamicsError)
     if not (0 < rtol < 1):
         raise DynamicsError(f"rtol must lie between 0 and 1 (got {rtol})")
+    check_feasible(model, until, rtol, _scales)
     length, speed = _scales(model, until)
     if stabilization is None:
         stabilization = 20.0 / until

@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..arguments import answering, in_range, instance, number, optional, positive, vector
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
@@ -401,7 +402,12 @@ friction=0.3, slides_first=False)
     >>> check(block, down=[1, 0, -1]).verdict, check(sphere(1.0)).verdict
     ('topples', 'neutral')
     """
-    props = body.mass_properties() if props is None else props
+    body, g = answering(body, "body", "mass_properties"), positive(g, "g", error=StabilityError)
+    down = optional(vector, down, "down", (2, 3), error=StabilityError)
+    toward_deg = optional(number, toward_deg, "toward_deg", error=StabilityError)
+    require_tilt_deg = optional(in_range, require_tilt_deg, "require_tilt_deg", 0, 90, unit="°",
+                                error=StabilityError)
+    props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     sup = support_polygon(body, down, tolerance=tolerance, props=props)
     options = dict(tilt_deg=tilt_deg, toward_deg=toward_deg, friction=friction,
                    require_tilt_deg=require_tilt_deg)

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...arguments import count, floats, positive
 from ...errors import GeometryError
+from ...limits import MAX_SIDES
 from ..lamina import Lamina
 from ..region import Region, Ring
 
@@ -25,10 +27,7 @@ def positive_number(value: float, what: str) -> float:
     ...
     plumbob.errors.GeometryError: radius must be a positive number, not inf
     """
-    value = float(value)
-    if not (np.isfinite(value) and value > 0):
-        raise GeometryError(f"{what} must be a positive number, not {value:g}")
-    return value
+    return positive(value, what, error=GeometryError)
 
 
 def counter_clockwise(vertices: np.ndarray) -> np.ndarray:
@@ -37,7 +36,10 @@ def counter_clockwise(vertices: np.ndarray) -> np.ndarray:
     >>> counter_clockwise([[0, 0], [0, 1], [1, 0]]).tolist()
     [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
     """
-    v = np.asarray(vertices, dtype=float)
+    v = floats(vertices, "a polygon's vertices", error=GeometryError)
+    if v.ndim != 2 or v.shape[1:] != (2,) or len(v) < 3:
+        raise GeometryError(f"a polygon needs an (n, 2) array of at least 3 vertices, not an "
+                            f"array of shape {v.shape}")
     x, y = v[:, 0] - v[0, 0], v[:, 1] - v[0, 1]
     signed = np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)
     if signed == 0:
@@ -236,12 +238,11 @@ def regular_polygon(sides: int, circumradius: float, **kw) -> Lamina:
     >>> regular_polygon(2, 1)
     Traceback (most recent call last):
     ...
-    plumbob.errors.GeometryError: a regular polygon needs a whole number of sides, at least 3
+    plumbob.errors.GeometryError: sides must be a whole number of at least 3, not 2
     """
-    if int(sides) != sides or sides < 3:
-        raise GeometryError("a regular polygon needs a whole number of sides, at least 3")
+    sides = count(sides, "sides", MAX_SIDES, minimum=3, error=GeometryError)
     r = positive_number(circumradius, "circumradius")
-    t = 2 * np.pi * np.arange(int(sides)) / sides
+    t = 2 * np.pi * np.arange(sides) / sides
     return polygon(r * np.stack((np.cos(t), np.sin(t)), axis=1), **kw)
 
 

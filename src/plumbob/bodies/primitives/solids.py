@@ -344,8 +344,7 @@ def prism(lamina: Lamina | Region, height: float, **kw) -> Extrusion:
     ...
     plumbob.errors.GeometryError: height must be a positive number, not 0
     """
-    region = lamina.region if isinstance(lamina, Lamina) else lamina
-    return Extrusion(region, positive_number(height, "height"), **kw)
+    return Extrusion(_profile(lamina, "prism"), positive_number(height, "height"), **kw)
 
 
 def revolve(lamina: Lamina | Region, **kw) -> Revolution:
@@ -380,5 +379,14 @@ def revolve(lamina: Lamina | Region, **kw) -> Revolution:
     ...
     plumbob.errors.GeometryError: a profile to revolve must lie where x ≥ 0 (x is the radius)
     """
-    region = lamina.region if isinstance(lamina, Lamina) else lamina
-    return Revolution(region, **kw)
+    return Revolution(_profile(lamina, "revolve"), **kw)
+
+
+def _profile(lamina: Lamina | Region, what: str) -> Region:
+    """The region of a lamina, or the region itself; anything else is refused."""
+    if isinstance(lamina, Lamina):
+        return lamina.region
+    if isinstance(lamina, Region):
+        return lamina
+    raise GeometryError(f"{what} needs a lamina or a region as its profile (e.g. "
+                        f"primitives.polygon(...)), not {type(lamina).__name__}")

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import GeometryError
+from ...arguments import answering, instance, non_negative, optional, positive
+from ...errors import GeometryError, StabilityError
+from ...massprops import MassProperties
 from ...tolerances import contact_tolerance, sampling_tolerance
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
@@ -233,7 +235,11 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     >>> side.neutral, side.critical_tilt_deg, len(ends)
     (True, 0.0, 2)
     """
-    props = body.mass_properties() if props is None else props
+    body, g = answering(body, "body", "mass_properties"), positive(g, "g", error=StabilityError)
+    tolerance = optional(positive, tolerance, "tolerance", error=StabilityError)
+    hull_tolerance = optional(positive, hull_tolerance, "hull_tolerance", error=StabilityError)
+    neutral_height = optional(non_negative, neutral_height, "neutral_height", error=StabilityError)
+    props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     dim = body_dim(body, props)
     size = body_size(body)
     htol = sampling_tolerance(size, hull_tolerance)
