@@ -13,7 +13,6 @@ Every outline is checked: plausible size, non-zero area, no self-intersection
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,15 +20,12 @@ import numpy as np
 from ..bodies.base import Body
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
+from ..bodies.validity import CHECK_TOLERANCE, validity_error
 from ..errors import FormatError, GeometryError, fmt_point
 from .checks import check_extent
 from .parts import assemble, stem, unique_names
 
-__all__ = ["CHECK_TOLERANCE", "Outline", "body_from_outlines", "body_from_polygons",
-           "validity_error"]
-
-#: flattening tolerance for checks, relative to the drawing's size
-CHECK_TOLERANCE = 1e-7
+__all__ = ["Outline", "body_from_outlines", "body_from_polygons"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,42 +43,6 @@ class Outline:
     name: str | None = None
     error: float = 0.0
     approximation: str | None = None
-
-
-#: GEOS's reasons for an invalid polygon → what the message says
-_REASONS = {
-    "Self-intersection": "crosses itself at {p} (a bow-tie or a twisted outline)",
-    "Ring Self-intersection": "touches itself at {p}",
-    "Too few points": "has fewer than three distinct points",
-    "Hole lies outside shell": "has a hole outside its outer boundary, near {p}",
-    "Nested holes": "has a hole inside another hole, near {p}",
-    "Interior is disconnected": "has holes that cut it apart, near {p}",
-    "Invalid Coordinate": "has a coordinate that is not a finite number, near {p}",
-    "Too few points in geometry component": "has fewer than three distinct points, near {p}",
-    "Duplicate Rings": "has the same ring twice, near {p}",
-}
-
-
-def validity_error(geometry, label: str, path: str | None,
-                   scale: float = 1.0) -> GeometryError | None:
-    """The error for a degenerate or invalid shapely polygon (coordinates in metres), naming
-    the point GEOS found in the file's coordinates (metres / ``scale``); None if valid."""
-    import shapely
-
-    hull = shapely.convex_hull(geometry)
-    size = float(np.hypot(*np.ptp(np.asarray(shapely.get_coordinates(geometry)), axis=0))) \
-        if not geometry.is_empty else 0.0
-    if not hull.area > 1e-14 * size * size:
-        return GeometryError(f"{label} has zero area: its points lie on a line", path=path)
-    reason = shapely.is_valid_reason(geometry)
-    if reason is None or reason == "Valid Geometry":
-        return None
-    match = re.match(r"^(.*?)\s*\[\s*([^\s\]]+)\s+([^\s\]]+)", reason)
-    what, point = (match.group(1), (float(match.group(2)), float(match.group(3)))) if match \
-        else (reason, None)
-    template = _REASONS.get(what, what.lower() + " near {p}")
-    text = template.format(p=fmt_point(np.array(point) / scale) if point is not None else "?")
-    return GeometryError(f"{label} {text}", path=path)
 
 
 def _ring_area(ring: Ring) -> float:
