@@ -72,6 +72,9 @@ def validity_error(geometry, label: str, path: str | None = None, scale: float =
     if what == "Self-intersection" and point is not None:
         near = shapely.distance(shapely.Point(point), [ring for _, ring in rings])
         names = [rings[i][0] for i in np.flatnonzero(near <= 1e-9 * size)[:2]]
+        if len(names) == 2 and all(n.endswith("outer boundary") for n in names):
+            return GeometryError(f"{label}: {names[1]} overlaps {names[0]} at {where}; the "
+                                 "polygons of a MultiPolygon must lie apart", path=path)
         if len(names) == 2:
             return GeometryError(f"{label}: {names[1]} crosses or touches {names[0]} at {where}; "
                                  "holes must lie apart, inside the outer boundary", path=path)

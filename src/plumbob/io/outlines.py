@@ -22,7 +22,7 @@ from ..bodies.base import Body
 from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError
 from ..files import read_bytes
-from ..limits import MAX_OUTLINES, check_count
+from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
 from ..units import units_scale
 from .laminas import Outline, body_from_outlines, body_from_polygons
@@ -140,8 +140,7 @@ def _geojson_geometries(data: bytes, path: str) -> tuple[list[tuple[str, object]
 
 
 def _walk_geojson(obj, name: str, found: list, skipped: dict, path: str, depth: int) -> None:
-    if depth > 32:
-        raise FormatError("nests GeoJSON objects too deeply", path=path)
+    check_count("GeoJSON nesting depth", depth, MAX_NESTING, path=path)
     if not isinstance(obj, dict):
         raise FormatError(f"{name}: a GeoJSON object must be a JSON object, not "
                           f"{type(obj).__name__}", path=path)
@@ -165,6 +164,7 @@ def _walk_geojson(obj, name: str, found: list, skipped: dict, path: str, depth: 
         for geom in geoms:
             _walk_geojson(geom, name, found, skipped, path, depth + 1)
     elif kind in ("Polygon", "MultiPolygon"):
+        check_count("polygons", len(found) + 1, MAX_PARTS, path=path, hint="split the file")
         found.append((name, _geojson_polygon(obj, name, path)))
     elif isinstance(kind, str) and kind in ("Point", "MultiPoint", "LineString",
                                             "MultiLineString"):
@@ -187,14 +187,7 @@ def _geojson_polygon(obj: dict, name: str, path: str):
             raise FormatError(f"{name}: a polygon needs a list of rings", path=path)
         rings = []
         for ring in polygon:
-            try:
-                xy = np.asarray(ring, dtype=float)
-            except (ValueError, TypeError):
-                raise FormatError(f"{name}: a ring's positions are not lists of numbers",
-                                  path=path) from None
-            if xy.ndim != 2 or xy.shape[1] < 2:
-                raise FormatError(f"{name}: a ring must be a list of [x, y] positions",
-                                  path=path)
+            xy = _positions(ring, name, path)
             if len(xy) < 3:
                 raise GeometryError(f"{name}: a ring has only {len(xy)} positions", path=path)
             if not np.isfinite(xy[:, :2]).all():
@@ -202,6 +195,28 @@ def _geojson_polygon(obj: dict, name: str, path: str):
             rings.append(xy[:, :2])
         shapes.append(shapely.Polygon(rings[0], rings[1:]))
     return shapes[0] if obj["type"] == "Polygon" else shapely.MultiPolygon(shapes)
+
+
+def _positions(ring, name: str, path: str) -> np.ndarray:
+    """A ring's positions as an (n, ≥2) float array: JSON numbers only. ``true``/``false``
+    (Python bools, which ``isinstance(x, int)`` accepts and numpy reads as 1/0: so the
+    exact type is asked) and
+    strings (which numpy would parse) are errors, not coordinates."""
+    try:
+        table = np.array(ring, dtype=object)
+    except ValueError:  # ragged
+        table = None
+    if table is None or table.ndim != 2 or table.shape[1] < 2:
+        raise FormatError(f"{name}: a ring must be a list of [x, y] positions", path=path)
+    numeric = np.frompyfunc(lambda c: type(c) in (float, int), 1, 1)(table).astype(bool)
+    if not numeric.all():
+        bad = table[np.unravel_index(np.argmin(numeric), table.shape)]
+        raise FormatError(f"{name}: a coordinate is {json.dumps(bad)[:40]}, not a number",
+                          path=path)
+    try:
+        return table.astype(float)
+    except OverflowError:
+        raise GeometryError(f"{name}: a coordinate is too large for a number", path=path) from None
 
 
 def _lonlat_notice(body: Body) -> tuple[str, ...]:
