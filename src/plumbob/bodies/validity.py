@@ -37,13 +37,13 @@ _REASONS = {
 }
 
 
-def validity_error(geometry, label: str, path: str | None = None, scale: float = 1.0,
-                   unit: str = "") -> GeometryError | None:
+def validity_error(geometry, label: str, path: str | None = None,
+                   scale: float | np.ndarray = 1.0, unit: str = "") -> GeometryError | None:
     """The error for a degenerate or invalid shapely (Multi)Polygon, None if it is valid.
 
     ``geometry``'s coordinates are in metres; the point GEOS names is given in the
-    caller's coordinates (metres / ``scale``) followed by ``unit``, so a file's
-    reader names it as the file has it.
+    caller's coordinates (metres / ``scale``, a number or one per axis) followed by
+    ``unit``, so a file's reader names it as the file has it.
 
     >>> import shapely
     >>> str(validity_error(shapely.Polygon([(0, 0), (2, 2), (2, 0), (0, 2)]), "the bow-tie"))

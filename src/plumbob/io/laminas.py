@@ -79,10 +79,11 @@ def _lamina(rings: list[Ring], name: str | None, error: float, approximations: s
 
 
 def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str | None = None,
-                       scale: float = 1.0) -> tuple[Body, tuple[str, ...]]:
+                       scale: float | np.ndarray = 1.0) -> tuple[Body, tuple[str, ...]]:
     """Laminas from bare closed curves (metres) by the even-odd rule (see module docstring).
 
-    ``scale``: metres per file unit, so messages give points in the file's coordinates.
+    ``scale``: metres per file unit (or per unit along x and y, negative for a flipped axis,
+    as SVG's), so messages give points in the file's coordinates.
     Outlines drawn twice are dropped (a hash of their normalised coordinates, then
     topological equality among the pairs that nest); the nesting is found through a
     spatial index, its pairs counted against :data:`~plumbob.limits.MAX_OUTLINE_PAIRS`
@@ -163,7 +164,7 @@ def _distinct(polygons: np.ndarray) -> np.ndarray:
 
 
 def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray, size: float,
-                path: str | None, scale: float) -> None:
+                path: str | None, scale: float | np.ndarray) -> None:
     """Every outline simple and enclosing area (vectorised; the first bad one is named)."""
     import shapely
 
@@ -179,8 +180,8 @@ def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray
                             path=path)
 
 
-def _nesting(outlines: list[Outline], polygons: np.ndarray, path: str | None, scale: float,
-             lo: np.ndarray) -> np.ndarray:
+def _nesting(outlines: list[Outline], polygons: np.ndarray, path: str | None,
+             scale: float | np.ndarray, lo: np.ndarray) -> np.ndarray:
     """The pairs (container, contained), (2, m); outlines that cross are an error naming a
     point. Candidate pairs (bounding boxes that meet) are counted, in chunks, against
     :data:`MAX_OUTLINE_PAIRS` before any is compared, so no drawing asks for n² work."""
