@@ -17,10 +17,16 @@ import numpy as np
 from ..errors import GeometryError, fmt_point
 from .region import Region
 
-__all__ = ["CHECK_TOLERANCE", "check_polygon", "check_region", "validity_error"]
+__all__ = ["CHECK_TOLERANCE", "MAX_BULGE", "check_bulges", "check_polygon", "check_region",
+           "validity_error"]
 
 #: curved edges are flattened within this fraction of the region's size to be checked
 CHECK_TOLERANCE = 1e-7
+
+#: the largest |bulge| (tan of a quarter of the arc's sweep) of an edge: 1e4 is an arc within
+#: 0.03° of a full circle on a chord 5000 times shorter than its radius, past anything a
+#: drawing holds; beyond it the arc's moments lose digits as bulge² × round-off.
+MAX_BULGE = 1e4
 
 #: GEOS's reasons for an invalid polygon → what the message says
 _REASONS = {
@@ -129,9 +135,29 @@ def check_polygon(vertices, holes=(), label: str = "the polygon") -> None:
         raise error
 
 
+def check_bulges(bulges: np.ndarray, label: str) -> None:
+    """Raise a :class:`GeometryError` for a bulge that is not a finite number up to
+    :data:`MAX_BULGE` in size.
+
+    >>> check_bulges(np.array([0.5, 1e300]), "edge")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: edge has a bulge of 1e+300, an arc within round-off of a ...
+    """
+    bulges = np.asarray(bulges, dtype=float)
+    bad = ~(np.abs(bulges) <= MAX_BULGE)
+    if bad.any():
+        raise GeometryError(f"{label} has a bulge of {bulges[np.argmax(bad)]:.3g}, an arc within "
+                            f"round-off of a full circle (|bulge| ≤ {MAX_BULGE:g}): draw it as "
+                            "two arcs")
+
+
 def check_region(region: Region, label: str = "the outline") -> None:
     """:func:`check_polygon` for a region of curved rings: the first ring is the outline,
     the others its holes; curves are flattened within :data:`CHECK_TOLERANCE` of its size."""
+    for ring in region.rings:  # per ring: few
+        if ring.bulges is not None:
+            check_bulges(ring.bulges, label)
     tolerance = max(region.size * CHECK_TOLERANCE, 1e-300)
     rings = [ring.flattened(tolerance) for ring in region.rings]
     check_polygon(rings[0], rings[1:], label)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..bodies.region import Ring
+from ..bodies.validity import check_bulges
 from ..errors import FormatError, GeometryError, PlumbobError, fmt_point
 from ..files import read_bytes
 from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, MAX_SIDES, check_count
@@ -243,6 +244,7 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, l
             and np.all(np.isnan(piece.controls) | (np.abs(piece.controls) <= limit))):
         raise GeometryError(f"{label} has a coordinate that is not a finite number of plausible "
                             "size", path=path)
+    check_bulges(piece.bulges, label)  # (read_checked names the file)
     reach = _arc_reach(piece)
     if not reach <= limit:
         raise GeometryError(f"{label} has a bulge of {np.abs(piece.bulges).max():.3g}: its arc "
