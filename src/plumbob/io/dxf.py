@@ -173,38 +173,37 @@ def _check_expansion(doc, path: str) -> None:
     drawn, through every level of nesting — against :data:`~plumbob.limits.MAX_PARTS` and
     :data:`~plumbob.limits.MAX_OUTLINES` before anything is expanded (ten blocks each
     placing the next ten times is 10¹⁰ entities from a 5 KB file); each block is counted once."""
-    memo: dict[str, tuple[int, int]] = {}
+    memo: dict[str, tuple[int, int, int]] = {}  # per block: copies, entities, depth
 
-    def load(name: str, stack: list[str]) -> tuple[int, int]:
-        if name in memo:
-            return memo[name]
+    def load(name: str, stack: list[str]) -> tuple[int, int, int]:
         if name in stack:
             raise FormatError(f"block {name!r} contains a reference to itself", path=path)
         check_count("block nesting depth", len(stack) + 1, MAX_NESTING, path=path)
-        copies = entities = 0
-        block = doc.blocks.get(name)
-        for entity in block if block is not None else ():  # per entity of the block
-            c, e = entity_load(entity, stack + [name])
-            copies, entities = copies + c, entities + e
-        memo[name] = (min(copies, _HUGE), min(entities, _HUGE))
+        if name not in memo:
+            copies = entities = depth = 0
+            block = doc.blocks.get(name)
+            for entity in block if block is not None else ():  # per entity of the block
+                c, e, d = entity_load(entity, stack + [name])
+                copies, entities, depth = copies + c, entities + e, max(depth, d)
+            memo[name] = (min(copies, _HUGE), min(entities, _HUGE), depth + 1)
+        check_count("block nesting depth", len(stack) + memo[name][2], MAX_NESTING, path=path)
         return memo[name]
 
-    def entity_load(entity, stack: list[str]) -> tuple[int, int]:
+    def entity_load(entity, stack: list[str]) -> tuple[int, int, int]:
         kind = entity.dxftype()
         if kind == "INSERT":
-            copies, entities = load(entity.dxf.name, stack)
+            copies, entities, depth = load(entity.dxf.name, stack)
             k = _mcount(entity)
-            return k * (1 + copies), k * entities
-        return 0, int(kind in _MAKERS)
+            return min(k * (1 + copies), _HUGE), min(k * entities, _HUGE), depth
+        return 0, int(kind in _MAKERS), 0
 
     copies = entities = 0
     for entity in doc.modelspace():  # per entity
-        c, e = entity_load(entity, [])
-        copies, entities = copies + c, entities + e
+        c, e, _ = entity_load(entity, [])
+        copies, entities = min(copies + c, _HUGE), min(entities + e, _HUGE)
     hint = "the drawing's blocks expand to too much; explode or simplify them"
-    check_count("block copies", min(copies, _HUGE), MAX_PARTS, path=path, hint=hint)
-    check_count("entities placed by blocks", min(entities, _HUGE), MAX_OUTLINES, path=path,
-                hint=hint)
+    check_count("block copies", copies, MAX_PARTS, path=path, hint=hint)
+    check_count("entities placed by blocks", entities, MAX_OUTLINES, path=path, hint=hint)
 
 
 # ------------------------------------------------------------------ entities

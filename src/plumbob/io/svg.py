@@ -129,10 +129,10 @@ def _check_expansion(root, path: str) -> None:
     element is counted once; a reference to itself, or a chain deeper than MAX_NESTING, is an
     error."""
     ids = {e.get("id"): e for e in root.iter() if e.get("id") is not None}
-    memo: dict[int, tuple[int, int]] = {}
+    memo: dict[int, tuple[int, int, int]] = {}  # per referenced element: shapes, copies, depth
 
-    def total(element, chain: tuple[int, ...]) -> tuple[int, int]:
-        shapes = copies = 0
+    def total(element, chain: tuple[int, ...]) -> tuple[int, int, int]:
+        shapes = copies = depth = 0
         for e in element.iter():  # the element and everything inside it
             tag = _local(e.tag)
             if tag in _SHAPES:
@@ -145,14 +145,16 @@ def _check_expansion(root, path: str) -> None:
                 if id(target) in chain:
                     raise FormatError(f"<use> refers to {href!r}, which contains it: an endless "
                                       "loop", path=path)
-                check_count("<use> nesting depth", len(chain) + 1, MAX_NESTING, path=path)
                 if id(target) not in memo:
+                    check_count("<use> nesting depth", len(chain) + 1, MAX_NESTING, path=path)
                     memo[id(target)] = total(target, chain + (id(target),))
-                s, c = memo[id(target)]
+                s, c, d = memo[id(target)]
                 shapes, copies = min(shapes + s, _HUGE), min(copies + 1 + c, _HUGE)
-        return shapes, copies
+                depth = max(depth, d + 1)
+                check_count("<use> nesting depth", depth, MAX_NESTING, path=path)
+        return shapes, copies, depth
 
-    shapes, copies = total(root, ())
+    shapes, copies, _ = total(root, ())
     hint = "the drawing's <use> references expand to too much"
     check_count("<use> copies", copies, MAX_PARTS, path=path, hint=hint)
     check_count("shapes", shapes, MAX_OUTLINES, path=path, hint=hint)
