@@ -52,7 +52,8 @@ def assert_semicircle(props, a):
 # ------------------------------------------------------------------ exact curves
 def test_semicircle_as_svg_arc_is_exact(tmp_path):
     a = 1.5
-    path = svg_file(tmp_path, f'<path d="M {a} 0 A {a} {a} 0 0 1 -{a} 0 Z"/>')
+    # drawn above the x axis on the page (through y = −a, SVG's y runs down): y ≥ 0 when read
+    path = svg_file(tmp_path, f'<path d="M {a} 0 A {a} {a} 0 0 0 -{a} 0 Z"/>')
     assert_semicircle(read(path, units="m").body.mass_properties(), a)
 
 
@@ -74,7 +75,8 @@ def test_semicircle_as_dxf_bulge_arc_and_line_is_exact(tmp_path):
 
 def test_quadratic_bezier_is_raised_exactly(tmp_path):
     # y = 1 - x² over [-1, 1]: area 4/3, centroid height 2/5, ∫y² dA = 32/105
-    props = read(svg_file(tmp_path, '<path d="M -1 0 Q 0 2 1 0 Z"/>'), units="m").body \
+    # drawn above the axis on the page (SVG's y runs down): y = 1 − x² when read, y up
+    props = read(svg_file(tmp_path, '<path d="M -1 0 Q 0 -2 1 0 Z"/>'), units="m").body \
         .mass_properties()
     assert props.exact
     assert props.area == pytest.approx(4 / 3, rel=1e-14)
@@ -106,9 +108,9 @@ def test_rounded_rect_and_mirrored_circle(tmp_path):
     rect, circle = (p.mass_properties() for p in parts)
     assert rect.exact and circle.exact
     assert rect.area == pytest.approx(8 - (4 - np.pi) * 0.25, rel=1e-14)
-    assert rect.center_of_mass == pytest.approx([2.0, 1.0], rel=1e-14)
+    assert rect.center_of_mass == pytest.approx([2.0, -1.0], rel=1e-14)  # y flipped up
     assert circle.area == pytest.approx(np.pi, rel=1e-14)
-    assert circle.center_of_mass == pytest.approx([11.0, -2.0], rel=1e-14)
+    assert circle.center_of_mass == pytest.approx([11.0, 2.0], rel=1e-14)
 
 
 def test_elliptical_arcs_are_close_and_say_so(tmp_path):
@@ -151,7 +153,7 @@ def test_even_odd_nesting_makes_holes_and_islands(tmp_path):
     assert isinstance(reading.body, Assembly)
     parts = {p.name: p.mass_properties() for p in reading.body.parts}
     assert parts["plate"].area == pytest.approx(100 - 9 * np.pi, rel=1e-14)
-    assert parts["plate"].center_of_mass == pytest.approx([5.0, 5.0], rel=1e-14)
+    assert parts["plate"].center_of_mass == pytest.approx([5.0, -5.0], rel=1e-14)  # y up
     assert parts["island"].area == pytest.approx(4.0, rel=1e-14)
 
 

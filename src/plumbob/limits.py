@@ -20,6 +20,7 @@ __all__ = [
     "MAX_EXPRESSION_NODES",
     "MAX_FILE_BYTES",
     "MAX_NESTING",
+    "MAX_OUTLINE_PAIRS",
     "MAX_OUTLINES",
     "MAX_PARTS",
     "MAX_PERIODS",
@@ -45,6 +46,9 @@ MAX_NESTING = 64
 MAX_PARTS = 10_000
 #: Outlines (rings) one drawing may hold.
 MAX_OUTLINES = 100_000
+#: Pairs of outlines close enough to be compared (bounding boxes meet): how deeply and how
+#: densely a drawing's outlines may nest or crowd, since nesting is found pairwise.
+MAX_OUTLINE_PAIRS = 4_000_000
 #: Sides of a regular polygon or segments of a tessellated curve.
 MAX_SIDES = 1_000_000
 #: Polynomial degree of a density field (a quadrature rule of this degree per cell).

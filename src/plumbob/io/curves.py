@@ -3,13 +3,16 @@
 Shared by the drawing readers (SVG, DXF). A circular arc is exact as a bulge
 edge; an elliptical arc, not polynomial, becomes cubic Béziers — the affine
 image of the standard cubic for a circular arc — within a stated area error.
+An unclamped (periodic, closed) B-spline is clamped exactly to its own domain
+by knot insertion, so it splits into Bézier pieces like any clamped one.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ELLIPSE_STEP", "elliptic_arc_cubics", "arc_bulges"]
+__all__ = ["ELLIPSE_STEP", "arc_bulges", "clamped_bspline", "elliptic_arc_cubics",
+           "periodic_knots"]
 
 #: parameter step of the cubic pieces approximating elliptical arcs (64 per turn)
 ELLIPSE_STEP = 2 * np.pi / 64
@@ -75,3 +78,63 @@ def _exact_cos_sin(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     cos[on_axis] = np.array([1.0, 0.0, -1.0, 0.0])[q]
     sin[on_axis] = np.array([0.0, 1.0, 0.0, -1.0])[q]
     return cos, sin
+
+
+def clamped_bspline(control: np.ndarray, knots: np.ndarray, degree: int
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """The same curve as the B-spline (``control`` (n, d), ``knots`` (n + degree + 1,)) on
+    its domain ``[knots[degree], knots[n]]``, with clamped knots (each end repeated
+    degree + 1 times), by Boehm's knot insertion: exact, not a fit.
+
+    An unclamped spline (a DXF closed periodic SPLINE) is defined only on that domain;
+    evaluated outside it — over its whole knot vector — it runs off its own curve.
+    Rational splines are clamped the same way in homogeneous coordinates (x·w, y·w, w).
+
+    >>> control = np.array([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0], [3.0, 2.0]])
+    >>> c, k = clamped_bspline(control, np.arange(7.0), 2)   # uniform: domain [2, 4]
+    >>> c.tolist(), k.tolist()
+    ([[0.5, 1.0], [1.0, 2.0], [2.0, 0.0], [2.5, 1.0]], [2.0, 2.0, 2.0, 3.0, 4.0, 4.0, 4.0])
+    """
+    points = np.asarray(control, dtype=float)
+    u = np.asarray(knots, dtype=float)
+    p, n = int(degree), len(points)
+    if p < 1 or n <= p or u.shape != (n + p + 1,) or not np.isfinite(u).all() \
+            or (np.diff(u) < 0).any() or not u[p] < u[n]:
+        raise ValueError(f"a degree-{p} spline of {n} control points needs {n + p + 1} "
+                         "finite, non-decreasing knots spanning a domain")
+    a, b = u[p], u[n]
+    for t in (a, b):  # each end up to multiplicity p
+        for _ in range(p - int(np.count_nonzero(u == t))):
+            points, u = _insert_knot(points, u, p, t)
+    last_a = int(np.searchsorted(u, a, side="right")) - 1
+    first_b = int(np.searchsorted(u, b, side="left"))
+    inner = u[last_a + 1:first_b]
+    knots_out = np.concatenate((np.full(p + 1, a), inner, np.full(p + 1, b)))
+    return points[last_a - p:first_b], knots_out
+
+
+def _insert_knot(points: np.ndarray, u: np.ndarray, p: int, t: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Boehm: insert ``t`` once (the curve unchanged; one control point more)."""
+    k = int(np.searchsorted(u, t, side="right")) - 1
+    s = int(np.count_nonzero(u == t))
+    i = np.arange(k - p + 1, k - s + 1)
+    alpha = ((t - u[i]) / (u[i + p] - u[i]))[:, None]
+    new = (1 - alpha) * points[i - 1] + alpha * points[i]
+    points = np.concatenate((points[:k - p + 1], new, points[k - s:]))
+    return points, np.insert(u, k + 1, t)
+
+
+def periodic_knots(knots: np.ndarray, count: int, degree: int) -> np.ndarray | None:
+    """The full knot vector of a periodic spline stored the Autodesk way (``count`` + 1
+    knots for ``count`` control points, the first ``degree`` repeated at the end by the
+    caller), extended by one period at each side; None if ``knots`` is not that form.
+
+    >>> periodic_knots(np.arange(5.0), 4, 2).tolist()
+    [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    """
+    u = np.asarray(knots, dtype=float)
+    if u.shape != (count + 1,) or count < degree:
+        return None
+    period = u[-1] - u[0]
+    return np.concatenate((u[count - degree:count] - period, u, u[1:degree + 1] + period))

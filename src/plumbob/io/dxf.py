@@ -19,29 +19,44 @@ coordinate system (extrusion (0, 0, −1)) is mapped into XY exactly.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..bodies.region import Ring
+from ..bodies.validity import check_bulges
 from ..errors import FormatError, GeometryError, PlumbobError, fmt_point
+from ..files import read_bytes
+from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, MAX_SIDES, check_count
 from ..mesh.topology import connected_components
 from ..reading import Reading
-from ..units import file_unit_scale, units_scale
+from ..units import units_scale
 from .checks import ABSURD_COORDINATE
-from .curves import arc_bulges, elliptic_arc_cubics
+from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics, periodic_knots
 from .laminas import Outline, body_from_outlines
 from .parts import stem
 
 __all__ = ["read_dxf", "INSUNITS"]
 
-#: $INSUNITS code → the unit's name
-INSUNITS = {1: "inch", 2: "foot", 3: "mile", 4: "millimeter", 5: "centimeter", 6: "meter",
-            7: "kilometer", 10: "yard", 14: "decimeter"}
+#: $INSUNITS code → the unit's name and metres per unit (exact definitions; 0 is "unitless")
+INSUNITS: dict[int, tuple[str, float]] = {
+    1: ("inch", 0.0254), 2: ("foot", 0.3048), 3: ("mile", 1609.344), 4: ("millimeter", 1e-3),
+    5: ("centimeter", 1e-2), 6: ("meter", 1.0), 7: ("kilometer", 1e3),
+    8: ("microinch", 2.54e-8), 9: ("mil", 2.54e-5), 10: ("yard", 0.9144),
+    11: ("angstrom", 1e-10), 12: ("nanometer", 1e-9), 13: ("micron", 1e-6),
+    14: ("decimeter", 0.1), 15: ("decameter", 10.0), 16: ("hectometer", 100.0),
+    17: ("gigameter", 1e9), 18: ("astronomical unit", 149_597_870_700.0),
+    19: ("light year", 9_460_730_472_580_800.0), 20: ("parsec", 3.085_677_581_491_367e16),
+    21: ("US survey foot", 1200 / 3937), 22: ("US survey inch", 100 / 3937),
+    23: ("US survey yard", 3600 / 3937), 24: ("US survey mile", 6_336_000 / 3937),
+}
 JOIN_TOLERANCE = 1e-9  # relative to the drawing's size
 FLATTEN_TOLERANCE = 1e-7  # relative to the drawing's size
-MAX_BLOCK_DEPTH = 8
 _NAN = np.full((2, 2), np.nan)
+#: segments a span needs at most when flattened within FLATTEN_TOLERANCE (√(1/8t))
+_SEGMENTS_PER_SPAN = int(np.ceil(np.sqrt(1 / (8 * FLATTEN_TOLERANCE))))
+_HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
 
 
 @dataclass(eq=False)
@@ -69,13 +84,13 @@ class _Piece:
 def read_dxf(path: str, units: str | None = None) -> Reading:
     """Laminas from the closed outlines of a DXF drawing (see module docstring)."""
     doc = _open(path)
-    code = doc.header.get("$INSUNITS", 0)
-    file_units = INSUNITS.get(int(code)) if isinstance(code, int | float) else None
-    scale, notices = units_scale(units, file_units, file_unit_scale(file_units))
+    file_units, file_scale = _file_units(doc.header.get("$INSUNITS", 0), path)
+    scale, notices = units_scale(units, file_units, file_scale)
     notices = list(notices)
     pieces: list[_Piece] = []
     counts: dict[str, int] = {}
     try:
+        _check_expansion(doc, path)
         for entity in doc.modelspace():  # per entity
             _collect(entity, pieces, counts, 0, ABSURD_COORDINATE / scale, path)
     except PlumbobError:
@@ -106,31 +121,102 @@ def read_dxf(path: str, units: str | None = None) -> Reading:
 
 
 def _open(path: str):
+    """The drawing, read by ezdxf's recovering reader from a bounded read of the file. A
+    number ezdxf had to guess (``$INSUNITS 1e999`` read as 1, an inch) is an error naming its
+    line: the recovered value would be a silent wrong unit or coordinate."""
+    import io
+    import logging
+
     import ezdxf
     from ezdxf import recover
+    from ezdxf.audit import AuditError
 
+    logging.getLogger("ezdxf").addHandler(logging.NullHandler())  # a library never prints
+    data = read_bytes(path)
     try:
-        doc, _auditor = recover.readfile(path)
+        doc, auditor = recover.read(io.BytesIO(data))
     except (ezdxf.DXFError, OSError, UnicodeError, ValueError) as error:
         raise FormatError(f"is not a readable DXF file: {str(error)[:200] or type(error).__name__}",
                           path=path) from None
     except Exception as error:  # noqa: BLE001 - the recovering parser may raise anything
         raise FormatError(f"is not a readable DXF file: {type(error).__name__}: "
                           f"{str(error)[:200]}", path=path) from None
+    guessed = (AuditError.INVALID_INTEGER_VALUE, AuditError.INVALID_FLOATING_POINT_VALUE)
+    for problem in auditor.errors:  # per repair ezdxf made: few
+        if problem.code in guessed:
+            found = re.search(r'value "(.*?)" near line (\d+) as "(.*?)"', str(problem.message))
+            what = "a whole number" if problem.code == guessed[0] else "a number"
+            text = (f"line {found.group(2)}: {found.group(1)[:40]!r} is not {what} (ezdxf would "
+                    f"guess {found.group(3)[:20]})") if found else str(problem.message)[:200]
+            raise FormatError(f"{text}; fix the file", path=path)
     return doc
+
+
+def _file_units(code, path: str) -> tuple[str | None, float | None]:
+    """The unit ``$INSUNITS`` declares (name, metres per unit); (None, None) when unitless."""
+    if isinstance(code, bool) or not isinstance(code, int | float) or code != int(code) \
+            or not (code == 0 or int(code) in INSUNITS):
+        raise FormatError(f"has $INSUNITS = {code!r}, which is no unit code (0 to 24): fix the "
+                          "header or pass --units", path=path)
+    return INSUNITS.get(int(code), (None, None))
+
+
+def _mcount(entity) -> int:
+    """How many copies an INSERT places: rows × columns of a MINSERT array, else 1."""
+    rows = int(entity.dxf.get("row_count", 1) or 1)
+    columns = int(entity.dxf.get("column_count", 1) or 1)
+    return max(rows, 1) * max(columns, 1)
+
+
+def _check_expansion(doc, path: str) -> None:
+    """Count what the modelspace's block references expand to — copies placed and entities
+    drawn, through every level of nesting — against :data:`~plumbob.limits.MAX_PARTS` and
+    :data:`~plumbob.limits.MAX_OUTLINES` before anything is expanded (ten blocks each
+    placing the next ten times is 10¹⁰ entities from a 5 KB file); each block is counted once."""
+    memo: dict[str, tuple[int, int, int]] = {}  # per block: copies, entities, depth
+
+    def load(name: str, stack: list[str]) -> tuple[int, int, int]:
+        if name in stack:
+            raise FormatError(f"block {name!r} contains a reference to itself", path=path)
+        check_count("block nesting depth", len(stack) + 1, MAX_NESTING, path=path)
+        if name not in memo:
+            copies = entities = depth = 0
+            block = doc.blocks.get(name)
+            for entity in block if block is not None else ():  # per entity of the block
+                c, e, d = entity_load(entity, stack + [name])
+                copies, entities, depth = copies + c, entities + e, max(depth, d)
+            memo[name] = (min(copies, _HUGE), min(entities, _HUGE), depth + 1)
+        check_count("block nesting depth", len(stack) + memo[name][2], MAX_NESTING, path=path)
+        return memo[name]
+
+    def entity_load(entity, stack: list[str]) -> tuple[int, int, int]:
+        kind = entity.dxftype()
+        if kind == "INSERT":
+            copies, entities, depth = load(entity.dxf.name, stack)
+            k = _mcount(entity)
+            return min(k * (1 + copies), _HUGE), min(k * entities, _HUGE), depth
+        return 0, int(kind in _MAKERS), 0
+
+    copies = entities = 0
+    for entity in doc.modelspace():  # per entity
+        c, e, _ = entity_load(entity, [])
+        copies, entities = min(copies + c, _HUGE), min(entities + e, _HUGE)
+    hint = "the drawing's blocks expand to too much; explode or simplify them"
+    check_count("block copies", copies, MAX_PARTS, path=path, hint=hint)
+    check_count("entities placed by blocks", entities, MAX_OUTLINES, path=path, hint=hint)
 
 
 # ------------------------------------------------------------------ entities
 def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, limit: float,
-             path: str) -> None:
+             path: str, block: str | None = None) -> None:
     """Add the outline pieces of ``entity`` (expanding blocks); ``limit``: the largest
-    plausible coordinate in file units."""
+    plausible coordinate in file units; ``block``: the block it was placed from, if any."""
     kind = entity.dxftype()
-    if kind == "INSERT":
-        if depth >= MAX_BLOCK_DEPTH:
-            raise FormatError(f"nests block references deeper than {MAX_BLOCK_DEPTH}", path=path)
-        for sub in entity.virtual_entities():
-            _collect(sub, pieces, counts, depth + 1, limit, path)
+    if kind == "INSERT":  # counted by _check_expansion: bounded
+        copies = entity.multi_insert() if _mcount(entity) > 1 else (entity,)
+        for copy in copies:  # per copy of a MINSERT array
+            for sub in copy.virtual_entities():
+                _collect(sub, pieces, counts, depth + 1, limit, path, entity.dxf.name)
         return
     maker = _MAKERS.get(kind)
     if maker is None:
@@ -144,11 +230,12 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, l
     if tilted and kind != "LINE":
         counts["tilted"] = counts.get("tilted", 0) + 1
         return
-    handle = entity.dxf.get("handle", "?")
+    handle = entity.dxf.get("handle", None)
     layer = entity.dxf.get("layer", "0")
-    label = f"{kind} #{handle} (layer {layer!r})"
+    name = f"{kind} #{handle}" if handle else f"{kind} of block {block!r}"
+    label = f"{name} (layer {layer!r})"
     with np.errstate(all="ignore"):
-        piece = maker(entity, label, f"{kind} #{handle}")
+        piece = maker(entity, label, name)
     if piece is None:
         return
     if not (np.isfinite(piece.points).all() and np.abs(piece.points).max() <= limit
@@ -156,11 +243,29 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, l
             and np.all(np.isnan(piece.controls) | (np.abs(piece.controls) <= limit))):
         raise GeometryError(f"{label} has a coordinate that is not a finite number of plausible "
                             "size", path=path)
+    check_bulges(piece.bulges, label)  # (read_checked names the file)
+    reach = _arc_reach(piece)
+    if not reach <= limit:
+        raise GeometryError(f"{label} has a bulge of {np.abs(piece.bulges).max():.3g}: its arc "
+                            f"reaches {reach:.3g} drawing units from the origin, no plausible "
+                            "drawing", path=path)
     if extrusion[2] < 0:  # OCS mirrored: x ↦ −x, arcs turn the other way
         piece.points = piece.points * np.array([-1.0, 1.0])
         piece.controls = piece.controls * np.array([-1.0, 1.0])
         piece.bulges = -piece.bulges
     pieces.append(piece)
+
+
+def _arc_reach(piece: _Piece) -> float:
+    """How far from the origin the piece's arcs reach: a bulge b on a chord c bows out by
+    c·|b|/2 (its sagitta), so a huge bulge is a huge circle — checked before any arc
+    geometry is computed from it."""
+    if not piece.bulges.any():
+        return 0.0
+    chords = np.linalg.norm(np.diff(piece.points, axis=0), axis=1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        bow = chords * np.maximum(np.abs(piece.bulges), 1.0)
+        return float(np.abs(piece.points).max() + bow.max())
 
 
 def _xy(points) -> np.ndarray:
@@ -250,16 +355,49 @@ def _ellipse(entity, label, name):
 
 
 def _spline(entity, label, name):
-    tool = entity.construction_tool()
-    degree = int(tool.degree)
-    if not tool.is_rational and tool.is_clamped and degree <= 3:
+    """A SPLINE on its own domain: non-rational ones of degree ≤ 3 as exact Bézier pieces,
+    others flattened within :data:`FLATTEN_TOLERANCE` of their size (a stated error).
+    Unclamped (periodic, closed) splines are first clamped exactly by knot insertion; a
+    periodic spline stored the Autodesk way (one knot more than control points) is
+    unrolled first."""
+    from ezdxf.math import BSpline, open_uniform_knot_vector
+
+    control = _xy(entity.control_points)
+    if len(control):
+        degree = int(entity.dxf.degree)
+        knots = np.asarray(entity.knots, dtype=float)
+        weights = np.asarray(entity.weights, dtype=float) if len(entity.weights) else None
+    else:  # fit points only: ezdxf's interpolation, a clamped cubic
+        tool = entity.construction_tool()
+        control, degree = _xy(tool.control_points), int(tool.degree)
+        knots, weights = np.asarray(tool.knots(), dtype=float), None
+    check_count("spline control points", len(control), MAX_SIDES)
+    if len(control) <= degree:
+        return None
+    if knots.size == 0:
+        knots = np.asarray(open_uniform_knot_vector(len(control), degree + 1), dtype=float)
+    if knots.size == len(control) + 1 and entity.closed:  # periodic, Autodesk's way
+        knots = periodic_knots(knots, len(control), degree)
+        control = np.vstack((control, control[:degree]))
+        weights = None if weights is None else np.concatenate((weights, weights[:degree]))
+    if weights is not None and not (np.isfinite(weights).all() and (weights > 0).all()):
+        raise ValueError("a spline's weights must be positive numbers")
+    if weights is not None and np.ptp(weights) == 0:
+        weights = None  # equal weights: not rational
+    w = np.ones(len(control)) if weights is None else weights
+    homogeneous, knots = clamped_bspline(np.column_stack((control * w[:, None], w)), knots,
+                                         degree)
+    control, w = homogeneous[:, :2] / homogeneous[:, 2:], homogeneous[:, 2]
+    tool = BSpline(np.column_stack((control, np.zeros(len(control)))), order=degree + 1,
+                   knots=list(knots), weights=None if weights is None else list(w))
+    if weights is None and degree <= 3:
         beziers = [np.asarray([(p[0], p[1]) for p in b], dtype=float)
                    for b in tool.bezier_decomposition()]
-        if beziers:
-            return _bezier_piece(beziers, degree, label, name)
-    # rational, unclamped or high degree: flatten within a stated distance
-    ctrl = _xy(tool.control_points)
-    size = float(np.linalg.norm(np.ptp(ctrl, axis=0))) or 1.0
+        return _bezier_piece(beziers, degree, label, name)
+    # rational or of high degree: flatten within a stated distance
+    spans = len(np.unique(knots)) - 1
+    check_count("segments of a flattened spline", spans * _SEGMENTS_PER_SPAN, MAX_SIDES)
+    size = float(np.linalg.norm(np.ptp(control, axis=0))) or 1.0
     distance = FLATTEN_TOLERANCE * size
     points = _xy(tool.flattening(distance))
     if len(points) < 2:
@@ -298,12 +436,17 @@ _MAKERS = {
 
 
 # ------------------------------------------------------------------ joining
+def _join_tolerance(pieces: list[_Piece]) -> float:
+    """:data:`JOIN_TOLERANCE` of the drawing's size — of all its points, not only the pieces'
+    ends (a full ellipse alone has both ends at one point, and a size of nothing)."""
+    points = np.concatenate([p.points for p in pieces])
+    return JOIN_TOLERANCE * (float(np.linalg.norm(np.ptp(points, axis=0))) or 1.0)
+
+
 def _split_closed(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
     if not pieces:
         return [], []
-    ends = np.concatenate([p.points[[0, -1]] for p in pieces])
-    size = float(np.linalg.norm(np.ptp(ends, axis=0))) or 1.0
-    tol = JOIN_TOLERANCE * size
+    tol = _join_tolerance(pieces)
     closed, open_ = [], []
     for p in pieces:  # per entity
         gap = np.linalg.norm(p.points[-1] - p.points[0])
@@ -321,8 +464,7 @@ def _join(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
     if not pieces:
         return [], []
     ends = np.concatenate([p.points[[0, -1]] for p in pieces])  # (2k, 2): start, end
-    size = float(np.linalg.norm(np.ptp(ends, axis=0))) or 1.0
-    tol = JOIN_TOLERANCE * size
+    tol = _join_tolerance(pieces)
     order = np.lexsort((ends[:, 1], ends[:, 0]))
     # Ends that meet: near in x after sorting, then checked in full (few candidates).
     i, j = [], []

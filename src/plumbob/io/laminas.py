@@ -13,7 +13,6 @@ Every outline is checked: plausible size, non-zero area, no self-intersection
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,15 +20,13 @@ import numpy as np
 from ..bodies.base import Body
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
+from ..bodies.validity import CHECK_TOLERANCE, validity_error
 from ..errors import FormatError, GeometryError, fmt_point
+from ..limits import MAX_OUTLINE_PAIRS, MAX_OUTLINES, MAX_PARTS, check_count
 from .checks import check_extent
 from .parts import assemble, stem, unique_names
 
-__all__ = ["CHECK_TOLERANCE", "Outline", "body_from_outlines", "body_from_polygons",
-           "validity_error"]
-
-#: flattening tolerance for checks, relative to the drawing's size
-CHECK_TOLERANCE = 1e-7
+__all__ = ["Outline", "body_from_outlines", "body_from_polygons"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,44 +46,23 @@ class Outline:
     approximation: str | None = None
 
 
-#: GEOS's reasons for an invalid polygon → what the message says
-_REASONS = {
-    "Self-intersection": "crosses itself at {p} (a bow-tie or a twisted outline)",
-    "Ring Self-intersection": "touches itself at {p}",
-    "Too few points": "has fewer than three distinct points",
-    "Hole lies outside shell": "has a hole outside its outer boundary, near {p}",
-    "Nested holes": "has a hole inside another hole, near {p}",
-    "Interior is disconnected": "has holes that cut it apart, near {p}",
-    "Invalid Coordinate": "has a coordinate that is not a finite number, near {p}",
-    "Too few points in geometry component": "has fewer than three distinct points, near {p}",
-    "Duplicate Rings": "has the same ring twice, near {p}",
-}
-
-
-def validity_error(geometry, label: str, path: str | None,
-                   scale: float = 1.0) -> GeometryError | None:
-    """The error for a degenerate or invalid shapely polygon (coordinates in metres), naming
-    the point GEOS found in the file's coordinates (metres / ``scale``); None if valid."""
-    import shapely
-
-    hull = shapely.convex_hull(geometry)
-    size = float(np.hypot(*np.ptp(np.asarray(shapely.get_coordinates(geometry)), axis=0))) \
-        if not geometry.is_empty else 0.0
-    if not hull.area > 1e-14 * size * size:
-        return GeometryError(f"{label} has zero area: its points lie on a line", path=path)
-    reason = shapely.is_valid_reason(geometry)
-    if reason is None or reason == "Valid Geometry":
-        return None
-    match = re.match(r"^(.*?)\s*\[\s*([^\s\]]+)\s+([^\s\]]+)", reason)
-    what, point = (match.group(1), (float(match.group(2)), float(match.group(3)))) if match \
-        else (reason, None)
-    template = _REASONS.get(what, what.lower() + " near {p}")
-    text = template.format(p=fmt_point(np.array(point) / scale) if point is not None else "?")
-    return GeometryError(f"{label} {text}", path=path)
-
-
-def _ring_area(ring: Ring) -> float:
-    return float(ring.moments(ring.vertices.mean(axis=0)).m0)
+def _signed_areas(outlines: list[Outline], flats: list[np.ndarray]) -> np.ndarray:
+    """Signed areas (m²): the shoelace sum over all polygonal rings at once (about each
+    ring's first vertex), exact moments for curved rings."""
+    counts = np.array([len(flat) for flat in flats])
+    starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
+    coords = np.concatenate(flats)
+    local = coords - np.repeat(coords[starts], counts, axis=0)
+    following = np.arange(1, len(coords) + 1)
+    following[starts + counts - 1] = starts
+    ahead = local[following]
+    cross = local[:, 0] * ahead[:, 1] - ahead[:, 0] * local[:, 1]
+    areas = 0.5 * np.add.reduceat(cross, starts)
+    for k, outline in enumerate(outlines):  # per outline: curved ones integrate exactly
+        if outline.ring.is_curved:
+            ring = outline.ring
+            areas[k] = float(ring.moments(ring.vertices.mean(axis=0)).m0)
+    return areas
 
 
 def _oriented(ring: Ring, area: float, outer: bool) -> Ring:
@@ -103,74 +79,145 @@ def _lamina(rings: list[Ring], name: str | None, error: float, approximations: s
 
 
 def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str | None = None,
-                       scale: float = 1.0) -> tuple[Body, tuple[str, ...]]:
+                       scale: float | np.ndarray = 1.0) -> tuple[Body, tuple[str, ...]]:
     """Laminas from bare closed curves (metres) by the even-odd rule (see module docstring).
 
-    ``scale``: metres per file unit, so messages give points in the file's coordinates.
+    ``scale``: metres per file unit (or per unit along x and y, negative for a flipped axis,
+    as SVG's), so messages give points in the file's coordinates.
+    Outlines drawn twice are dropped (a hash of their normalised coordinates, then
+    topological equality among the pairs that nest); the nesting is found through a
+    spatial index, its pairs counted against :data:`~plumbob.limits.MAX_OUTLINE_PAIRS`
+    before they are compared.
     """
     import shapely
 
     if not outlines:
         raise FormatError("has no closed outline", path=path)
-    notices: list[str] = []
+    check_count("outlines", len(outlines), MAX_OUTLINES, path=path,
+                hint="split the drawing into several files")
     pts = [o.ring.vertices for o in outlines]
     pts += [o.ring.controls[~np.isnan(o.ring.controls)].reshape(-1, 2)
             for o in outlines if o.ring.controls is not None]
     pts = np.concatenate(pts)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    notices += check_extent(lo, hi, path=path)
+    notices = list(check_extent(lo, hi, path=path))
     size = float(np.linalg.norm(hi - lo))
     tol = max(size * CHECK_TOLERANCE, 1e-300)
-    areas = np.array([_ring_area(o.ring) for o in outlines])
-    polygons = []
-    for outline, area in zip(outlines, areas):  # per outline
-        flat = outline.ring.flattened(tol)
-        if len(flat) < 3:
-            raise GeometryError(f"{outline.label} has zero area: it has fewer than three "
-                                "distinct points", path=path)
-        polygon = shapely.Polygon(flat)
-        error = validity_error(polygon, outline.label, path, scale)
-        if error is not None:
-            raise error
-        if not abs(area) > 1e-14 * size * size:
-            raise GeometryError(f"{outline.label} has zero area: it encloses nothing", path=path)
-        polygons.append(polygon)
-    polygons = np.array(polygons, dtype=object)
-    tree = shapely.STRtree(polygons)
-    crossing = tree.query(polygons, predicate="overlaps")
-    if crossing.shape[1]:
-        i, j = crossing[:, 0]
-        where = shapely.intersection(polygons[i].exterior, polygons[j].exterior)
-        point = np.asarray(shapely.get_coordinates(where))[0] if not where.is_empty else lo
-        raise GeometryError(f"{outlines[i].label} and {outlines[j].label} cross each other at "
-                            f"{fmt_point(point / scale)}: outlines must nest or stay apart",
-                            path=path)
-    inside = tree.query(polygons, predicate="contains")  # rows: (container, contained)
-    inside = inside[:, inside[0] != inside[1]]
+    flats = [o.ring.flattened(tol) for o in outlines]  # per outline
+    short = next((k for k, flat in enumerate(flats) if len(flat) < 3), None)
+    if short is not None:
+        raise GeometryError(f"{outlines[short].label} has zero area: it has fewer than three "
+                            "distinct points", path=path)
+    counts = np.array([len(flat) for flat in flats])
+    rings = shapely.linearrings(np.concatenate(flats), indices=np.repeat(np.arange(len(flats)),
+                                                                         counts))
+    polygons = shapely.polygons(rings)
+    keep = _distinct(polygons)
+    if len(keep) < len(outlines):
+        first_dup = int(np.setdiff1d(np.arange(len(outlines)), keep)[0])
+        notices.append(f"outlines: dropped {len(outlines) - len(keep)} duplicate outline(s) "
+                       f"({outlines[first_dup].label}, …)")
+        outlines, polygons = [outlines[int(k)] for k in keep], polygons[keep]
+        flats = [flats[int(k)] for k in keep]
+    areas = _signed_areas(outlines, flats)
+    _check_each(outlines, polygons, areas, size, path, scale)
+    inside = _nesting(outlines, polygons, path, scale, lo)
     same = shapely.equals(polygons[inside[0]], polygons[inside[1]])
-    if same.any():
+    if same.any():  # the same outline drawn with other vertices: drop the later copies
         dup = np.unique(np.maximum(inside[0, same], inside[1, same]))
         notices.append(f"outlines: dropped {len(dup)} duplicate outline(s) "
                        f"({outlines[int(dup[0])].label}, …)")
-        keep = np.setdiff1d(np.arange(len(outlines)), dup)
-        kept = [outlines[int(k)] for k in keep]
-        body, more = body_from_outlines(kept, path=path, name=name, scale=scale)
-        return body, tuple(notices) + tuple(m for m in more if m not in notices)
+        kept = np.setdiff1d(np.arange(len(outlines)), dup)
+        renumber = np.full(len(outlines), -1)
+        renumber[kept] = np.arange(len(kept))
+        inside = renumber[inside[:, ~np.isin(inside, dup).any(axis=0)]]
+        outlines, areas = [outlines[int(k)] for k in kept], areas[kept]
     depth = np.bincount(inside[1], minlength=len(outlines))
     parent = np.full(len(outlines), -1)
     direct = depth[inside[0]] == depth[inside[1]] - 1
     parent[inside[1, direct]] = inside[0, direct]
     outer = np.flatnonzero(depth % 2 == 0)
+    check_count("parts (outer outlines)", len(outer), MAX_PARTS, path=path,
+                hint="split the drawing into several files")
     names = unique_names([outlines[k].name or f"outline {i + 1}" for i, k in enumerate(outer)])
+    holes_of = _group(parent, depth % 2 == 1)
     parts = []
     for k, part_name in zip(outer, names):  # per outer boundary
-        holes = np.flatnonzero((parent == k) & (depth % 2 == 1))
+        holes = holes_of.get(int(k), [])
         members = [outlines[k]] + [outlines[h] for h in holes]
         rings = [_oriented(outlines[k].ring, areas[k], True)]
         rings += [_oriented(outlines[h].ring, areas[h], False) for h in holes]
         parts.append(_lamina(rings, part_name, sum(m.error for m in members),
                              {m.approximation for m in members if m.approximation}))
     return assemble(parts, name), tuple(notices)
+
+
+def _distinct(polygons: np.ndarray) -> np.ndarray:
+    """Indices of the first of each set of identical polygons: equal normalised coordinates
+    (any start vertex, either orientation), found by hashing — linear, not pairwise."""
+    import shapely
+
+    first: dict[bytes, int] = {}
+    for k, key in enumerate(shapely.to_wkb(shapely.normalize(polygons))):  # per outline
+        first.setdefault(key, k)
+    return np.array(sorted(first.values()), dtype=int)
+
+
+def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray, size: float,
+                path: str | None, scale: float | np.ndarray) -> None:
+    """Every outline simple and enclosing area (vectorised; the first bad one is named)."""
+    import shapely
+
+    floor = 1e-14 * size * size
+    good = shapely.is_valid(polygons) & (shapely.area(shapely.convex_hull(polygons)) > floor)
+    for k in np.flatnonzero(~good)[:1]:
+        error = validity_error(polygons[k], outlines[k].label, path, scale)
+        if error is not None:
+            raise error
+    flat = np.flatnonzero(~(np.abs(areas) > floor))
+    if len(flat):
+        raise GeometryError(f"{outlines[flat[0]].label} has zero area: it encloses nothing",
+                            path=path)
+
+
+def _nesting(outlines: list[Outline], polygons: np.ndarray, path: str | None,
+             scale: float | np.ndarray, lo: np.ndarray) -> np.ndarray:
+    """The pairs (container, contained), (2, m); outlines that cross are an error naming a
+    point. Candidate pairs (bounding boxes that meet) are counted, in chunks, against
+    :data:`MAX_OUTLINE_PAIRS` before any is compared, so no drawing asks for n² work."""
+    import shapely
+
+    tree = shapely.STRtree(polygons)
+    chunk = max(1, MAX_OUTLINE_PAIRS // len(polygons))
+    found, total = [], 0
+    for start in range(0, len(polygons), chunk):  # per chunk of outlines
+        pairs = tree.query(polygons[start:start + chunk])
+        pairs[0] += start
+        total += pairs.shape[1]
+        check_count("pairs of outlines whose bounding boxes meet", total, MAX_OUTLINE_PAIRS,
+                    path=path, hint="the outlines nest or overlap too much to be compared")
+        found.append(pairs[:, pairs[0] != pairs[1]])
+    pairs = np.concatenate(found, axis=1)
+    a, b = polygons[pairs[0]], polygons[pairs[1]]
+    crossing = np.flatnonzero(shapely.overlaps(a, b))
+    if len(crossing):
+        i, j = pairs[:, crossing[0]]
+        where = shapely.intersection(polygons[i].exterior, polygons[j].exterior)
+        point = np.asarray(shapely.get_coordinates(where))[0] if not where.is_empty else lo
+        raise GeometryError(f"{outlines[i].label} and {outlines[j].label} cross each other at "
+                            f"{fmt_point(point / scale)}: outlines must nest or stay apart",
+                            path=path)
+    return pairs[:, shapely.contains(a, b)]
+
+
+def _group(parent: np.ndarray, mask: np.ndarray) -> dict[int, list[int]]:
+    """``{p: [children k with parent[k] == p and mask[k]]}``, in order, in one pass."""
+    children = np.flatnonzero(mask & (parent >= 0))
+    groups: dict[int, list[int]] = {}
+    for k in children:  # per child
+        groups.setdefault(int(parent[k]), []).append(int(k))
+    return groups
+
 
 def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
                        scale: float = 1.0) -> tuple[Body, tuple[str, ...]]:

@@ -21,6 +21,8 @@ import numpy as np
 from ..bodies.base import Body
 from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError
+from ..files import read_bytes
+from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
 from ..units import units_scale
 from .laminas import Outline, body_from_outlines, body_from_polygons
@@ -43,7 +45,7 @@ def read_outline(path: str, units: str | None = None) -> Reading:
         from .dxf import read_dxf
 
         return read_dxf(path, units=units)
-    data = _read_bytes(path)
+    data = read_bytes(path)
     scale, notices = units_scale(units)
     if suffix == ".csv":
         outlines = _csv_outlines(data, path, scale)
@@ -63,11 +65,6 @@ def read_outline(path: str, units: str | None = None) -> Reading:
     if suffix in (".geojson", ".json"):
         more = _lonlat_notice(body) + more
     return Reading(body, notices + more, path)
-
-
-def _read_bytes(path: str) -> bytes:
-    with open(path, "rb") as f:
-        return f.read()
 
 
 def _text(data: bytes, path: str, what: str) -> str:
@@ -143,8 +140,7 @@ def _geojson_geometries(data: bytes, path: str) -> tuple[list[tuple[str, object]
 
 
 def _walk_geojson(obj, name: str, found: list, skipped: dict, path: str, depth: int) -> None:
-    if depth > 32:
-        raise FormatError("nests GeoJSON objects too deeply", path=path)
+    check_count("GeoJSON nesting depth", depth, MAX_NESTING, path=path)
     if not isinstance(obj, dict):
         raise FormatError(f"{name}: a GeoJSON object must be a JSON object, not "
                           f"{type(obj).__name__}", path=path)
@@ -168,6 +164,7 @@ def _walk_geojson(obj, name: str, found: list, skipped: dict, path: str, depth: 
         for geom in geoms:
             _walk_geojson(geom, name, found, skipped, path, depth + 1)
     elif kind in ("Polygon", "MultiPolygon"):
+        check_count("polygons", len(found) + 1, MAX_PARTS, path=path, hint="split the file")
         found.append((name, _geojson_polygon(obj, name, path)))
     elif isinstance(kind, str) and kind in ("Point", "MultiPoint", "LineString",
                                             "MultiLineString"):
@@ -190,14 +187,7 @@ def _geojson_polygon(obj: dict, name: str, path: str):
             raise FormatError(f"{name}: a polygon needs a list of rings", path=path)
         rings = []
         for ring in polygon:
-            try:
-                xy = np.asarray(ring, dtype=float)
-            except (ValueError, TypeError):
-                raise FormatError(f"{name}: a ring's positions are not lists of numbers",
-                                  path=path) from None
-            if xy.ndim != 2 or xy.shape[1] < 2:
-                raise FormatError(f"{name}: a ring must be a list of [x, y] positions",
-                                  path=path)
+            xy = _positions(ring, name, path)
             if len(xy) < 3:
                 raise GeometryError(f"{name}: a ring has only {len(xy)} positions", path=path)
             if not np.isfinite(xy[:, :2]).all():
@@ -205,6 +195,28 @@ def _geojson_polygon(obj: dict, name: str, path: str):
             rings.append(xy[:, :2])
         shapes.append(shapely.Polygon(rings[0], rings[1:]))
     return shapes[0] if obj["type"] == "Polygon" else shapely.MultiPolygon(shapes)
+
+
+def _positions(ring, name: str, path: str) -> np.ndarray:
+    """A ring's positions as an (n, ≥2) float array: JSON numbers only. ``true``/``false``
+    (Python bools, which ``isinstance(x, int)`` accepts and numpy reads as 1/0: so the
+    exact type is asked) and
+    strings (which numpy would parse) are errors, not coordinates."""
+    try:
+        table = np.array(ring, dtype=object)
+    except ValueError:  # ragged
+        table = None
+    if table is None or table.ndim != 2 or table.shape[1] < 2:
+        raise FormatError(f"{name}: a ring must be a list of [x, y] positions", path=path)
+    numeric = np.frompyfunc(lambda c: type(c) in (float, int), 1, 1)(table).astype(bool)
+    if not numeric.all():
+        bad = table[np.unravel_index(np.argmin(numeric), table.shape)]
+        raise FormatError(f"{name}: a coordinate is {json.dumps(bad)[:40]}, not a number",
+                          path=path)
+    try:
+        return table.astype(float)
+    except OverflowError:
+        raise GeometryError(f"{name}: a coordinate is too large for a number", path=path) from None
 
 
 def _lonlat_notice(body: Body) -> tuple[str, ...]:
@@ -221,50 +233,71 @@ def _lonlat_notice(body: Body) -> tuple[str, ...]:
 # ------------------------------------------------------------------ CSV
 def _csv_outlines(data: bytes, path: str, scale: float) -> list[Outline]:
     """Rings of ``x,y`` lines (comma, semicolon, tab or space separated), blank lines between
-    rings, an optional header line."""
+    rings, an optional header line (:func:`_is_header`). All numbers are parsed in one pass;
+    the ring count is checked against :data:`~plumbob.limits.MAX_OUTLINES` before any ring
+    is built."""
     text = _text(data, path, "CSV").replace("\r\n", "\n").replace("\r", "\n")
-    outlines = []
-    blocks = re.finditer(r"(?:[^\n]*\S[^\n]*(?:\n|$))+", text)  # runs of non-blank lines
-    for b, match in enumerate(blocks):  # per ring
-        rows = match.group().rstrip("\n").split("\n")
-        start_line = text.count("\n", 0, match.start()) + 1
-        if b == 0 and re.search(r"[A-Za-df-z_]", rows[0]):
-            rows, start_line = rows[1:], start_line + 1  # a header
-        if not rows:
-            continue
-        flat = re.sub(r"[,;\t]", " ", "\n".join(rows))
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                values = np.fromstring(flat, sep=" ")
-        except ValueError:  # numpy ≥ 2.3 raises on text that is not numbers
-            values = None
-        if values is None or len(values) != 2 * len(rows):
-            _bad_csv_row(rows, start_line, path)
-        xy = values.reshape(-1, 2)
-        if not np.isfinite(xy).all():
-            bad = int(np.argmax(~np.isfinite(xy).all(axis=1)))
-            raise GeometryError(f"line {start_line + bad}: a coordinate is not a finite number",
-                                path=path)
-        if len(xy) < 3:
-            raise GeometryError(f"ring {len(outlines) + 1} (line {start_line}) has only "
-                                f"{len(xy)} points; an outline needs at least three", path=path)
-        with np.errstate(over="ignore"):
-            ring = Ring(xy * scale)
-        outlines.append(Outline(ring, f"ring {len(outlines) + 1} (line {start_line})"))
-    if not outlines:
+    lines = np.array(text.split("\n"), dtype=object)
+    filled = np.array([bool(line.strip()) for line in lines], dtype=bool)
+    rows = np.flatnonzero(filled)  # 0-based line indices of the data
+    if len(rows) and _is_header(lines[rows[0]]):
+        rows = rows[1:]
+    if not len(rows):
         raise FormatError("holds no x,y rows", path=path)
-    return outlines
+    ring_of = np.cumsum(np.diff(rows, prepend=-2) > 1) - 1  # a gap starts a new ring
+    check_count("outlines (rings)", int(ring_of[-1]) + 1, MAX_OUTLINES, path=path,
+                hint="split the file")
+    flat = re.sub(r"[,;\t]", " ", "\n".join(lines[rows]))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            values = np.fromstring(flat, sep=" ")
+    except ValueError:  # numpy ≥ 2.3 raises on text that is not numbers
+        values = None
+    if values is None or len(values) != 2 * len(rows):
+        _bad_csv_row(lines[rows], rows + 1, path)
+    xy = values.reshape(-1, 2)
+    finite = np.isfinite(xy).all(axis=1)
+    if not finite.all():
+        raise GeometryError(f"line {rows[np.argmin(finite)] + 1}: a coordinate is not a finite "
+                            "number", path=path)
+    starts = np.flatnonzero(np.diff(ring_of, prepend=-1))
+    sizes = np.diff(starts, append=len(rows))
+    if (sizes < 3).any():
+        k = int(np.argmax(sizes < 3))
+        raise GeometryError(f"ring {k + 1} (line {rows[starts[k]] + 1}) has only {sizes[k]} "
+                            "points; an outline needs at least three", path=path)
+    with np.errstate(over="ignore"):
+        xy = xy * scale
+    return [Outline(Ring(ring), f"ring {k + 1} (line {rows[start] + 1})")
+            for k, (start, ring) in enumerate(zip(starts, np.split(xy, starts[1:])))]
 
 
-def _bad_csv_row(rows: list[str], start_line: int, path: str) -> None:
-    for i, row in enumerate(rows):  # error path only: find the line to name
+#: a field that means a number, or tries to (``12``, ``-.5``, ``0mm``, ``nan``, ``inf``)
+_NUMBERISH = re.compile(r"^[+-]?(?:\d|\.\d|nan|inf)", re.IGNORECASE)
+
+
+def _is_header(row: str) -> bool:
+    """Only a row of words is a header (``x,y``, ``"X (mm)";"Y (mm)"``): a row with any field
+    that is, or starts like, a number (``0mm,0mm``, ``nan,0``) is data, so a bad first data
+    row is an error naming its line, never dropped in silence.
+
+    >>> _is_header("x,y"), _is_header("X (mm); Y (mm)"), _is_header("0mm,0mm"), _is_header("nan,0")
+    (True, True, False, False)
+    """
+    fields = [f.strip("\"'") for f in re.split(r"[,;\t ]+", row.strip()) if f]
+    return bool(fields) and not any(_NUMBERISH.match(f) for f in fields)
+
+
+def _bad_csv_row(rows, numbers, path: str) -> None:
+    """Raise the error naming the first row (line ``numbers``) that is not two numbers."""
+    for row, number in zip(rows, numbers):  # error path only: find the line to name
         fields = [f for f in re.split(r"[,;\t ]+", row.strip()) if f]
         try:
             ok = len(fields) == 2 and len([float(f) for f in fields]) == 2
         except ValueError:
             ok = False
         if not ok:
-            raise FormatError(f"line {start_line + i}: {row.strip()[:60]!r} is not two numbers "
-                              "x,y", path=path)
+            raise FormatError(f"line {number}: {row.strip()[:60]!r} is not two numbers x,y",
+                              path=path)
     raise FormatError("a row is not two numbers x,y", path=path)

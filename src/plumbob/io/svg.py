@@ -1,8 +1,10 @@
 """SVG outlines: every closed path and shape, curves kept exact.
 
-The file is first parsed with defusedxml, which refuses entity declarations
-(entity-expansion bombs) and external references; then svgelements resolves
-styles, ``<use>`` and transforms. Segments become ring edges: lines as they
+The file is read once (bounded) and first parsed with defusedxml, which
+refuses entity declarations (entity-expansion bombs) and external references;
+what its ``<use>`` references expand to — shapes and copies, through every
+level — is counted against :mod:`plumbob.limits` before anything is expanded;
+then svgelements resolves styles, ``<use>`` and transforms. Segments become ring edges: lines as they
 are, circular arcs as bulges (exact), quadratic Béziers raised exactly to
 cubics, cubic Béziers as they are, elliptical arcs as cubic Béziers within
 about 1e-11 of their size (the lamina is then marked not exact, with a bound).
@@ -13,7 +15,9 @@ height (``100mm``, ``4in``, a number of CSS px), one user unit is that length
 over the viewBox's (exact CSS factors: 1 in = 96 px = 25.4 mm); without a
 viewBox a user unit is a CSS px (1/96 in); ``--units`` overrides both.
 
-Coordinates keep the SVG's orientation (y points down the page).
+SVG's y axis points down the page; plumbob's points up, so y is flipped: a
+drawing's up is up (a T drawn standing on its stem rests on its stem). Points in
+messages are in the file's own coordinates (y down).
 """
 
 from __future__ import annotations
@@ -24,6 +28,8 @@ import numpy as np
 
 from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError, fmt_point
+from ..files import read_bytes
+from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
 from ..units import METRES_PER_UNIT, units_scale
 from .checks import ABSURD_COORDINATE
@@ -38,10 +44,11 @@ PX = METRES_PER_UNIT["px"]  #: metres per CSS px
 
 def read_svg(path: str, units: str | None = None) -> Reading:
     """Laminas from the closed paths and shapes of an SVG file (see module docstring)."""
-    _check_xml(path)
+    data = read_bytes(path)
+    _check_xml(data, path)
     import svgelements as se
 
-    svg = _parse(path, None)
+    svg = _parse(data, path, None)
     try:
         text = svg.viewbox_transform
         viewport = se.Matrix(text) if text else se.Matrix()
@@ -55,7 +62,7 @@ def read_svg(path: str, units: str | None = None) -> Reading:
     if not viewport.is_identity():  # read coordinates in user units, not svgelements' px
         inverse = ~viewport
         numbers = " ".join(repr(float(getattr(inverse, k))) for k in "abcdef")
-        svg = _parse(path, f"matrix({numbers})")
+        svg = _parse(data, path, f"matrix({numbers})")
     notices: list[str] = []
     if units is not None:
         scale, more = units_scale(units)
@@ -77,20 +84,22 @@ def read_svg(path: str, units: str | None = None) -> Reading:
                        "no area")
     if not outlines:
         raise FormatError("has no closed path or shape", path=path)
-    body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=scale)
+    file_axes = np.array([scale, -scale])  # metres per file unit along x and y (flipped)
+    body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=file_axes)
     return Reading(body, tuple(notices) + more, path)
 
 
-def _check_xml(path: str) -> None:
-    """Parse once with defusedxml: no entities, no external references, well-formed."""
+def _check_xml(data: bytes, path: str) -> None:
+    """Parse once with defusedxml: no entities, no external references, well-formed, an
+    ``<svg>`` root, and ``<use>`` expansion within the limits (:func:`_check_expansion`)."""
     import xml.etree.ElementTree as ElementTree
 
     import defusedxml.ElementTree as safe_xml
     from defusedxml import DefusedXmlException
 
     try:
-        root = safe_xml.parse(path, forbid_dtd=False, forbid_entities=True,
-                              forbid_external=True).getroot()
+        root = safe_xml.fromstring(data, forbid_dtd=False, forbid_entities=True,
+                                   forbid_external=True)
     except DefusedXmlException as error:
         raise FormatError(f"declares XML entities or external references "
                           f"({type(error).__name__}): refused (entity-expansion attack?)",
@@ -101,13 +110,63 @@ def _check_xml(path: str) -> None:
         raise FormatError(f"is not well-formed XML: {error}", path=path) from None
     if not root.tag.lower().endswith("svg"):
         raise FormatError(f"is XML but not SVG (its root element is <{root.tag}>)", path=path)
+    _check_expansion(root, path)
 
 
-def _parse(path: str, transform: str | None):
+#: the SVG elements that draw a shape
+_SHAPES = {"path", "rect", "circle", "ellipse", "polygon", "polyline", "line"}
+_HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
+
+
+def _local(tag) -> str:
+    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+
+
+def _check_expansion(root, path: str) -> None:
+    """Count the shapes the document draws and the ``<use>`` copies it places, through every
+    level of reference, against MAX_OUTLINES and MAX_PARTS before svgelements expands them
+    (ten levels of ten ``<use>`` each is 10¹⁰ shapes from a 1 KB file). Each referenced
+    element is counted once; a reference to itself, or a chain deeper than MAX_NESTING, is an
+    error."""
+    ids = {e.get("id"): e for e in root.iter() if e.get("id") is not None}
+    memo: dict[int, tuple[int, int, int]] = {}  # per referenced element: shapes, copies, depth
+
+    def total(element, chain: tuple[int, ...]) -> tuple[int, int, int]:
+        shapes = copies = depth = 0
+        for e in element.iter():  # the element and everything inside it
+            tag = _local(e.tag)
+            if tag in _SHAPES:
+                shapes += 1
+            elif tag == "use":
+                href = e.get("href") or e.get("{http://www.w3.org/1999/xlink}href") or ""
+                target = ids.get(href[1:]) if href.startswith("#") else None
+                if target is None:
+                    continue
+                if id(target) in chain:
+                    raise FormatError(f"<use> refers to {href!r}, which contains it: an endless "
+                                      "loop", path=path)
+                if id(target) not in memo:
+                    check_count("<use> nesting depth", len(chain) + 1, MAX_NESTING, path=path)
+                    memo[id(target)] = total(target, chain + (id(target),))
+                s, c, d = memo[id(target)]
+                shapes, copies = min(shapes + s, _HUGE), min(copies + 1 + c, _HUGE)
+                depth = max(depth, d + 1)
+                check_count("<use> nesting depth", depth, MAX_NESTING, path=path)
+        return shapes, copies, depth
+
+    shapes, copies, _ = total(root, ())
+    hint = "the drawing's <use> references expand to too much"
+    check_count("<use> copies", copies, MAX_PARTS, path=path, hint=hint)
+    check_count("shapes", shapes, MAX_OUTLINES, path=path, hint=hint)
+
+
+def _parse(data: bytes, path: str, transform: str | None):
+    import io
+
     import svgelements as se
 
     try:
-        svg = se.SVG.parse(path, reify=True, transform=transform)
+        svg = se.SVG.parse(io.BytesIO(data), reify=True, transform=transform)
     except Exception as error:  # noqa: BLE001 - svgelements raises every kind on bad input
         raise FormatError(f"cannot be read as SVG: {type(error).__name__}: "
                           f"{str(error)[:200]}", path=path) from None
@@ -190,12 +249,13 @@ def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
     approx: str | None = None
     start = None
     nan = np.full((2, 2), np.nan)
+    axes = np.array([scale, -scale])  # SVG's y runs down the page: flipped to up
 
-    def xy(point) -> np.ndarray:
+    def xy(point) -> np.ndarray:  # metres, y up
         with np.errstate(over="ignore", invalid="ignore"):
-            p = np.array([float(point.x), float(point.y)]) * scale
+            p = np.array([float(point.x), float(point.y)]) * axes
         if not (np.isfinite(p).all() and np.abs(p).max() <= ABSURD_COORDINATE):
-            raise GeometryError(f"{name}: the coordinate {fmt_point(p / scale)} is not a finite "
+            raise GeometryError(f"{name}: the coordinate {fmt_point(p / axes)} is not a finite "
                                 "number of plausible size", path=path)
         return p
 
@@ -211,8 +271,8 @@ def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
                 else:
                     k = len(rings) + 1
                     raise GeometryError(
-                        f"{name} (subpath {k}) never closes: it ends at {fmt_point(end / scale)}, "
-                        f"not at its start {fmt_point(first / scale)}; close it with Z",
+                        f"{name} (subpath {k}) never closes: it ends at {fmt_point(end / axes)}, "
+                        f"not at its start {fmt_point(first / axes)}; close it with Z",
                         path=path)
             else:
                 rings.append((Ring(np.array(points), np.array(bulges), np.array(controls)),

@@ -18,6 +18,7 @@ from ..bodies.base import Body
 from ..bodies.csg import Assembly, Composite, difference, intersection, leaf_densities, union
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
+from ..bodies.validity import check_region
 from ..expr import Expression, parse
 from ..io import read as read_file
 from ..massprops import rotation_matrix
@@ -73,6 +74,7 @@ def _outline(spec: SpecContext, t: dict, where: str) -> Lamina:
             raise spec.error(f"{where}.bulges", "give one bulge per edge (as many as vertices)")
         bulges = np.array([spec.number(b, f"{where}.bulges") for b in t["bulges"]])
     region = Region((Ring(vertices, bulges),))
+    check_region(region)  # as outline files are: a bow-tie would integrate to a wrong area
     if region.moments().m0 < 0:
         region = Region((region.rings[0].reversed(),))
     return Lamina(region)

@@ -15,6 +15,7 @@ from ...errors import GeometryError
 from ...limits import MAX_SIDES
 from ..lamina import Lamina
 from ..region import Region, Ring
+from ..validity import check_polygon
 
 
 def positive_number(value: float, what: str) -> float:
@@ -65,6 +66,7 @@ def polygon_region(vertices, holes=()) -> Region:
     >>> polygon_region([[0, 0], [0, 1], [1, 0]]).moments().m0   # given clockwise: still +½
     0.5
     """
+    check_polygon(vertices, holes)  # a bow-tie or a hole outside would integrate to a wrong area
     rings = [Ring(counter_clockwise(vertices))]
     rings += [Ring(counter_clockwise(hole)[::-1]) for hole in holes]
     return Region(tuple(rings))
@@ -173,7 +175,8 @@ def polygon(vertices, holes=(), **kw) -> Lamina:
     Raises
     ------
     GeometryError
-        Vertices that enclose no area (collinear or repeated).
+        Vertices that enclose no area (collinear or repeated), an outline that crosses
+        or touches itself, a hole outside the outline, crossing or inside another.
 
     Examples
     --------
@@ -183,7 +186,11 @@ def polygon(vertices, holes=(), **kw) -> Lamina:
     >>> polygon([[0, 0], [1, 1], [2, 2]])
     Traceback (most recent call last):
     ...
-    plumbob.errors.GeometryError: the polygon has no area (its vertices are collinear or repeated)
+    plumbob.errors.GeometryError: the polygon has zero area: its points lie on a line and enclose no area
+    >>> polygon([[0, 0], [2, 0], [0, 1], [2, 1]])
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the polygon crosses itself at (1, 0.5) m (a bow-tie or a twisted outline)
     """
     return Lamina(polygon_region(vertices, holes), **kw)
 
@@ -210,7 +217,7 @@ def triangle(p0, p1, p2, **kw) -> Lamina:
     >>> triangle((0, 0), (1, 0), (2, 0))
     Traceback (most recent call last):
     ...
-    plumbob.errors.GeometryError: the polygon has no area (its vertices are collinear or repeated)
+    plumbob.errors.GeometryError: the polygon has zero area: its points lie on a line and enclose no area
     """
     return polygon(np.array([p0, p1, p2], dtype=float), **kw)
 

@@ -14,6 +14,7 @@ from ...errors import GeometryError
 from ..lamina import Lamina
 from ..region import Region, Ring
 from ..solid import Extrusion, MeshSolid, Revolution
+from ..validity import check_polygon
 from .laminas import counter_clockwise, disc_region, polygon, positive_number
 
 # ------------------------------------------------------------------ solids
@@ -92,6 +93,7 @@ def pyramid(base, height: float, apex=None, **kw) -> MeshSolid:
     plumbob.errors.GeometryError: height must be a positive number, not 0
     """
     h = positive_number(height, "height")
+    check_polygon(base, label="the base")
     base = counter_clockwise(np.asarray(base, dtype=float))
     if apex is None:
         lam = polygon(base).mass_properties()

@@ -1,0 +1,274 @@
+"""Hostile 2-D outlines: spec polygons, CSV, GeoJSON, DXF and SVG files that once gave a
+silent wrong number, a traceback or a hang. Each case is written into ``tmp_path`` and
+run as a user would (``python -m plumbob``, 10 s, 1 GiB): one line and exit 2, or the
+right answer (checked against a closed form)."""
+
+from __future__ import annotations
+
+import json
+
+import ezdxf
+import pytest
+from hostile import assert_bad_input, run_limited
+
+SQUARE = "[[0, 0], [4, 0], [4, 4], [0, 4]]"
+
+
+def _spec(tmp_path, part: str) -> str:
+    path = tmp_path / "shape.toml"
+    path.write_text(f'[[part]]\nname = "plate"\n{part}\n')
+    return str(path)
+
+
+# ------------------------------------------------------------------ spec polygons
+SPEC_POLYGONS = {
+    "bow-tie": ('type = "polygon"\nvertices = [[0, 0], [2, 0], [0, 1], [2, 1]]',
+                ("part 1 (plate)", "crosses itself", "(1, 0.5)")),
+    "hole outside": (f'type = "polygon"\nvertices = {SQUARE}\n'
+                     'holes = [[[5, 5], [6, 5], [6, 6], [5, 6]]]',
+                     ("part 1 (plate)", "hole outside its outer boundary")),
+    "crossing holes": (f'type = "polygon"\nvertices = {SQUARE}\n'
+                       'holes = [[[1, 1], [2, 1], [2, 2], [1, 2]], '
+                       '[[1.5, 1.5], [3, 1.5], [3, 3], [1.5, 3]]]',
+                       ("part 1 (plate)", "hole 2 crosses or touches hole 1")),
+    "nested holes": (f'type = "polygon"\nvertices = {SQUARE}\n'
+                     'holes = [[[1, 1], [3, 1], [3, 3], [1, 3]], '
+                     '[[1.5, 1.5], [2.5, 1.5], [2.5, 2.5], [1.5, 2.5]]]',
+                     ("part 1 (plate)", "hole inside another hole")),
+    "hole across the edge": (f'type = "polygon"\nvertices = {SQUARE}\n'
+                             'holes = [[[3, 1], [5, 1], [5, 2], [3, 2]]]',
+                             ("hole 1 crosses or touches the outer boundary",)),
+    "flat hole": (f'type = "polygon"\nvertices = {SQUARE}\nholes = [[[1, 1], [2, 1], [3, 1]]]',
+                  ("hole 1 has zero area",)),
+    "twisted outline": ('type = "outline"\nvertices = [[0, 0], [2, 0], [0, 1], [2, 1]]\n'
+                        'bulges = [0.2, 0, 0, 0]', ("part 1 (plate)", "crosses itself")),
+    "bulge 1e300": ('type = "outline"\nvertices = [[0, 0], [1, 0], [1, 1]]\n'
+                    'bulges = [1e300, 0, 0]', ("part 1 (plate)", "bulge of 1e+300")),
+    "pyramid on a bow-tie": ('type = "pyramid"\nbase = [[0, 0], [2, 0], [0, 1], [2, 1]]\n'
+                             'height = 1', ("part 1 (plate)", "the base crosses itself")),
+}
+
+
+@pytest.mark.parametrize("case", list(SPEC_POLYGONS))
+def test_spec_polygon_defects_are_named(tmp_path, case):
+    part, phrases = SPEC_POLYGONS[case]
+    assert_bad_input(run_limited("mass", _spec(tmp_path, part)), *phrases)
+
+
+# ------------------------------------------------------------------ CSV
+CSV_ROWS = {
+    "units in the first row": ("0mm,0mm\n1,0\n1,1\n0,1\n", ("line 1", "'0mm,0mm'")),
+    "nan in the first row": ("nan,0\n1,0\n1,1\n0,1\n", ("line 1", "not a finite number")),
+    "inf after a header": ("x,y\n0,0\n1,inf\n0,1\n", ("line 3", "not a finite number")),
+    "three columns": ("x,y\n0,0,0\n1,0,0\n0,1,0\n", ("line 2", "not two numbers")),
+    "two points": ("0,0\n1,1\n", ("ring 1", "only 2 points")),
+}
+
+
+@pytest.mark.parametrize("case", list(CSV_ROWS))
+def test_csv_data_is_never_dropped_as_a_header(tmp_path, case):
+    text, phrases = CSV_ROWS[case]
+    path = tmp_path / "ring.csv"
+    path.write_text(text)
+    assert_bad_input(run_limited("mass", path), *phrases)
+
+
+def test_3000_identical_outlines_are_one_lamina_promptly(tmp_path):
+    path = tmp_path / "same.csv"
+    path.write_text("\n\n".join(["0,0\n2,0\n2,1\n0,1"] * 3000))
+    outcome = run_limited("mass", path, "--json")
+    assert outcome.status == 0, outcome.stderr
+    assert json.loads(outcome.stdout)["area"] == 2.0
+    assert "dropped 2999 duplicate outline(s)" in outcome.stderr
+
+
+def test_outlines_nested_3000_deep_are_refused_before_the_work(tmp_path):
+    path = tmp_path / "rings.csv"
+    path.write_text("\n\n".join(f"{-i},{-i}\n{i},{-i}\n{i},{i}\n{-i},{i}" for i in range(1, 3001)))
+    assert_bad_input(run_limited("mass", path), "pairs of outlines", "limit")
+
+
+# ------------------------------------------------------------------ GeoJSON
+GEOJSON_RINGS = {
+    "booleans": ("[[true, false], [1, 0], [1, 1], [true, false]]", ("true, not a number",)),
+    "strings": ('[["0", "0"], [1, 0], [1, 1], ["0", "0"]]', ('"0", not a number',)),
+    "null": ("[[null, 0], [1, 0], [1, 1], [0, 0]]", ("null, not a number",)),
+    "NaN": ("[[NaN, 0], [1, 0], [1, 1], [0, 0]]", ("not a finite number",)),
+    "Infinity": ("[[0, 0], [Infinity, 0], [1, 1], [0, 0]]", ("not a finite number",)),
+    "huge integer": (f"[[0, 0], [1{'0' * 400}, 0], [1, 1], [0, 0]]", ("too large",)),
+}
+
+
+@pytest.mark.parametrize("case", list(GEOJSON_RINGS))
+def test_geojson_coordinates_must_be_numbers(tmp_path, case):
+    ring, phrases = GEOJSON_RINGS[case]
+    path = tmp_path / "shape.geojson"
+    path.write_text(f'{{"type": "Polygon", "coordinates": [{ring}]}}')
+    assert_bad_input(run_limited("mass", path), *phrases)
+
+
+def test_geojson_nested_too_deep(tmp_path):
+    path = tmp_path / "deep.geojson"
+    doc = '{"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]}'
+    for _ in range(100):
+        doc = f'{{"type": "GeometryCollection", "geometries": [{doc}]}}'
+    path.write_text(doc)
+    assert_bad_input(run_limited("mass", path), "nesting depth")
+
+
+# ------------------------------------------------------------------ DXF
+def _dxf(tmp_path, build, name="d.dxf") -> str:
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 6
+    build(doc, doc.modelspace())
+    path = tmp_path / name
+    doc.saveas(path)
+    return str(path)
+
+
+def _fan_out(doc, msp):  # block k places block k-1 ten times: 10⁷ triangles from ~25 KB
+    doc.blocks.new("B0").add_lwpolyline([(0, 0), (1, 0), (1, 1)], close=True)
+    for k in range(1, 8):
+        block = doc.blocks.new(f"B{k}")
+        for i in range(10):
+            block.add_blockref(f"B{k - 1}", (i * 3**k, 0))
+    msp.add_blockref("B7", (0, 0))
+
+
+def _self_reference(doc, msp):
+    block = doc.blocks.new("A")
+    block.add_lwpolyline([(0, 0), (1, 0), (1, 1)], close=True)
+    block.add_blockref("A", (2, 0))
+    msp.add_blockref("A", (0, 0))
+
+
+def _huge_array(doc, msp):
+    doc.blocks.new("SQ").add_lwpolyline([(0, 0), (1, 0), (1, 1), (0, 1)], close=True)
+    msp.add_blockref("SQ", (0, 0)).grid(size=(30000, 30000), spacing=(2, 2))
+
+
+DXF_BLOCKS = {
+    "nested INSERT fan-out": (_fan_out, ("block copies", "limit")),
+    "block inside itself": (_self_reference, ("block 'A'", "itself")),
+    "MINSERT of 9e8 copies": (_huge_array, ("block copies 900000000", "limit")),
+}
+
+
+@pytest.mark.parametrize("case", list(DXF_BLOCKS))
+def test_dxf_block_expansion_is_counted_before_it_is_done(tmp_path, case):
+    build, phrases = DXF_BLOCKS[case]
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, build)), *phrases)
+
+
+def _patched(tmp_path, find: str, replace: str, after: str = "") -> str:
+    """A small DXF with one group's text replaced (ezdxf will not write bad numbers)."""
+    path = _dxf(tmp_path, lambda doc, msp: msp.add_lwpolyline(
+        [(0, 0, 0), (1, 0, 0), (1, 1, 0)], format="xyb", close=True), name="base.dxf")
+    text = open(path).read()
+    start = text.index(after) if after else 0
+    assert find in text[start:]
+    text = text[:start] + text[start:].replace(find, replace, 1)
+    bad = tmp_path / "bad.dxf"
+    bad.write_text(text)
+    return str(bad)
+
+
+@pytest.mark.parametrize("value, phrases", [
+    ("1e999", ("$INSUNITS", "'1e999' is not a whole number")),
+    ("99", ("$INSUNITS = 99", "no unit code")),
+])
+def test_dxf_bad_insunits(tmp_path, value, phrases):
+    path = _patched(tmp_path, "$INSUNITS\n 70\n6\n", f"$INSUNITS\n 70\n{value}\n")
+    line = assert_bad_input(run_limited("mass", path), *phrases[1:])
+    assert "line" in line or "$INSUNITS" in line
+
+
+@pytest.mark.parametrize("bulge, phrases", [
+    ("1e300", ("bulge of 1e+300",)),
+    ("1e999", ("not a finite number",)),
+    ("nan", ("not a finite number",)),
+])
+def test_dxf_absurd_bulges(tmp_path, bulge, phrases):
+    path = _patched(tmp_path, " 10\n1.0\n 20\n0.0\n", f" 10\n1.0\n 20\n0.0\n 42\n{bulge}\n",
+                    after="AcDbPolyline")
+    assert_bad_input(run_limited("mass", path), "LWPOLYLINE", *phrases)
+
+
+# ------------------------------------------------------------------ SVG
+def _svg(tmp_path, body: str, name="d.svg") -> str:
+    path = tmp_path / name
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" '
+                    f'xmlns:xlink="http://www.w3.org/1999/xlink">{body}</svg>')
+    return str(path)
+
+
+def _use_fan_out(levels: int = 10) -> str:
+    parts = ['<defs><path id="l0" d="M0 0 L1 0 L1 1 Z"/>']
+    for k in range(1, levels + 1):
+        uses = "".join(f'<use xlink:href="#l{k - 1}" x="{i}"/>' for i in range(10))
+        parts.append(f'<g id="l{k}">{uses}</g>')
+    return "".join(parts) + f'</defs><use href="#l{levels}"/>'
+
+
+def _use_chain(depth: int, top_first: bool = False) -> str:
+    """A chain of ``<use>`` ``depth`` long; ``top_first``: the outermost defined first, so a
+    walk of the document meets the whole chain at once."""
+    links = [f'<g id="l{k}"><use href="#l{k - 1}"/></g>' for k in range(1, depth + 1)]
+    links = links[::-1] if top_first else links
+    return ('<defs><path id="l0" d="M0 0 L1 0 L1 1 Z"/>' + "".join(links)
+            + f'</defs><use href="#l{depth}"/>')
+
+
+SVG_USES = {
+    "10 levels of ten <use>": (_use_fan_out(), ("<use> copies", "limit")),
+    "<use> inside what it uses": ('<g id="a"><rect width="1" height="1"/><use href="#a"/></g>',
+                                  ("'#a'", "endless loop")),
+    "<use> chain 100 deep": (_use_chain(100), ("<use> nesting depth", "limit")),
+    "<use> chain 5000 deep": (_use_chain(5000, top_first=True), ("<use> nesting depth", "limit")),
+}
+
+
+@pytest.mark.parametrize("case", list(SVG_USES))
+def test_svg_use_expansion_is_counted_before_it_is_done(tmp_path, case):
+    body, phrases = SVG_USES[case]
+    path = _svg(tmp_path, body)
+    assert len(open(path, "rb").read()) < 200_000
+    assert_bad_input(run_limited("mass", path), *phrases)
+
+
+def test_svg_entity_bomb_is_refused_by_defusedxml(tmp_path):
+    path = tmp_path / "bomb.svg"
+    path.write_text('<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaaaaaaaa">'
+                    '<!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">]>'
+                    '<svg xmlns="http://www.w3.org/2000/svg"><text>&b;</text></svg>')
+    assert_bad_input(run_limited("mass", path), "entities")
+
+
+def test_svg_t_standing_on_its_stem_rests_on_its_stem(tmp_path):
+    """SVG's y runs down the page; a T drawn with its stem at the bottom of the page stands
+    on the stem's end: support [40, 60] mm at the bottom, centre of mass 52.857 mm above it
+    (bar 80 × 20 mm centred 70 mm up, stem 20 × 60 mm centred 30 mm up)."""
+    path = tmp_path / "t.svg"
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+                    'viewBox="0 0 100 100"><path d="M 10 10 H 90 V 30 H 60 V 90 H 40 V 30 '
+                    'H 10 Z"/></svg>')
+    outcome = run_limited("check", path, "--json")
+    assert outcome.status == 0, outcome.stderr
+    result = json.loads(outcome.stdout)
+    support = sorted(x for x, _ in result["support_polygon"])
+    assert support == pytest.approx([0.040, 0.060], abs=1e-15)
+    assert [y for _, y in result["support_polygon"]] == pytest.approx([-0.090] * 2, abs=1e-15)
+    height = (1600 * 70 + 1200 * 30) / 2800 * 1e-3
+    assert result["com_height"] == pytest.approx(height, rel=1e-12)
+    assert result["verdict"] == "stands"
+
+
+def _deep_chain(doc, msp):  # 100 blocks, each placing the next once
+    doc.blocks.new("C0").add_lwpolyline([(0, 0), (1, 0), (1, 1)], close=True)
+    for k in range(1, 101):
+        doc.blocks.new(f"C{k}").add_blockref(f"C{k - 1}", (1, 0))
+    msp.add_blockref("C100", (0, 0))
+
+
+def test_dxf_blocks_nested_past_the_depth_limit(tmp_path):
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, _deep_chain)), "block nesting depth")
