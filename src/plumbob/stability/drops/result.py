@@ -35,7 +35,9 @@ def wilson_interval(hits: int, n: int, z: float = _Z) -> tuple[float, float]:
     denom = 1 + z * z / n
     centre = (p + z * z / (2 * n)) / denom
     half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return max(0.0, centre - half), min(1.0, centre + half)
+    low = 0.0 if hits == 0 else max(0.0, centre - half)  # exact at the ends, not 1e-19
+    high = 1.0 if hits == n else min(1.0, centre + half)
+    return low, high
 
 
 @dataclass(frozen=True, repr=False)
