@@ -11,6 +11,7 @@ import argparse
 from ..plot.files import add_plot_argument, write_plot
 from ._common import add_stability_arguments, clean, header, open_body, positive
 from ._common import dump_json as to_json
+from ._dynamic import add_dynamic_arguments, check_dynamic, run_dynamic
 
 __all__ = ["register", "run"]
 
@@ -36,6 +37,7 @@ def register(subparsers) -> None:
                         help="how closely curved surfaces are sampled, m (default 1e-4 of the "
                              "body's size)")
     add_plot_argument(parser)
+    add_dynamic_arguments(parser)  # --dynamic and its settings: commands/_dynamic.py
     parser.set_defaults(func=run)
 
 
@@ -45,10 +47,13 @@ def run(args) -> int:
     from ..stability.poses import resting_poses
     from ..stability.support import body_size
 
+    check_dynamic(args)  # before any work: --dynamic needs MuJoCo, its settings --dynamic
     reading, props, notes = open_body(args)
     body = reading.body
     result = resting_poses(body, g=args.g, tolerance=args.tolerance,
                            hull_tolerance=args.hull_tolerance, props=props)
+    if args.dynamic:  # Monte Carlo drops in MuJoCo, matched to these poses
+        return run_dynamic(args, reading, props, result, notes)
     notes += list(result.notes)
     if args.plot:
         write_plot(args.plot, "poses", result, body, path=args.path)

@@ -1,6 +1,7 @@
 """The exact 3D convex hull as the pose landscape sees it, and its physical faces.
 
-:func:`build_hull3` turns qhull's triangles into a :class:`Hull3`: faces merged only
+:func:`build_hull3` turns the hull's triangles (:mod:`.convex`: manifold3d's quickhull,
+qhull as fallback) into a :class:`Hull3`: faces merged only
 where *exactly* coplanar (to rounding error), with a directed edge list that says,
 for every edge, which face lies on each side — the Gauss map's arcs, on which the
 rolling and the basin tracing run. :func:`physical_faces` groups those exact faces
@@ -19,6 +20,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.topology import connected_components
+from .convex import half_edge_twins, hull_ring2, hull_triangles
 from .vectors import cross, dot, unit
 
 __all__ = ["Hull3", "build_hull3", "physical_faces", "group_margin3", "shifted"]
@@ -30,7 +33,7 @@ class Hull3:
 
     X: (n, 3) hull points (only those with out-edges are vertices).
     normals, heights, areas: per face (F, 3), (F,), (F,): outward unit normal, h(normal)
-        and area. Faces are exactly coplanar groups of qhull's triangles.
+        and area. Faces are exactly coplanar groups of the hull's triangles.
     ea, eb, ef, eg: (E,) directed edges a → b with face ef on the left (counter-clockwise
         about its normal) and eg on the right. Sorted by ``ea``.
     start, degree: per point, its out-edges are ``start .. start + degree``.
@@ -82,11 +85,11 @@ def _split_bent(comp: np.ndarray, nfaces: int, corners: np.ndarray, owner: np.nd
 
 
 def build_hull3(X: np.ndarray, eps: float) -> Hull3:
-    """The hull of ``X`` (n, 3), m, relative to the centre of mass, with qhull's triangles
+    """The hull of ``X`` (n, 3), m, relative to the centre of mass, with the hull's triangles
     merged into faces where coplanar within ``eps`` (m; meant as round-off, so that the
     faces are exact).
 
-    Raises GeometryError when the points span no volume or qhull's answer is not a
+    Raises GeometryError when the points span no volume or the hull is not a
     closed surface of simple polygons.
 
     >>> cube = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
@@ -94,38 +97,22 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     >>> len(h.normals), len(h.ea), h.heights.tolist()
     (6, 24, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import ConvexHull, QhullError
-
-    try:
-        hull = ConvexHull(X)
-    except QhullError as exc:
-        raise GeometryError("the body is flat or degenerate: its points span no volume, so "
-                            "it has no resting poses as a solid") from exc
-    tri = hull.simplices.astype(np.int64).copy()
-    eq = hull.equations
-    tn = eq[:, :3] / np.linalg.norm(eq[:, :3], axis=1)[:, None]
-    toff = -eq[:, 3] / np.linalg.norm(eq[:, :3], axis=1)
+    X, tri, tn, toff = hull_triangles(X, eps)  # manifold3d, or qhull as fallback
     cr = cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]])
-    flip = dot(cr, tn) < 0
-    tri[flip] = tri[flip][:, [0, 2, 1]]
     area = 0.5 * np.linalg.norm(cr, axis=1)
     m = len(tri)
 
-    # --- half-edges: a → b of triangle t, its twin found through qhull's neighbours
-    nb = hull.neighbors.astype(np.int64)
-    nb[flip] = nb[flip][:, [0, 2, 1]]  # neighbour k is opposite vertex k
+    # --- half-edges: a → b of triangle t (numbered 3 t + k), each with its reversed twin
     n = len(X)
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
-    across = nb[:, [2, 0, 1]].ravel()  # the triangle beyond half-edge k (opposite k + 2)
-    twin = 3 * across + np.argmax(tri[across] == to[:, None], axis=1)
-    if not np.array_equal(frm[twin], to) or not np.array_equal(to[twin], frm):
-        raise GeometryError("the convex hull is not a closed surface (qhull failure)")
+    twin = half_edge_twins(tri, n)
+    if twin is None:
+        raise GeometryError("the convex hull is not a closed surface (hull failure)")
+    across = twin // 3  # the triangle beyond each half-edge
     tri_of = np.repeat(np.arange(m), 3)
 
-    # --- exactly coplanar neighbours (qhull's own triangulated facets) make one face
+    # --- exactly coplanar neighbours (the hull's triangulated facets) make one face
     i, j = tri_of, across
     pair = i < j
     i, j = i[pair], j[pair]
@@ -144,8 +131,8 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
         und = np.minimum(np.arange(len(ea)), etwin)
         heights = np.max(dot(X[tri], tn[:, None, :]), axis=1)
         return Hull3(X, tn, heights, area, ea, eb, ef, eg, start, degree, etwin, und)
-    graph = coo_matrix((np.ones(int(same.sum())), (i[same], j[same])), shape=(m, m))
-    nfaces, comp = connected_components(graph, directed=False)
+    comp = connected_components(m, i[same], j[same])
+    nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
     comp, bent, nfaces = _split_bent(comp, nfaces, tri.ravel(), tri_of, X, normals, eps)
     if bent.any():
@@ -192,9 +179,6 @@ def physical_faces(h: Hull3, tol: float) -> tuple[np.ndarray, np.ndarray, np.nda
 
     Returns the group of each face, and per group its unit normal and height h(normal).
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     nF = len(h.normals)
     # a face's extent bounds how far its corners stray from a neighbour's plane
     ext = np.zeros(nF)
@@ -207,8 +191,8 @@ def physical_faces(h: Hull3, tol: float) -> tuple[np.ndarray, np.ndarray, np.nda
     same = (cos > 0) & (sin * np.maximum(ext[f], ext[g]) <= tol)
     if not same.any():
         return np.arange(nF), h.normals, h.heights
-    graph = coo_matrix((np.ones(int(same.sum())), (f[same], g[same])), shape=(nF, nF))
-    ngroups, group = connected_components(graph, directed=False)
+    group = connected_components(nF, f[same], g[same])
+    ngroups = int(group.max()) + 1
     normals = _weighted_normals(group, ngroups, h.normals, h.areas)
     group, bent, ngroups = _split_bent(group, ngroups, h.ea, h.ef, h.X, normals, tol)
     if bent.any():
@@ -222,15 +206,12 @@ def group_margin3(pts: np.ndarray, normal: np.ndarray) -> tuple[float, np.ndarra
     """Signed distance from the foot of the centre (the origin) to the boundary of the
     physical face with corners ``pts`` (k, 3) (positive inside), m, and its corners
     counter-clockwise about ``normal``."""
-    from scipy.spatial import ConvexHull, QhullError
-
     seed = np.array([1.0, 0.0, 0.0]) if abs(normal[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     e1 = unit(seed - (seed @ normal) * normal)
     e2 = cross(normal, e1)
     q = np.stack((pts @ e1, pts @ e2), axis=1)  # the foot h·normal is at the origin
-    try:
-        ring = ConvexHull(q).vertices
-    except QhullError:
+    ring = hull_ring2(q)
+    if ring is None:
         return 0.0, pts
     v = q[ring]
     d = np.roll(v, -1, axis=0) - v

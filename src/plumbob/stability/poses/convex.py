@@ -1,0 +1,179 @@
+"""Convex hulls for the pose code, chosen by measurement: manifold3d first, qhull as fallback.
+
+Measured on this project's 2-core machine (``bench/poses.py``): on a 100 000-triangle
+box-with-cylinder stored as float32, manifold3d's quickhull (``Manifold.hull_points``)
+takes 15–50 ms where scipy's qhull takes 0.2 s to 30 s (qhull slows badly on the many
+nearly co-circular points of a finely tessellated circle), and manifold3d imports in
+~7 ms where ``scipy.spatial`` takes 250–600 ms — which alone would be most of the
+start-up of ``plumbob poses``. So :func:`hull_triangles` asks manifold3d, checks its
+answer (a closed surface of non-degenerate triangles, every edge convex to rounding
+error) and falls back to qhull only when that check fails.
+
+manifold3d returns the hull's vertices as exact copies of input points
+(``to_mesh64``), so the facet planes are planes through input points, as qhull's are.
+Its quickhull leaves out points within its own epsilon (about 1e-7 of the size) of a
+facet, an order of magnitude below the contact tolerance (1e-6 of the size) at which
+faces are merged, so no pose can change.
+
+:func:`hull_ring2` is the planar hull the margin of a face needs, vectorised quickhull
+in numpy (no scipy import for it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...errors import GeometryError
+from .vectors import cross, dot
+
+__all__ = ["hull_triangles", "half_edge_twins", "hull_ring2"]
+
+
+def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
+    """For the half-edges ``tri[t, k] → tri[t, (k + 1) % 3]`` (numbered ``3 t + k``), the
+    reversed half-edge of each; None when the triangles are not a closed surface (an
+    edge without exactly one reversed partner)."""
+    frm = tri.ravel()
+    to = tri[:, [1, 2, 0]].ravel()
+    key = frm * n + to
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    if len(skey) > 1 and np.any(skey[1:] == skey[:-1]):
+        return None  # an edge used twice in one direction: not a 2-manifold
+    pos = np.minimum(np.searchsorted(skey, to * n + frm), len(skey) - 1)
+    twin = order[pos]
+    if not np.array_equal(key[twin], to * n + frm):
+        return None
+    return twin
+
+
+def _planes(P: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Unit normals, offsets (the plane n·x = offset) and the raw cross products."""
+    cr = cross(P[tri[:, 1]] - P[tri[:, 0]], P[tri[:, 2]] - P[tri[:, 0]])
+    norm = np.linalg.norm(cr, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tn = cr / norm[:, None]
+    off = dot(P[tri].mean(axis=1), tn)
+    return tn, off, cr
+
+
+def _manifold_hull(X: np.ndarray, eps: float):
+    """manifold3d's hull as (points, outward triangles, normals, offsets), or None when
+    its answer fails the checks (then qhull decides)."""
+    import manifold3d
+
+    mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
+    P = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
+    if len(tri) < 4 or len(P) < 4:
+        return None
+    tn, off, _ = _planes(P, tri)
+    if not np.all(np.isfinite(tn)):
+        return None  # a degenerate triangle has no plane
+    twin = half_edge_twins(tri, len(P))
+    if twin is None:
+        return None
+    # every edge convex: the far corner of the triangle across it lies under this one's plane
+    across = twin // 3
+    far = tri[across, (twin + 2) % 3]
+    if np.max(dot(P[far], tn[np.repeat(np.arange(len(tri)), 3)]) - np.repeat(off, 3)) > eps:
+        return None
+    return P, tri, tn, off
+
+
+def _qhull(X: np.ndarray):
+    """scipy's qhull: (points, outward triangles, normals, offsets)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(X)
+    except QhullError as exc:
+        raise GeometryError("the body is flat or degenerate: its points span no volume, so "
+                            "it has no resting poses as a solid") from exc
+    tri = hull.simplices.astype(np.int64).copy()
+    eq = hull.equations
+    scale = np.linalg.norm(eq[:, :3], axis=1)
+    tn = eq[:, :3] / scale[:, None]
+    off = -eq[:, 3] / scale
+    flip = dot(cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]]), tn) < 0
+    tri[flip] = tri[flip][:, [0, 2, 1]]
+    return X, tri, tn, off
+
+
+def hull_triangles(X: np.ndarray, eps: float
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The convex hull of ``X`` (n, 3) as triangles.
+
+    Returns ``(P, tri, normals, offsets)``: points (m, 3) that ``tri`` (F, 3) indexes,
+    wound counter-clockwise seen from outside, and each triangle's outward unit normal
+    and plane offset (n·x = offset). ``eps`` (m) is the rounding error within which an
+    edge may look concave.
+
+    Raises GeometryError when the points span no volume.
+
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    >>> P, tri, normals, offsets = hull_triangles(cube, 1e-12)
+    >>> len(tri), sorted(set(np.round(offsets, 12).tolist()))
+    (12, [0.0, 1.0])
+    """
+    found = _manifold_hull(X, eps)
+    return found if found is not None else _qhull(X)
+
+
+def hull_ring2(q: np.ndarray) -> np.ndarray | None:
+    """Indices of the corners of the planar convex hull of ``q`` (k, 2), counter-clockwise
+    from the lowest-leftmost; None when the points span no area. Points on an edge are
+    not corners.
+
+    Quickhull, one round for all segments at once: each round adds to every segment
+    the candidate farthest outside it and drops the candidates inside the new triangle.
+
+    >>> hull_ring2(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 0.5], [0.5, 0]])).tolist()
+    [0, 1, 2, 3]
+    """
+    q = np.asarray(q, dtype=float)
+    if len(q) < 3:
+        return None
+    order = np.lexsort((q[:, 1], q[:, 0]))
+    lo, hi = int(order[0]), int(order[-1])
+
+    def outside(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """How far p lies right of a → b (outside a counter-clockwise ring), times |b − a|."""
+        d, r = q[b] - q[a], q[p] - q[a]
+        return d[:, 1] * r[:, 0] - d[:, 0] * r[:, 1]
+
+    cand = np.arange(len(q))
+    below = outside(np.full(len(q), lo), np.full(len(q), hi), cand)
+    if not (below > 0).any() and not (below < 0).any():
+        return None  # collinear
+    corners = [np.array([lo, hi])]
+    # candidates and the segment (a → b) each lies outside of
+    side = below > 0
+    pa = np.where(side, lo, hi)
+    pb = np.where(side, hi, lo)
+    keep = below != 0
+    cand, pa, pb = cand[keep], pa[keep], pb[keep]
+    n = len(q)
+    while len(cand):
+        dist = outside(pa, pb, cand)
+        seg = pa * n + pb
+        by = np.lexsort((-dist, seg))
+        first = np.ones(len(by), dtype=bool)
+        first[1:] = seg[by][1:] != seg[by][:-1]
+        apex_seg, apex = seg[by][first], cand[by][first]
+        corners.append(apex)
+        f = apex[np.searchsorted(apex_seg, seg)]
+        left = outside(pa, f, cand)
+        right = outside(f, pb, cand)
+        go_left, go_right = left > 0, (right > 0) & ~(left > 0)
+        live = (go_left | go_right) & (cand != f)
+        pa = np.where(go_left, pa, f)[live]
+        pb = np.where(go_left, f, pb)[live]
+        cand = cand[live]
+    ring = np.unique(np.concatenate(corners))
+    rel = outside(np.full(len(ring), lo), np.full(len(ring), hi), ring)
+    lower = ring[(rel >= 0) & (ring != hi)]  # lo … before hi, by x then y
+    upper = ring[(rel < 0) | (ring == hi)]  # hi … before lo, by −x then −y
+    lower = lower[np.lexsort((q[lower, 1], q[lower, 0]))]
+    upper = upper[np.lexsort((-q[upper, 1], -q[upper, 0]))]
+    return np.concatenate((lower, upper))
