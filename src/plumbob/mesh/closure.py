@@ -35,7 +35,7 @@ from .weld import point_keys
 
 __all__ = ["CLOSURE_TOLERANCE", "ZERO_VOLUME", "Holes", "SurfaceSummary", "edges_pair", "holes",
            "join_at_slits",
-           "is_closed", "open_message", "require_closed", "surface_summary"]
+           "is_closed", "open_message", "require_closed", "require_sums_close", "surface_summary"]
 
 #: |vector area| / area above which a surface is open
 CLOSURE_TOLERANCE = 1e-9
@@ -239,6 +239,25 @@ def open_message(found: Holes, *, prefix: str = "", scale: float = 1.0) -> str:
     return (f"{prefix}the mesh is open: {found.edges} boundary edges ({found.loops} "
             f"hole{'s' if found.loops > 1 else ''}), e.g. near {fmt_point(found.where / scale)}; "
             "close it in a mesh editor or pass --repair")
+
+
+def require_sums_close(vector_area: np.ndarray, area: float) -> None:
+    """Raise a :class:`GeometryError` unless faces of vector area ``vector_area`` (3,) m² and
+    area ``area`` m² cancel (:func:`is_closed`): the rule summed, for a caller that has only
+    the sums (a field integrated over a mesh's faces). Any volume of an open surface would
+    depend on the origin.
+
+    >>> require_sums_close(np.zeros(3), 6.0)
+    >>> require_sums_close(np.array([0.0, 0.0, 1.0]), 6.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: the mesh is not closed (...): repair it or pass --repair
+    """
+    if not np.all(np.isfinite(vector_area)):
+        raise GeometryError("the mesh has a coordinate that is not a finite number")
+    if not is_closed(vector_area, area):
+        raise GeometryError("the mesh is not closed (its faces do not enclose a volume, so any "
+                            "volume would depend on the origin): repair it or pass --repair")
 
 
 def require_closed(triangles: np.ndarray, *, summary: SurfaceSummary | None = None) -> None:
