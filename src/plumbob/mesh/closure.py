@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GeometryError, fmt_point
-from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
+from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..tolerances import weld_tolerance
 from .graph import connected_components
 from .topology import Topology, mesh_topology
@@ -39,6 +39,8 @@ __all__ = ["CLOSURE_TOLERANCE", "ZERO_VOLUME", "Holes", "SurfaceSummary", "edges
 
 #: |vector area| / area above which a surface is open
 CLOSURE_TOLERANCE = 1e-9
+#: triangles per pass of :func:`edges_pair`
+PAIR_CHUNK = 1 << 14
 #: volume below this share of area^1.5 counts as none
 ZERO_VOLUME = 1e-9
 
@@ -139,14 +141,18 @@ def edges_pair(triangles: np.ndarray) -> bool:
     (True, False, False)
     """
     total = np.uint64(0)
-    salt = np.uint64(0x9E3779B97F4A7C15)
     with np.errstate(over="ignore"):
-        for start in range(0, len(triangles), CHUNK):  # bounded temporaries
-            h = point_keys(triangles[start:start + CHUNK]).reshape(-1, 3)
-            g = h ^ salt
-            g = (g ^ (g >> np.uint64(31))) * np.uint64(0xD6E8FEB86659FD93)
-            nxt = [1, 2, 0]
-            total += (h * g[:, nxt] - h[:, nxt] * g).sum(dtype=np.uint64)
+        for start in range(0, len(triangles), PAIR_CHUNK):  # bounded temporaries
+            h = point_keys(triangles[start:start + PAIR_CHUNK]).reshape(-1, 3)
+            g = h * np.uint64(0xD6E8FEB86659FD93)
+            g ^= g >> np.uint64(29)
+            s = h[:, 0] * g[:, 1]  # the three edges 0→1, 1→2, 2→0, each minus its reverse
+            s -= h[:, 1] * g[:, 0]
+            s += h[:, 1] * g[:, 2]
+            s -= h[:, 2] * g[:, 1]
+            s += h[:, 2] * g[:, 0]
+            s -= h[:, 0] * g[:, 2]
+            total += s.sum(dtype=np.uint64)
     return bool(total == 0)
 
 
