@@ -515,7 +515,7 @@ def test_particles_take_no_field():
 
 def test_open_mesh_is_refused():
     tris = prim.box(1, 1, 1).triangles[:-1]
-    with pytest.raises(GeometryError, match="not closed"):
+    with pytest.raises(GeometryError, match="is open"):
         with_density_field(MeshSolid(tris), F("1 + x")).mass_properties()
 
 

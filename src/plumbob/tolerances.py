@@ -7,12 +7,19 @@ wins over these defaults.
 
 from __future__ import annotations
 
-__all__ = ["CONTACT", "HULL_SAMPLING", "TEXT_ROUND_OFF", "contact_tolerance", "sampling_tolerance"]
+__all__ = ["CONTACT", "HULL_SAMPLING", "TEXT_ROUND_OFF", "WELD", "contact_tolerance",
+           "sampling_tolerance", "weld_tolerance"]
 
 #: Points within this fraction of the body's size of the lowest level touch the
 #: ground, and faces coplanar within it are one face: far above float64 round-off
 #: on coordinates, far below anything a maker can build.
 CONTACT = 1e-6
+
+#: Mesh vertices on unshared edges closer than this fraction of the mesh's size are one
+#: vertex (welded). CAD exporters write copies of a vertex that differ by round-off
+#: (1e-17 of the size in SolidWorks STL files; a float32 ulp is 6e-8 of a coordinate);
+#: real features of trimesh's test models are 2e-4 of the size apart or more.
+WELD = 1e-7
 
 #: Curved surfaces are sampled so no point of the body lies further than this
 #: fraction of its size outside the samples' hull.
@@ -40,3 +47,13 @@ def sampling_tolerance(size: float, tolerance: float | None = None) -> float:
     0.0002
     """
     return HULL_SAMPLING * size if tolerance is None else float(tolerance)
+
+
+def weld_tolerance(size: float, tolerance: float | None = None) -> float:
+    """The distance, m, within which mesh vertices are welded: ``tolerance`` if given,
+    else :data:`WELD` of ``size`` (m).
+
+    >>> weld_tolerance(2.0)
+    2e-07
+    """
+    return WELD * size if tolerance is None else float(tolerance)

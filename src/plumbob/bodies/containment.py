@@ -6,20 +6,19 @@ Every test takes a ``tolerance`` (m): a positive one grows the body by that much
 negative one shrinks it (a point must lie that far inside), so a composite can
 keep its holes' rims while removing their insides.
 
-One solid-angle formula serves the mesh tests (:func:`plumbob.mesh.solid_angle`, Van
-Oosterom and Strackee's): the winding number of a closed surface about a point
-is the sum of its triangles' signed solid angles over 4π.
+The mesh test asks :func:`plumbob.mesh.winding_numbers` (the one copy of Van
+Oosterom and Strackee's solid angle): the winding number of a closed surface
+about a point is the sum of its triangles' signed solid angles over 4π.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..mesh.winding import solid_angle
+from ..mesh.winding import winding_numbers
 from .region import Region
 
-__all__ = ["mesh_contains", "region_contains", "triangle_distances",
-           "winding_numbers"]
+__all__ = ["mesh_contains", "region_contains", "triangle_distances"]
 
 _PAIRS = 1 << 16  # (point, triangle) pairs per pass: temporaries of a few MB
 
@@ -66,38 +65,6 @@ def region_contains(region: Region, points: np.ndarray, tolerance: float) -> np.
 def _chunk(points: int) -> int:
     """Triangles per pass over ``points`` points: about ``_PAIRS`` pairs."""
     return max(1, _PAIRS // max(points, 1))
-
-
-def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Generalised winding numbers of a triangle mesh about points.
-
-    1 inside a closed outward-wound mesh, 0 outside, ½ on a face; fractional
-    near holes of an open one.
-
-    Parameters
-    ----------
-    triangles : ndarray, shape (n, 3, 3)
-        The mesh, m (any float dtype).
-    points : ndarray, shape (m, 3)
-        m.
-
-    Returns
-    -------
-    ndarray, shape (m,)
-
-    Examples
-    --------
-    >>> from plumbob.bodies.primitives import box
-    >>> winding_numbers(box(1, 1, 1).triangles, np.array([[0.5, 0.5, 0.5], [2.0, 0.5, 0.5]])).round(12)
-    array([1., 0.])
-    """
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
-    total = np.zeros(len(points))
-    step = _chunk(len(points))
-    for start in range(0, len(triangles), step):
-        t = triangles[start:start + step].astype(float)[None] - points[:, None, None, :]
-        total += solid_angle(t[:, :, 0], t[:, :, 1], t[:, :, 2]).sum(axis=1)
-    return total / (4 * np.pi)
 
 
 def _segment_distances(v: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -181,7 +148,7 @@ def mesh_contains(triangles: np.ndarray, points: np.ndarray, tolerance: float) -
     [True, False, False]
     """
     points = np.asarray(points, dtype=float).reshape(-1, 3)
-    inside = winding_numbers(triangles, points) > 0.5
+    inside = winding_numbers(points, triangles)[:, 0] > 0.5
     tolerance = float(tolerance)
     if tolerance > 0 and not inside.all():
         near = ~inside

@@ -35,10 +35,10 @@ from ..errors import DensityError, GeometryError
 from ..integrals.adaptive import MAX_EVALUATIONS, FieldIntegral, integrate_field
 from ..integrals.mesh import mesh_field_moments
 from ..massprops import MassProperties
+from ..mesh.closure import require_sums_close
 from .base import Body, DensityCells, Grader
 from .density_field import FIELD_DENSITY, DensityField
 from .lamina import second_moments_to_inertia
-from .solid import require_closed
 
 __all__ = ["GradedBody", "GradedLamina", "GradedSolid", "with_density_field"]
 
@@ -199,7 +199,7 @@ class GradedBody(Body):
     def _mesh_integral(self, cells: DensityCells) -> FieldIntegral:
         """The fast exact path for a polynomial field over a closed mesh (one pass)."""
         result = mesh_field_moments(cells.triangles, self.field, cells.origin, self.field.degree)
-        require_closed(result.vector_area, result.surface_area)
+        require_sums_close(result.vector_area, result.surface_area)
         if result.corner_values is not None and len(result.corner_values):
             self._fail(result.corner_points[0], result.corner_values[0], "")
         self._check_samples(result)

@@ -33,7 +33,7 @@ def mesh_solid(triangles: np.ndarray, *, path: str | None = None, name: str | No
         raise type(error)(error.message, path=path) from None
     notices = check_extent(checked.surface.lo, checked.surface.hi, path=path) if extent else ()
     try:
-        body = MeshSolid(checked.triangles, name=name, moments=checked.moments)
+        body = MeshSolid(checked.triangles, name=name, moments=checked.moments, checked=True)
     except PlumbobError as error:
         raise GeometryError(error.message, path=path) from None
     return body, notices + checked.notices

@@ -16,9 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import GeometryError, fmt_point
+from ..errors import GeometryError
 from ..integrals.mesh import VolumeMoments
-from .closure import SurfaceSummary, surface_summary
+from ..tolerances import WELD, weld_tolerance
+from .closure import SurfaceSummary, edges_pair, holes, join_at_slits, open_message, surface_summary
 from .repair import fill_holes
 from .shells import resolve_shells
 from .topology import mesh_topology
@@ -100,7 +101,7 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     if not summary.area > 0:
         raise GeometryError(f"{prefix}all {n} triangles have zero area: there is no surface")
     notices: list[str] = []
-    full = repair or not summary.closed or n <= FULL_CHECK_LIMIT
+    full = repair or n <= FULL_CHECK_LIMIT or not (summary.closed and edges_pair(triangles))
     if not full:
         if summary.flat:
             raise GeometryError(f"{prefix}encloses no volume: the surface is flat or its faces "
@@ -113,7 +114,13 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
                        f"{FULL_CHECK_LIMIT}; --repair checks)")
         return CheckedSolid(triangles, tuple(notices), moments, summary)
 
-    topo = mesh_topology(triangles)
+    size = float(np.linalg.norm(summary.hi - summary.lo))
+    weld = weld_tolerance(size)
+    topo = mesh_topology(triangles, weld)
+    if topo.welded:
+        notices.append(f"{prefix}weld: merged {topo.welded} vertices with a copy up to "
+                       f"{topo.weld_distance:.2g} m away that was not identical (round-off in "
+                       f"the exporter; tolerance {weld:.2g} m, {WELD:g} of the size)")
     if not topo.orientable:
         raise GeometryError(f"{prefix}cannot be wound consistently (it is non-orientable, like a "
                             "Möbius strip): it bounds no solid")
@@ -122,31 +129,27 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     if flipped:
         notices.append(f"{prefix}winding: {flipped} of {n} triangles were wound against their "
                        "neighbours; turned to match")
-    vertices, shell = topo.vertices, topo.shell
-    closed_after = summary.closed if not flipped else surface_summary(vertices[faces]).closed
+    vertices, shell, shells = topo.vertices, topo.shell, topo.shells
+    found = holes(topo, summary.area)
     changed = bool(flipped)
-    if len(topo.boundary) and not closed_after:
+    if found.loops:
         if not repair:
-            holes = int(topo.boundary_loops().max()) + 1
-            near = vertices[topo.boundary[0]].mean(axis=0)
-            raise GeometryError(
-                f"{prefix}the mesh is open: {len(topo.boundary)} boundary edges "
-                f"({holes} hole{'s' if holes > 1 else ''}), e.g. near {fmt_point(near / scale)}; "
-                "close it in a mesh editor or pass --repair")
+            raise GeometryError(open_message(found, prefix=prefix, scale=scale))
         vertices, faces, shell, notice = fill_holes(topo, faces, shell, summary.area,
                                                     label=prefix, scale=scale)
         notices.append(notice)
         changed = True
-    elif len(topo.boundary):
-        notices.append(f"{prefix}{len(topo.boundary)} edges are not shared by two triangles "
-                       "(T-junctions?), but the surface still closes")
-    elif not closed_after:
-        raise GeometryError(f"{prefix}the mesh is not closed although every edge is shared: "
-                            "its faces do not enclose a volume")
+    elif not (summary.closed if not flipped else surface_summary(vertices[faces]).closed):
+        raise GeometryError(f"{prefix}the mesh is not closed although no loop of its edges is "
+                            "open: its faces do not enclose a volume")
+    elif found.slits:
+        notices.append(f"{prefix}{found.slits} edges end at T-junctions (a vertex on another "
+                       "triangle's edge); the surface still closes")
+        shell, shells = join_at_slits(topo, found)
     if topo.nonmanifold:
         notices.append(f"{prefix}{topo.nonmanifold} edges are shared by more than two triangles")
     before = faces
-    faces, shell, united, more = resolve_shells(vertices, faces, shell, topo.shells, label=prefix)
+    faces, shell, united, more = resolve_shells(vertices, faces, shell, shells, label=prefix)
     notices.extend(more)
     if united is not None:
         return CheckedSolid(united, tuple(notices), None, summary)

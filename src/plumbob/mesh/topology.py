@@ -11,52 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .weld import merge_vertices
+from .graph import connected_components
+from .weld import merge_vertices, weld_near
 
 __all__ = ["connected_components", "Topology", "mesh_topology"]
-
-
-def connected_components(n: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Component labels of a graph on nodes ``0..n-1`` with edges ``u[i]–v[i]``.
-
-    Vectorised hooking and pointer jumping: as fast as scipy's, without scipy.
-
-    Parameters
-    ----------
-    n : int
-        Number of nodes.
-    u, v : (e,) array_like of int
-        The edges' ends.
-
-    Returns
-    -------
-    (n,) int ndarray
-        Label ``0..k-1`` of each node's component, numbered in the order of
-        each component's smallest node.
-
-    Examples
-    --------
-    >>> connected_components(5, [0, 3], [1, 4]).tolist()
-    [0, 0, 1, 2, 2]
-    >>> connected_components(3, [], []).tolist()  # no edges: every node alone
-    [0, 1, 2]
-    """
-    parent = np.arange(n)
-    u = np.asarray(u, dtype=np.int64)
-    v = np.asarray(v, dtype=np.int64)
-    while len(u):
-        pu, pv = parent[u], parent[v]
-        live = pu != pv
-        if not live.any():
-            break
-        u, v, pu, pv = u[live], v[live], pu[live], pv[live]
-        np.minimum.at(parent, np.maximum(pu, pv), np.minimum(pu, pv))
-        while True:  # point every node at its root
-            grand = parent[parent]
-            if np.array_equal(grand, parent):
-                break
-            parent = grand
-    return np.unique(parent, return_inverse=True)[1].reshape(-1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +29,8 @@ class Topology:
         turned faces, each paired with the face it belongs to in ``boundary_face``.
     nonmanifold: edges shared by more than two faces.
     orientable: False when a shell cannot be wound consistently (a Möbius strip).
+    welded: vertices merged with a nearby one that was not an exact copy;
+        weld_distance: the largest distance such a vertex moved, m.
     """
 
     vertices: np.ndarray
@@ -82,6 +42,8 @@ class Topology:
     boundary_face: np.ndarray
     nonmanifold: int
     orientable: bool
+    welded: int = 0
+    weld_distance: float = 0.0
 
     @property
     def oriented_faces(self) -> np.ndarray:
@@ -97,13 +59,16 @@ class Topology:
         return np.unique(loop_of_vertex[edges[:, 0]], return_inverse=True)[1].reshape(-1)
 
 
-def mesh_topology(triangles: np.ndarray) -> Topology:
+def mesh_topology(triangles: np.ndarray, tolerance: float = 0.0) -> Topology:
     """Merge vertices, pair edges, make winding consistent and find shells and boundary edges.
 
     Parameters
     ----------
     triangles : (n, 3, 3) ndarray
         A triangle soup, any float dtype.
+    tolerance : float
+        m; vertices on unshared edges closer than this are welded (copies an exporter
+        wrote with different round-off). 0: only exact copies merge.
 
     Returns
     -------
@@ -126,18 +91,14 @@ def mesh_topology(triangles: np.ndarray) -> Topology:
     n = len(triangles)
     vertices, index = merge_vertices(triangles.reshape(-1, 3))
     faces = index.reshape(n, 3).astype(np.int64)
-    nv = len(vertices)
-    half = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    owner = np.repeat(np.arange(n), 3)
-    proper = half[:, 0] != half[:, 1]
-    half, owner = half[proper], owner[proper]
-    lo = np.minimum(half[:, 0], half[:, 1])
-    hi = np.maximum(half[:, 0], half[:, 1])
-    key = lo * nv + hi
-    order = np.argsort(key, kind="stable")
-    skey = key[order]
-    starts = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])
-    counts = np.diff(np.r_[starts, len(skey)])
+    welded, moved = 0, 0.0
+    pairing = _pair_edges(faces, len(vertices))
+    if tolerance > 0 and len(pairing.single):
+        faces, welded, moved = _weld_boundary(vertices, faces, pairing, tolerance)
+        if welded:
+            pairing = _pair_edges(faces, len(vertices))
+    half, owner, order, skey, starts, counts = (pairing.half, pairing.owner, pairing.order,
+                                                pairing.skey, pairing.starts, pairing.counts)
     pairs = starts[counts == 2]
     h1, h2 = order[pairs], order[pairs + 1]
     f1, f2 = owner[h1], owner[h2]
@@ -154,11 +115,73 @@ def mesh_topology(triangles: np.ndarray) -> Topology:
     # Shells: faces joined through any shared edge (also where more than two meet, as
     # when two cubes share a face), so a shell is a closed surface on its own.
     same_edge = np.flatnonzero(skey[1:] == skey[:-1])
-    shell = connected_components(n, owner[order[same_edge]], owner[order[same_edge + 1]])
-    single = order[starts[counts == 1]]
+    u, v = owner[order[same_edge]], owner[order[same_edge + 1]]
+    if len(owner) < 3 * n:  # faces without area join a face at one of their corners
+        at = np.full(len(vertices), -1)
+        at[faces[owner[::3]]] = owner[::3, None]
+        degenerate = np.setdiff1d(np.arange(n), owner[::3])
+        host = at[faces[degenerate]].max(axis=1)
+        u, v = np.r_[u, degenerate[host >= 0]], np.r_[v, host[host >= 0]]
+    shell = connected_components(n, u, v)
+    single = pairing.single
     boundary = half[single]
     boundary_face = owner[single]
     turned = flip[boundary_face]
     boundary[turned] = boundary[turned][:, ::-1]
     return Topology(vertices, faces, flip, shell, int(shell.max()) + 1 if n else 0,
-                    boundary, boundary_face, int(np.count_nonzero(counts > 2)), orientable)
+                    boundary, boundary_face, int(np.count_nonzero(counts > 2)), orientable,
+                    welded, moved)
+
+
+@dataclass(frozen=True, eq=False)
+class _Pairing:
+    """Half-edges (h, 2) of the non-degenerate faces, their faces, and their sort by edge."""
+
+    half: np.ndarray
+    owner: np.ndarray
+    order: np.ndarray
+    skey: np.ndarray
+    starts: np.ndarray
+    counts: np.ndarray
+
+    @property
+    def single(self) -> np.ndarray:
+        """Half-edges no other face shares: the boundary."""
+        return self.order[self.starts[self.counts == 1]]
+
+
+def _pair_edges(faces: np.ndarray, nv: int) -> _Pairing:
+    """Sort the half-edges by their undirected edge. Faces with a repeated vertex (no area)
+    share no edge: they would otherwise pair with themselves."""
+    n = len(faces)
+    proper = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & \
+        (faces[:, 2] != faces[:, 0])
+    half = faces[proper][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    owner = np.repeat(np.arange(n)[proper], 3)
+    key = np.minimum(half[:, 0], half[:, 1]) * nv + np.maximum(half[:, 0], half[:, 1])
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    starts = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]]) if len(skey) else \
+        np.zeros(0, dtype=np.int64)
+    counts = np.diff(np.r_[starts, len(skey)])
+    return _Pairing(half, owner, order, skey, starts, counts)
+
+
+def _weld_boundary(vertices: np.ndarray, faces: np.ndarray, pairing: _Pairing,
+                   tolerance: float) -> tuple[np.ndarray, int, float]:
+    """Faces with the boundary vertices closer than ``tolerance`` welded; how many
+    vertices were merged, and the largest distance one moved (m).
+
+    Only vertices on unshared edges can be copies that failed to merge (every edge
+    at a copy is unshared), so only they are compared: a handful, not the mesh."""
+    ends = np.unique(pairing.half[pairing.single].ravel())
+    group = weld_near(vertices[ends], tolerance)
+    _, first = np.unique(group, return_index=True)
+    target = ends[first[group]]
+    moved = target != ends
+    if not moved.any():
+        return faces, 0, 0.0
+    remap = np.arange(len(vertices))
+    remap[ends] = target
+    distance = float(np.linalg.norm(vertices[ends[moved]] - vertices[target[moved]], axis=1).max())
+    return remap[faces], int(moved.sum()), distance

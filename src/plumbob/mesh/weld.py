@@ -1,16 +1,28 @@
-"""Welding a triangle soup: exact copies of a point become one vertex.
+"""Welding a triangle soup: copies of a point become one vertex.
 
 A soup (STL, a scene's meshes) repeats each vertex once per triangle that uses
-it; topology needs shared vertices. Points are hashed by their bit patterns
-(one pass, no sort of rows), so only exact copies merge: nothing is snapped,
-and the geometry is kept bit for bit.
+it; topology needs shared vertices. Exact copies are found by hashing their bit
+patterns (one pass, no sort of rows). Copies that a CAD exporter computed along
+two paths may differ in their last bits (SolidWorks writes ``-6.1e-17`` for one
+copy of ``0.0``): :func:`weld_near` merges points closer than a tolerance, with
+a grid of cells and no Python loop over points. Welding only says which corners
+are one vertex; a mesh's triangles keep their coordinates.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["merge_vertices"]
+from .graph import connected_components
+
+__all__ = ["merge_vertices", "point_keys", "weld_near"]
+
+#: a cell of the welding grid is this many tolerances wide (more than twice, so that two
+#: points within the tolerance share a cell of at least one of the eight shifted grids)
+CELL = 4.0
+
+
+_GOLDEN = np.uint64(0x9E3779B97F4A7C15)
 
 
 def _mix(z: np.ndarray) -> np.ndarray:
@@ -20,20 +32,41 @@ def _mix(z: np.ndarray) -> np.ndarray:
     return z ^ (z >> np.uint64(31))
 
 
-def merge_vertices(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def point_keys(points: np.ndarray) -> np.ndarray:
+    """A 64-bit hash (n,) of each point (n, 3) from its coordinates' bits: equal points get
+    equal keys (``-0.0`` and ``0.0`` too); float32 points are hashed without conversion,
+    two coordinates packed in one word and one mixing round (the fast STL path)."""
+    p = np.asarray(points)
+    if p.dtype != np.float32:
+        p = p.astype(float, copy=False)
+    p = p.reshape(-1, 3) + p.dtype.type(0)  # -0.0 → 0.0 (and a contiguous copy)
+    with np.errstate(over="ignore"):
+        if p.dtype == np.float32:
+            b = p.view(np.uint32)
+            xy = (b[:, 0].astype(np.uint64) << np.uint64(32)) | b[:, 1]
+            xy ^= b[:, 2] * _GOLDEN
+            return _mix(xy)
+        b = p.view(np.uint64)
+        return _mix(_mix(b[:, 0] ^ b[:, 1] * _GOLDEN) ^ b[:, 2])
+
+
+def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Distinct points and the index of each input point among them.
 
     Parameters
     ----------
     points : (n, 3) array_like
         Any float dtype; ``-0.0`` and ``0.0`` count as the same coordinate.
+    tolerance : float
+        m; 0 merges exact copies only. Above 0, points closer than it are merged too
+        (:func:`weld_near`); each merged group keeps its first point's coordinates.
 
     Returns
     -------
     vertices : (V, 3) float64 ndarray
         The distinct points, in the order of their hashes (not of first use).
     index : (n,) int ndarray
-        ``vertices[index]`` equals ``points``.
+        ``vertices[index]`` equals ``points`` (to within the welding distance).
 
     Examples
     --------
@@ -43,12 +76,54 @@ def merge_vertices(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     (2, True, False)
     >>> np.array_equal(vertices[index], [[0, 0, 0], [1, 0, 0], [0, 0, 0]])
     True
+    >>> len(merge_vertices([[0, 0, 0], [1, 0, 0], [-6.1e-17, 0, 0]], 1e-12)[0])
+    2
     """
     p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
-    bits = p.view(np.uint64)
-    key = _mix(_mix(_mix(bits[:, 0]) ^ bits[:, 1]) ^ bits[:, 2])
+    key = point_keys(p)
     _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
     unique = p[first]
     if not np.array_equal(unique[inverse], p):  # a hash collision: merge exactly instead
         unique, inverse = np.unique(p, axis=0, return_inverse=True)
-    return unique, inverse.reshape(-1)
+    inverse = inverse.reshape(-1)
+    if tolerance > 0 and len(unique) > 1:
+        group = weld_near(unique, tolerance)
+        _, keep, relabel = np.unique(group, return_index=True, return_inverse=True)
+        unique, inverse = unique[keep], relabel.reshape(-1)[inverse]
+    return unique, inverse
+
+
+def weld_near(points: np.ndarray, tolerance: float) -> np.ndarray:
+    """Group label (n,) of each point (n, 3): points closer than ``tolerance`` (m) share one.
+
+    Points are binned in eight grids of cells :data:`CELL` tolerances wide, each
+    shifted by half a cell along some axes; two points within the tolerance share
+    a cell of at least one grid, and points sharing a cell are joined. Groups are
+    the connected components, so a point may join one up to 7 tolerances away
+    (a cell's diagonal): the tolerance is a scale far below any feature, not an
+    exact radius. Labels are numbered by each group's first point.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> weld_near(np.array([[0.0, 0, 0], [1e-9, 0, 0], [1.0, 0, 0], [2e-9, 1e-9, 0]]),
+    ...           1e-8).tolist()
+    [0, 0, 1, 0]
+    """
+    p = np.asarray(points, dtype=float).reshape(-1, 3)
+    n = len(p)
+    if n < 2 or not tolerance > 0:
+        return np.arange(n)
+    scaled = (p - p.min(axis=0)) / (CELL * tolerance)
+    u, v = [], []
+    for shift in range(8):  # the eight grids, each a sort of the points
+        offset = 0.5 * np.array([(shift >> axis) & 1 for axis in range(3)])
+        q = np.floor(scaled + offset).astype(np.int64)
+        order = np.lexsort(q.T[::-1])
+        sq = q[order]
+        new = np.r_[True, np.any(sq[1:] != sq[:-1], axis=1)]
+        lead = order[np.flatnonzero(new)[np.cumsum(new) - 1]]
+        joined = lead != order
+        u.append(lead[joined])
+        v.append(order[joined])
+    return connected_components(n, np.concatenate(u), np.concatenate(v))

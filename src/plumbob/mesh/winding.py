@@ -69,10 +69,12 @@ def winding_numbers(points: np.ndarray, triangles: np.ndarray, labels: np.ndarra
                     groups: int = 1) -> np.ndarray:
     """Winding number (k, groups) of each point (k, 3) about each group of triangles (n, 3, 3).
 
+    1 inside a closed outward-wound surface, 0 outside, ½ on a face, the nesting
+    depth where shells nest; fractional near the holes of an open one.
     ``labels`` (n,) puts each triangle in a group ``0..groups-1`` (a shell);
-    None puts them all in one. A point on a group's surface gets ½ of it.
-    Triangles are taken in blocks so the temporaries stay near
-    :data:`WINDING_BLOCK` corner vectors.
+    None puts them all in one. Points and triangles are taken in blocks so the
+    temporaries stay near :data:`WINDING_BLOCK` corner vectors whatever their
+    numbers; triangles of any float dtype are converted a block at a time.
 
     Examples
     --------
@@ -83,13 +85,20 @@ def winding_numbers(points: np.ndarray, triangles: np.ndarray, labels: np.ndarra
     >>> np.round(w, 12).ravel().tolist()
     [1.0, 0.0]
     """
-    points = np.asarray(points, dtype=float)
-    k = len(points)
-    labels = np.zeros(len(triangles), dtype=np.int64) if labels is None else labels
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    k, n = len(points), len(triangles)
     total = np.zeros((k, groups))
-    step = max(1, WINDING_BLOCK // max(k, 1))
-    for s in range(0, len(triangles), step):
-        omega = solid_angles(points, triangles[s:s + step])
-        for i in range(k):  # per point, not per triangle
-            total[i] += np.bincount(labels[s:s + step], omega[i], groups)
+    point_step = min(max(k, 1), max(1, WINDING_BLOCK // 64))
+    step = max(1, WINDING_BLOCK // point_step)
+    for s in range(0, n, step):  # blocks of triangles
+        block = np.asarray(triangles[s:s + step], dtype=float)
+        member = None
+        if labels is not None and groups > 1:
+            member = (np.asarray(labels[s:s + step])[:, None] == np.arange(groups)).astype(float)
+        for p in range(0, k, point_step):  # blocks of points
+            omega = solid_angles(points[p:p + point_step], block)
+            if member is None:
+                total[p:p + point_step, 0] += omega.sum(axis=1)
+            else:
+                total[p:p + point_step] += omega @ member
     return total / (4 * np.pi)
