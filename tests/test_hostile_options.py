@@ -179,3 +179,44 @@ def test_an_unknown_material_with_control_characters_is_escaped(block):
     line = assert_bad_input(run_limited("mass", block, "--material", "oak\x1b[0m"),
                             "unknown material")
     assert "\x1b" not in line
+
+
+@pytest.mark.parametrize(("error", "phrase"), [(RecursionError("maximum recursion depth"),
+                                                "nested too deeply"),
+                                               (MemoryError(), "too large for this machine")])
+def test_recursion_and_memory_errors_are_one_clear_line_status_3(monkeypatch, capsys, error,
+                                                                 phrase):
+    """A limit that was not checked is a bug (3), said in words, never a traceback."""
+    from plumbob import cli
+
+    def broken(args):
+        raise error
+
+    _break_mass(monkeypatch, broken)
+    monkeypatch.delenv("PLUMBOB_DEBUG", raising=False)
+    assert cli.main(["mass", "shapes/block.toml"]) == cli.INTERNAL_ERROR
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and phrase in err and "plumbob.limits" in err
+
+
+def test_an_internal_error_message_is_escaped(monkeypatch, capsys):
+    from plumbob import cli
+
+    def broken(args):
+        raise KeyError("part\x1b[2J")
+
+    _break_mass(monkeypatch, broken)
+    monkeypatch.delenv("PLUMBOB_DEBUG", raising=False)
+    assert cli.main(["mass", "shapes/block.toml"]) == cli.INTERNAL_ERROR
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and "KeyError" in err
+
+
+def _break_mass(monkeypatch, broken) -> None:
+    """Make ``plumbob mass`` run ``broken`` (as an unforeseen bug would)."""
+    from plumbob import cli
+    from plumbob.commands import mass
+
+    monkeypatch.setattr(mass, "run", broken)
+    parser = cli.build_parser("mass")
+    monkeypatch.setattr(cli, "build_parser", lambda command=None: parser)

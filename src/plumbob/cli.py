@@ -92,6 +92,15 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except (RecursionError, MemoryError) as error:  # a limit that should have been checked
+        if os.environ.get("PLUMBOB_DEBUG"):
+            raise
+        what = "nested too deeply to follow" if isinstance(error, RecursionError) else \
+            "too large for this machine's memory"
+        print(f"plumbob: internal error: the input is {what} ({type(error).__name__}); a limit "
+              "in plumbob.limits should have refused it first, so this is a bug in plumbob, "
+              "please report it; set PLUMBOB_DEBUG=1 for the traceback", file=sys.stderr)
+        return INTERNAL_ERROR
     except Exception as error:  # a bug, never a failed requirement (1) or bad input (2)
         if os.environ.get("PLUMBOB_DEBUG"):
             raise
