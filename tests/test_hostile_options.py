@@ -55,7 +55,8 @@ BODY_CASES = [
     (["check", "--tilt", "95"], ["tilt", "90"]),
     (["check", "--down", "nan,0,-1"], ["--down", "finite"]),
     (["check", "--down", "1e999,0,-1"], ["--down", "finite"]),
-    (["check", "--down", "0,0,0"], ["down", "non-zero"]),
+    (["check", "--down", "0,0,0"], ["--down", "zero vector"]),
+    (["lift", "--crew", "1e3"], ["--crew", "whole number"]),
     (["check", "--friction", "inf"], ["--friction", "finite"]),
     (["check", "--tolerance", "nan"], ["--tolerance", "finite"]),
     (["check", "--pose", "0"], ["--pose", "between 1 and"]),
@@ -129,6 +130,29 @@ COLLIDE_CASES = [
                          ids=[" ".join(c[0]) for c in COLLIDE_CASES])
 def test_a_bad_collision_is_one_line_exit_2(options, phrases):
     assert_bad_input(run_limited("collide", *options), *phrases)
+
+
+BATCH_CASES = [
+    (["--timeout", "1e308"], ["--timeout", "a week"]),
+    (["--timeout", "nan"], ["--timeout", "finite"]),
+    (["--down", "0,0,0", "--check"], ["--down", "zero vector"]),
+    (["--require-tilt", "100", "--check"], ["--require-tilt", "0 to 90"]),
+    (["--material", ""], ["--material", "empty"]),
+    (["--toward", "nan", "--tilt", "5", "--check"], ["--toward", "finite"]),
+]
+
+
+@pytest.mark.parametrize(("options", "phrases"), BATCH_CASES,
+                         ids=[" ".join(c[0]) for c in BATCH_CASES])
+def test_a_bad_batch_option_is_refused_before_any_file(tmp_path, block, options, phrases):
+    out = tmp_path / "rows.csv"
+    assert_bad_input(run_limited("batch", block, "--out", out, *options), *phrases)
+    assert not out.exists()
+
+
+def test_a_batch_output_in_a_missing_folder_is_refused_before_any_file(tmp_path, block):
+    assert_bad_input(run_limited("batch", block, "--out", tmp_path / "nowhere" / "rows.csv"),
+                     "--out", "folder does not exist")
 
 
 def test_a_material_search_that_matches_nothing_is_not_a_failed_requirement():

@@ -220,12 +220,13 @@ def count(value: Any, what: str, limit: float, *, minimum: int = 0, hint: str = 
     if isinstance(value, (bool, np.bool_, str, bytes)):
         raise error(f"{what} must be a whole number, not {value!r}")
     try:
-        whole = float(value) == int(value)
+        whole = isinstance(value, (int, np.integer)) or float(value) == int(value)
     except (TypeError, ValueError, OverflowError):
         whole = False
     if not whole or int(value) < minimum:
         raise error(f"{what} must be a whole number of at least {minimum}, not {_short(value)}")
-    return check_count(what, int(value), limit, hint=hint)
+    checked = check_count(what, int(value), limit, hint=hint)
+    return int(value) if isinstance(value, (int, np.integer)) else checked
 
 
 def file_path(value: Any, what: str = "path", *, error: Error = ArgumentError) -> str:

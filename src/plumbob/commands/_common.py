@@ -28,6 +28,7 @@ __all__ = [
     "count",
     "parse_vector",
     "material_name",
+    "direction",
     "tilt_limit",
     "require_finite",
     "add_report_units_argument",
@@ -98,6 +99,14 @@ def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
         )
     if not all(math.isfinite(v) for v in values):
         raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
+    return values
+
+
+def direction(text: str) -> list[float]:
+    """An argparse type: 'X,Y[,Z]', a direction (``--down``): finite and not zero."""
+    values = parse_vector(text)
+    if not any(values):
+        raise argparse.ArgumentTypeError(f"a direction must not be the zero vector: {text!r}")
     return values
 
 

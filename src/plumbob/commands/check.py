@@ -14,11 +14,11 @@ from ._common import (
     add_report_units_argument,
     add_stability_arguments,
     clean,
+    direction,
     header,
     non_negative,
     number,
     open_body,
-    parse_vector,
     positive,
     print_json,
     report_units,
@@ -44,7 +44,7 @@ def register(subparsers) -> None:
     add_stability_arguments(parser)
     add_report_units_argument(parser)
     where = parser.add_mutually_exclusive_group()
-    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
+    where.add_argument("--down", type=direction, metavar="X,Y,Z",
                        help="direction of gravity in the body's frame (default -z; -y for a "
                             "lamina)")
     where.add_argument("--pose", type=int, metavar="K",
