@@ -78,6 +78,8 @@ SILENT = [
     ("check(require_tilt_deg=100)", lambda b: plumbob.check(b, require_tilt_deg=100), "90"),
     ("check(require_tilt_deg=-5)", lambda b: plumbob.check(b, require_tilt_deg=-5), "require"),
     ("check(require_tilt_deg=nan)", lambda b: plumbob.check(b, require_tilt_deg=NAN), "require"),
+    ("check(g=1e308) overflows", lambda b: plumbob.check(b, g=1e308), "overflows"),
+    ("poses(g=1e308) overflows", lambda b: plumbob.poses(b, g=1e308), "overflows"),
     ("poses(g=0)", lambda b: plumbob.poses(b, g=0), "g"),
     ("poses(g=-1)", lambda b: plumbob.poses(b, g=-1), "g"),
     ("poses(hull_tolerance=-1)", lambda b: plumbob.poses(b, hull_tolerance=-1), "hull"),
