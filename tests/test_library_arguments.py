@@ -209,3 +209,30 @@ def test_point_mass_of_one_coordinate_pair_is_a_lamina_point():
     assert point_mass(1.0, [1.0, 2.0]).dim == 2
     with pytest.raises(ArgumentError):
         point_mass(1.0, [1.0])
+
+
+def _public_callables():
+    """Every callable of the public API: ``plumbob.__all__`` and the primitives."""
+    found = [(name, getattr(plumbob, name)) for name in plumbob.__all__
+             if callable(getattr(plumbob, name)) and name != "PlumbobError"]
+    found += [(f"primitives.{name}", getattr(primitives, name)) for name in primitives.__all__]
+    return found
+
+
+def _required(function) -> int:
+    import inspect
+
+    params = inspect.signature(function).parameters.values()
+    return max(1, sum(p.default is p.empty and p.kind in (p.POSITIONAL_ONLY,
+                                                          p.POSITIONAL_OR_KEYWORD)
+                      for p in params))
+
+
+@pytest.mark.parametrize("bad", [None, "x", NAN, [[1.0, 2.0, 3.0]]],
+                         ids=["None", "text", "nan", "a (1, 3) array"])
+@pytest.mark.parametrize(("name", "function"), _public_callables(),
+                         ids=[name for name, _ in _public_callables()])
+def test_every_public_callable_refuses_garbage_with_a_plumbob_error(name, function, bad):
+    """Enumerated, not listed by hand: a new public function is probed too."""
+    with pytest.raises(PlumbobError):
+        function(*[bad] * _required(function))
