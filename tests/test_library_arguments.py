@@ -68,7 +68,33 @@ FOREIGN = [
     ("box.translated('a')", lambda b: b.translated("a"), "offset"),
 ]
 
+def _model(**options):
+    from plumbob.dynamics import MotionModel
+
+    pair = plumbob.ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]])
+    return MotionModel(pair, **options)
+
+
+FOREIGN += [
+    ("MotionModel(None)", lambda b: _model_of(None), "system"),
+    ("simulate(method='foo')", lambda b: _simulate(method="foo"), "method"),
+]
+
+
+def _model_of(system):
+    from plumbob.dynamics import MotionModel
+
+    return MotionModel(system)
+
+
+def _simulate(**options):
+    from plumbob.dynamics import simulate
+
+    return simulate(_model(), 1.0, **options)
+
+
 SILENT = [
+    ("MotionModel(gravity (1, 2))", lambda b: _model(gravity=[[0, -9.81]]), "gravity"),
     ("check(g=-9.81)", lambda b: plumbob.check(b, g=-9.81), "g"),
     ("check(g=0)", lambda b: plumbob.check(b, g=0), "g"),
     ("check(g=nan)", lambda b: plumbob.check(b, g=NAN), "g"),
