@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from ..arguments import count, instance, vector
+from ..arguments import count, instance, positive, vector
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
 from ..limits import MAX_SAMPLES
@@ -470,12 +470,7 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
     """
     from scipy.integrate import solve_ivp
 
-    try:
-        until = float(until)
-    except (TypeError, ValueError):
-        raise DynamicsError(f"the end time must be a number of seconds (got {until!r})") from None
-    if not (math.isfinite(until) and until > 0):
-        raise DynamicsError(f"the end time must be a positive number of seconds (got {until})")
+    until = positive(until, "the end time (s)", error=DynamicsError)
     samples = count(samples, "samples", MAX_SAMPLES, minimum=2, error=DynamicsError)
     if not (0 < rtol < 1):
         raise DynamicsError(f"rtol must lie between 0 and 1 (got {rtol})")
