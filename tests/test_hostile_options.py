@@ -60,6 +60,7 @@ BODY_CASES = [
     (["check", "--friction", "inf"], ["--friction", "finite"]),
     (["check", "--tolerance", "nan"], ["--tolerance", "finite"]),
     (["check", "--pose", "0"], ["--pose", "between 1 and"]),
+    (["check", "--tolerance", "1e308"], ["contact tolerance", "not small beside the body"]),
     (["report", "--require-tilt", "100"], ["--require-tilt", "0 to 90"]),
     (["mass", "--material", ""], ["--material", "empty"]),
     (["mass", "--material", "   "], ["--material", "empty"]),
