@@ -245,3 +245,17 @@ def _break_mass(monkeypatch, broken) -> None:
     monkeypatch.setattr(mass, "run", broken)
     parser = cli.build_parser("mass")
     monkeypatch.setattr(cli, "build_parser", lambda command=None: parser)
+
+
+def test_standard_output_is_escaped_even_where_a_report_forgot(monkeypatch, capsys):
+    """The last line of defence: a command printing a raw name still cannot drive the
+    terminal; newlines (the layout) pass."""
+    from plumbob import cli
+
+    def careless(args):
+        print("title: part\x1b[2Jname\nsecond line\x07")
+        return 0
+
+    _break_mass(monkeypatch, careless)
+    assert cli.main(["mass", "shapes/block.toml"]) == 0
+    assert capsys.readouterr().out == "title: part\\x1b[2Jname\nsecond line\\x07\n"
