@@ -76,6 +76,9 @@ def _model(**options):
 
 
 FOREIGN += [
+    ("batch.run(None)", lambda b: plumbob.batch.run(None), "inputs"),
+    ("batch.run(resume_by='x')",
+     lambda b: plumbob.batch.run(["shapes/block.toml"], resume_by="x"), "resume_by"),
     ("MotionModel(None)", lambda b: _model_of(None), "system"),
     ("simulate(method='foo')", lambda b: _simulate(method="foo"), "method"),
 ]
@@ -94,6 +97,8 @@ def _simulate(**options):
 
 
 SILENT = [
+    ("batch.run('one string')", lambda b: plumbob.batch.run("shapes/block.toml"), "inputs"),
+    ("batch.run(jobs=0)", lambda b: plumbob.batch.run(["shapes/block.toml"], jobs=0), "jobs"),
     ("MotionModel(gravity (1, 2))", lambda b: _model(gravity=[[0, -9.81]]), "gravity"),
     ("check(g=-9.81)", lambda b: plumbob.check(b, g=-9.81), "g"),
     ("check(g=0)", lambda b: plumbob.check(b, g=0), "g"),
