@@ -98,6 +98,12 @@ def _simulate(**options):
 
 SILENT = [
     ("batch.run('one string')", lambda b: plumbob.batch.run("shapes/block.toml"), "inputs"),
+    ("batch.Options(g=-9.81)", lambda b: plumbob.batch.Options(g=-9.81), "g"),
+    ("batch.Options(down=0)", lambda b: plumbob.batch.Options(down=(0, 0, 0)), "down"),
+    ("batch.Options(require_tilt=100)", lambda b: plumbob.batch.Options(require_tilt=100),
+     "require_tilt"),
+    ("batch.Options(toward=nan)", lambda b: plumbob.batch.Options(tilt=5, toward=NAN), "toward"),
+    ("batch.Options(material='')", lambda b: plumbob.batch.Options(material=""), "material"),
     ("batch.run(jobs=0)", lambda b: plumbob.batch.run(["shapes/block.toml"], jobs=0), "jobs"),
     ("MotionModel(gravity (1, 2))", lambda b: _model(gravity=[[0, -9.81]]), "gravity"),
     ("check(g=-9.81)", lambda b: plumbob.check(b, g=-9.81), "g"),
