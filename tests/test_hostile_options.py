@@ -44,7 +44,7 @@ BODY_CASES = [
     (["lift", "--g", "1e308"], ["lift energy", "overflows"]),
     (["lift", "--g", "nan"], ["--g"]),
     (["lift", "--crew", "1", "--work-per-day", "1e-308"], ["person-days", "overflows"]),
-    (["check", "--g", "1e308", "--json"], ["overflows", "energy_to_topple"]),
+    (["check", "--g", "1e308", "--json"], ["overflows", "weight M g"]),
     (["check", "--g", "-9.81"], ["--g", "positive"]),
     (["check", "--g", "0"], ["--g", "positive"]),
     (["check", "--require-tilt", "100"], ["--require-tilt", "0 to 90"]),
@@ -55,10 +55,12 @@ BODY_CASES = [
     (["check", "--tilt", "95"], ["tilt", "90"]),
     (["check", "--down", "nan,0,-1"], ["--down", "finite"]),
     (["check", "--down", "1e999,0,-1"], ["--down", "finite"]),
-    (["check", "--down", "0,0,0"], ["down", "non-zero"]),
+    (["check", "--down", "0,0,0"], ["--down", "zero vector"]),
+    (["lift", "--crew", "1e3"], ["--crew", "whole number"]),
     (["check", "--friction", "inf"], ["--friction", "finite"]),
     (["check", "--tolerance", "nan"], ["--tolerance", "finite"]),
     (["check", "--pose", "0"], ["--pose", "between 1 and"]),
+    (["check", "--tolerance", "1e308"], ["contact tolerance", "not small beside the body"]),
     (["report", "--require-tilt", "100"], ["--require-tilt", "0 to 90"]),
     (["mass", "--material", ""], ["--material", "empty"]),
     (["mass", "--material", "   "], ["--material", "empty"]),
@@ -131,6 +133,29 @@ def test_a_bad_collision_is_one_line_exit_2(options, phrases):
     assert_bad_input(run_limited("collide", *options), *phrases)
 
 
+BATCH_CASES = [
+    (["--timeout", "1e308"], ["--timeout", "a week"]),
+    (["--timeout", "nan"], ["--timeout", "finite"]),
+    (["--down", "0,0,0", "--check"], ["--down", "zero vector"]),
+    (["--require-tilt", "100", "--check"], ["--require-tilt", "0 to 90"]),
+    (["--material", ""], ["--material", "empty"]),
+    (["--toward", "nan", "--tilt", "5", "--check"], ["--toward", "finite"]),
+]
+
+
+@pytest.mark.parametrize(("options", "phrases"), BATCH_CASES,
+                         ids=[" ".join(c[0]) for c in BATCH_CASES])
+def test_a_bad_batch_option_is_refused_before_any_file(tmp_path, block, options, phrases):
+    out = tmp_path / "rows.csv"
+    assert_bad_input(run_limited("batch", block, "--out", out, *options), *phrases)
+    assert not out.exists()
+
+
+def test_a_batch_output_in_a_missing_folder_is_refused_before_any_file(tmp_path, block):
+    assert_bad_input(run_limited("batch", block, "--out", tmp_path / "nowhere" / "rows.csv"),
+                     "--out", "folder does not exist")
+
+
 def test_a_material_search_that_matches_nothing_is_not_a_failed_requirement():
     outcome = run_limited("materials", "grnite")
     assert outcome.status == 0, outcome.stderr
@@ -179,3 +204,58 @@ def test_an_unknown_material_with_control_characters_is_escaped(block):
     line = assert_bad_input(run_limited("mass", block, "--material", "oak\x1b[0m"),
                             "unknown material")
     assert "\x1b" not in line
+
+
+@pytest.mark.parametrize(("error", "phrase"), [(RecursionError("maximum recursion depth"),
+                                                "nested too deeply"),
+                                               (MemoryError(), "too large for this machine")])
+def test_recursion_and_memory_errors_are_one_clear_line_status_3(monkeypatch, capsys, error,
+                                                                 phrase):
+    """A limit that was not checked is a bug (3), said in words, never a traceback."""
+    from plumbob import cli
+
+    def broken(args):
+        raise error
+
+    _break_mass(monkeypatch, broken)
+    monkeypatch.delenv("PLUMBOB_DEBUG", raising=False)
+    assert cli.main(["mass", "shapes/block.toml"]) == cli.INTERNAL_ERROR
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and phrase in err and "plumbob.limits" in err
+
+
+def test_an_internal_error_message_is_escaped(monkeypatch, capsys):
+    from plumbob import cli
+
+    def broken(args):
+        raise KeyError("part\x1b[2J")
+
+    _break_mass(monkeypatch, broken)
+    monkeypatch.delenv("PLUMBOB_DEBUG", raising=False)
+    assert cli.main(["mass", "shapes/block.toml"]) == cli.INTERNAL_ERROR
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and "KeyError" in err
+
+
+def _break_mass(monkeypatch, broken) -> None:
+    """Make ``plumbob mass`` run ``broken`` (as an unforeseen bug would)."""
+    from plumbob import cli
+    from plumbob.commands import mass
+
+    monkeypatch.setattr(mass, "run", broken)
+    parser = cli.build_parser("mass")
+    monkeypatch.setattr(cli, "build_parser", lambda command=None: parser)
+
+
+def test_standard_output_is_escaped_even_where_a_report_forgot(monkeypatch, capsys):
+    """The last line of defence: a command printing a raw name still cannot drive the
+    terminal; newlines (the layout) pass."""
+    from plumbob import cli
+
+    def careless(args):
+        print("title: part\x1b[2Jname\nsecond line\x07")
+        return 0
+
+    _break_mass(monkeypatch, careless)
+    assert cli.main(["mass", "shapes/block.toml"]) == 0
+    assert capsys.readouterr().out == "title: part\\x1b[2Jname\nsecond line\\x07\n"

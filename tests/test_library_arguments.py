@@ -68,7 +68,44 @@ FOREIGN = [
     ("box.translated('a')", lambda b: b.translated("a"), "offset"),
 ]
 
+def _model(**options):
+    from plumbob.dynamics import MotionModel
+
+    pair = plumbob.ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]])
+    return MotionModel(pair, **options)
+
+
+FOREIGN += [
+    ("batch.run(None)", lambda b: plumbob.batch.run(None), "inputs"),
+    ("batch.run(resume_by='x')",
+     lambda b: plumbob.batch.run(["shapes/block.toml"], resume_by="x"), "resume_by"),
+    ("MotionModel(None)", lambda b: _model_of(None), "system"),
+    ("simulate(method='foo')", lambda b: _simulate(method="foo"), "method"),
+]
+
+
+def _model_of(system):
+    from plumbob.dynamics import MotionModel
+
+    return MotionModel(system)
+
+
+def _simulate(**options):
+    from plumbob.dynamics import simulate
+
+    return simulate(_model(), 1.0, **options)
+
+
 SILENT = [
+    ("batch.run('one string')", lambda b: plumbob.batch.run("shapes/block.toml"), "inputs"),
+    ("batch.Options(g=-9.81)", lambda b: plumbob.batch.Options(g=-9.81), "g"),
+    ("batch.Options(down=0)", lambda b: plumbob.batch.Options(down=(0, 0, 0)), "down"),
+    ("batch.Options(require_tilt=100)", lambda b: plumbob.batch.Options(require_tilt=100),
+     "require_tilt"),
+    ("batch.Options(toward=nan)", lambda b: plumbob.batch.Options(tilt=5, toward=NAN), "toward"),
+    ("batch.Options(material='')", lambda b: plumbob.batch.Options(material=""), "material"),
+    ("batch.run(jobs=0)", lambda b: plumbob.batch.run(["shapes/block.toml"], jobs=0), "jobs"),
+    ("MotionModel(gravity (1, 2))", lambda b: _model(gravity=[[0, -9.81]]), "gravity"),
     ("check(g=-9.81)", lambda b: plumbob.check(b, g=-9.81), "g"),
     ("check(g=0)", lambda b: plumbob.check(b, g=0), "g"),
     ("check(g=nan)", lambda b: plumbob.check(b, g=NAN), "g"),
@@ -78,6 +115,8 @@ SILENT = [
     ("check(require_tilt_deg=100)", lambda b: plumbob.check(b, require_tilt_deg=100), "90"),
     ("check(require_tilt_deg=-5)", lambda b: plumbob.check(b, require_tilt_deg=-5), "require"),
     ("check(require_tilt_deg=nan)", lambda b: plumbob.check(b, require_tilt_deg=NAN), "require"),
+    ("check(g=1e308) overflows", lambda b: plumbob.check(b, g=1e308), "overflows"),
+    ("poses(g=1e308) overflows", lambda b: plumbob.poses(b, g=1e308), "overflows"),
     ("poses(g=0)", lambda b: plumbob.poses(b, g=0), "g"),
     ("poses(g=-1)", lambda b: plumbob.poses(b, g=-1), "g"),
     ("poses(hull_tolerance=-1)", lambda b: plumbob.poses(b, hull_tolerance=-1), "hull"),
@@ -207,3 +246,30 @@ def test_point_mass_of_one_coordinate_pair_is_a_lamina_point():
     assert point_mass(1.0, [1.0, 2.0]).dim == 2
     with pytest.raises(ArgumentError):
         point_mass(1.0, [1.0])
+
+
+def _public_callables():
+    """Every callable of the public API: ``plumbob.__all__`` and the primitives."""
+    found = [(name, getattr(plumbob, name)) for name in plumbob.__all__
+             if callable(getattr(plumbob, name)) and name != "PlumbobError"]
+    found += [(f"primitives.{name}", getattr(primitives, name)) for name in primitives.__all__]
+    return found
+
+
+def _required(function) -> int:
+    import inspect
+
+    params = inspect.signature(function).parameters.values()
+    return max(1, sum(p.default is p.empty and p.kind in (p.POSITIONAL_ONLY,
+                                                          p.POSITIONAL_OR_KEYWORD)
+                      for p in params))
+
+
+@pytest.mark.parametrize("bad", [None, "x", NAN, [[1.0, 2.0, 3.0]]],
+                         ids=["None", "text", "nan", "a (1, 3) array"])
+@pytest.mark.parametrize(("name", "function"), _public_callables(),
+                         ids=[name for name, _ in _public_callables()])
+def test_every_public_callable_refuses_garbage_with_a_plumbob_error(name, function, bad):
+    """Enumerated, not listed by hand: a new public function is probed too."""
+    with pytest.raises(PlumbobError):
+        function(*[bad] * _required(function))

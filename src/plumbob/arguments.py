@@ -37,6 +37,7 @@ __all__ = [
     "optional",
     "answering",
     "instance",
+    "mass_fields",
 ]
 
 Error = type[PlumbobError]
@@ -220,12 +221,13 @@ def count(value: Any, what: str, limit: float, *, minimum: int = 0, hint: str = 
     if isinstance(value, (bool, np.bool_, str, bytes)):
         raise error(f"{what} must be a whole number, not {value!r}")
     try:
-        whole = float(value) == int(value)
+        whole = isinstance(value, (int, np.integer)) or float(value) == int(value)
     except (TypeError, ValueError, OverflowError):
         whole = False
     if not whole or int(value) < minimum:
         raise error(f"{what} must be a whole number of at least {minimum}, not {_short(value)}")
-    return check_count(what, int(value), limit, hint=hint)
+    checked = check_count(what, int(value), limit, hint=hint)
+    return int(value) if isinstance(value, (int, np.integer)) else checked
 
 
 def file_path(value: Any, what: str = "path", *, error: Error = ArgumentError) -> str:
@@ -323,3 +325,37 @@ def instance(value: Any, what: str, cls: type, *, error: Error = ArgumentError) 
     if not isinstance(value, cls):
         raise error(f"{what} must be a {cls.__name__}, not {type(value).__name__}")
     return value
+
+
+def mass_fields(dim: Any, mass: Any, measure: Any, center: Any, inertia: Any
+                ) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """The fields of a mass-properties record checked and converted: ``dim`` 2 or 3, a
+    finite centre of ``dim`` coordinates, a finite (3, 3) inertia tensor, a finite mass
+    and size ≥ 0 (copies, as arrays and floats). Good values take one quick test (a
+    record is built for every part); the checks that name what is wrong, an overflow
+    as one, run only when it fails.
+
+    >>> mass_fields(2, 1.0, 0.5, [0, 0, 0], np.eye(3))
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ArgumentError: center_of_mass must be one vector of 2 numbers, not 3 numbers
+    """
+    try:
+        com, tensor = np.array(center, dtype=float), np.array(inertia, dtype=float)
+        kg, size = float(mass), float(measure)
+        good = (dim in (2, 3) and not isinstance(dim, bool) and com.shape == (dim,)
+                and tensor.shape == (3, 3) and np.isfinite(com).all()
+                and np.isfinite(tensor).all() and math.isfinite(kg) and kg >= 0
+                and math.isfinite(size) and size >= 0)
+    except (TypeError, ValueError, OverflowError):
+        good = False
+    if good:
+        return com, tensor, kg, size
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise ArgumentError(f"dim must be 2 (a lamina) or 3, not {dim!r}")
+    com = vector(center, "center_of_mass", (dim,)).copy()
+    tensor = floats(inertia, "inertia")
+    finite_result(tensor if tensor.shape == (3, 3) else 0.0, "the moment of inertia")
+    finite_result([mass, measure], "the mass or size")
+    tensor = matrix(tensor, "inertia", (3, 3))
+    return com, tensor, non_negative(mass, "mass"), non_negative(measure, "measure")

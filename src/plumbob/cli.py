@@ -10,6 +10,7 @@ this module turns it into one line on stderr and exit status 2.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
 import re
@@ -75,6 +76,36 @@ def _version() -> str:
         return "unknown"
 
 
+class _Escaping:
+    """A text stream that shows control characters other than newline as escapes: the
+    last line of defence, behind :func:`printable` in the reports, against a name from
+    a file reaching the terminal raw (JSON escapes its own control characters)."""
+
+    def __init__(self, stream) -> None:
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        if not text.isprintable():
+            text = "\n".join(printable(line) for line in text.split("\n"))
+        return self._stream.write(text)
+
+    def __getattr__(self, name: str):
+        return getattr(self._stream, name)
+
+
+@contextlib.contextmanager
+def _escaped_output():
+    """Standard output escaped while a command runs (standard error carries only
+    plumbob's own lines, already :func:`printable`, and the batch progress bar, whose
+    control characters are meant)."""
+    stream = sys.stdout
+    sys.stdout = _Escaping(stream)
+    try:
+        yield
+    finally:
+        sys.stdout = stream
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(argv[0] if argv else None)
@@ -83,7 +114,8 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
-        return int(args.func(args) or 0)
+        with _escaped_output():
+            return int(args.func(args) or 0)
     except PlumbobError as error:
         print(f"plumbob: {printable(error)}", file=sys.stderr)
         return 2
@@ -92,6 +124,15 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except (RecursionError, MemoryError) as error:  # a limit that should have been checked
+        if os.environ.get("PLUMBOB_DEBUG"):
+            raise
+        what = "nested too deeply to follow" if isinstance(error, RecursionError) else \
+            "too large for this machine's memory"
+        print(f"plumbob: internal error: the input is {what} ({type(error).__name__}); a limit "
+              "in plumbob.limits should have refused it first, so this is a bug in plumbob, "
+              "please report it; set PLUMBOB_DEBUG=1 for the traceback", file=sys.stderr)
+        return INTERNAL_ERROR
     except Exception as error:  # a bug, never a failed requirement (1) or bad input (2)
         if os.environ.get("PLUMBOB_DEBUG"):
             raise

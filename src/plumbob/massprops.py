@@ -22,8 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from .arguments import finite_result, floats, instance, matrix, non_negative, number, unit_vector, vector
-from .errors import ArgumentError, GeometryError
+from .arguments import floats, instance, mass_fields, number, unit_vector, vector
+from .errors import GeometryError
 from .results import Result
 
 __all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix"]
@@ -120,19 +120,14 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
 
     def __post_init__(self) -> None:
         # Checked here, once, so every result built anywhere is a physical one.
-        if self.dim not in (2, 3) or isinstance(self.dim, bool):
-            raise ArgumentError(f"dim must be 2 (a lamina) or 3, not {self.dim!r}")
-        com = vector(self.center_of_mass, "center_of_mass", (self.dim,)).copy()
-        inertia = floats(self.inertia, "inertia")  # an overflow is named as one:
-        finite_result(inertia if inertia.shape == (3, 3) else 0.0, "the moment of inertia")
-        finite_result([self.mass, self.measure], "the mass or size")
-        inertia = matrix(inertia, "inertia", (3, 3))
+        com, inertia, mass, measure = mass_fields(self.dim, self.mass, self.measure,
+                                                  self.center_of_mass, self.inertia)
         com.setflags(write=False)
         inertia.setflags(write=False)
         object.__setattr__(self, "center_of_mass", com)
         object.__setattr__(self, "inertia", inertia)
-        object.__setattr__(self, "mass", non_negative(self.mass, "mass"))
-        object.__setattr__(self, "measure", non_negative(self.measure, "measure"))
+        object.__setattr__(self, "mass", mass)
+        object.__setattr__(self, "measure", measure)
 
     def _repr_items(self) -> list[tuple[str, Any]]:
         # The headline numbers only: the tensor and the notes are an attribute away.

@@ -8,11 +8,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 
-from .errors import printable
+import numpy as np
+
+from .errors import ArgumentError, printable
 from .tolerances import TEXT_ROUND_OFF
+from .units import LENGTH_UNITS
 
-__all__ = ["format_number", "format_vector", "table"]
+__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table"]
+
+#: kilograms per unit, for the mass units a text report may be asked for
+MASS_UNITS: dict[str, float] = {"kg": 1.0, "g": 1e-3, "t": 1000.0, "lb": 0.45359237}
 
 
 def format_number(value: float | None, digits: int = 6) -> str:
@@ -57,3 +64,83 @@ def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:
     lines = [title, "-" * len(title)] if title else []
     lines += [f"{label:<{width}}  {value}" for label, value in rows]
     return "\n".join(lines)
+
+
+_POWERS = {2: "²", 3: "³"}
+
+
+@dataclass(frozen=True)
+class ReportUnits:
+    """The units a text report shows lengths and masses in (``--report-units mm,g``);
+    derived quantities follow (area mm², density g/mm³, inertia g·mm²). Results and
+    JSON stay SI: this converts only at the moment of printing. Energies stay in
+    joules, accelerations in m/s², angles in degrees.
+
+    >>> units = ReportUnits.parse("mm,g")
+    >>> units.length(0.5), units.mass(2.0), units.inertia(1.0), units.unit("inertia")
+    (500.0, 2000.0, 1000000000.0, 'g·mm²')
+    >>> ReportUnits.parse("g").unit("density")
+    'g/m³'
+    >>> ReportUnits.parse("mm,furlong")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ArgumentError: unknown report unit 'furlong'; lengths: m, cm, mm, km, in, \
+ft; masses: kg, g, t, lb
+    """
+
+    length_unit: str = "m"
+    mass_unit: str = "kg"
+
+    @classmethod
+    def parse(cls, text: str) -> ReportUnits:
+        """``"mm,g"``, ``"mm"`` or ``"g"``: a length unit, a mass unit or one of each."""
+        length = mass = None
+        for word in (w.strip() for w in text.split(",")):
+            if word in LENGTH_UNITS and length is None:
+                length = word
+            elif word in MASS_UNITS and mass is None:
+                mass = word
+            else:
+                raise ArgumentError(f"unknown report unit {word!r}; lengths: "
+                                    f"{', '.join(LENGTH_UNITS)}; masses: {', '.join(MASS_UNITS)}")
+        return cls(length or "m", mass or "kg")
+
+    @property
+    def si(self) -> bool:
+        return (self.length_unit, self.mass_unit) == ("m", "kg")
+
+    def _per(self, mass_power: int, length_power: int) -> float:
+        return MASS_UNITS[self.mass_unit] ** -mass_power * \
+            LENGTH_UNITS[self.length_unit] ** -length_power
+
+    def length(self, metres):
+        """Metres (a number or an array) in the report's length unit."""
+        return _scaled(metres, self._per(0, 1))
+
+    def mass(self, kilograms):
+        return _scaled(kilograms, self._per(1, 0))
+
+    def measure(self, value, dim: int):
+        """An area (``dim`` 2, m²) or a volume (3, m³)."""
+        return _scaled(value, self._per(0, dim))
+
+    def density(self, value, dim: int):
+        """kg/m³ (kg/m² for a lamina, ``dim`` 2)."""
+        return _scaled(value, self._per(1, -dim))
+
+    def inertia(self, value):
+        """kg·m² (a moment or a tensor)."""
+        return _scaled(value, self._per(1, 2))
+
+    def unit(self, quantity: str, dim: int = 3) -> str:
+        """The unit's symbol for ``length``, ``mass``, ``measure``, ``density``, ``inertia``."""
+        length, mass = self.length_unit, self.mass_unit
+        return {"length": length, "mass": mass, "measure": f"{length}{_POWERS[dim]}",
+                "density": f"{mass}/{length}{_POWERS[dim]}",
+                "inertia": f"{mass}·{length}²"}[quantity]
+
+
+def _scaled(value, factor: float):
+    if factor == 1.0:
+        return value
+    return float(value) * factor if np.ndim(value) == 0 else np.asarray(value) * factor

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..arguments import in_range, non_negative, number, optional, positive, unit_vector
 from ..errors import PlumbobError
 from ..units import STANDARD_GRAVITY
 
@@ -57,11 +58,19 @@ class Options:
                                f"{', '.join(INERTIAL_FORMATS)}")
         if self.material is not None and self.density is not None:
             raise PlumbobError("give --material or --density, not both")
-        if self.timeout is not None and not self.timeout > 0:
-            raise PlumbobError(f"the time limit must be positive, not {self.timeout}")
+        # Every value checked once here, so a bad one stops the run before any file.
+        checks = {"g": positive, "tilt": non_negative, "toward": number, "density": positive,
+                  "timeout": positive}
+        for name, check in checks.items():
+            object.__setattr__(self, name, optional(check, getattr(self, name), name))
+        object.__setattr__(self, "require_tilt", optional(
+            in_range, self.require_tilt, "require_tilt", 0, 90, unit="°"))
+        if self.material is not None and not str(self.material).strip():
+            raise PlumbobError("a material name must not be empty")
         if self.toward is not None and self.tilt is None:
             raise PlumbobError("--toward needs --tilt DEG")
         if self.down is not None:
+            unit_vector(self.down, "down")  # not zero, finite, 2 or 3 numbers
             object.__setattr__(self, "down", tuple(float(v) for v in self.down))
         object.__setattr__(self, "inertial", tuple(self.inertial))
         # A tilt, a down direction or a design check only mean something to the check.

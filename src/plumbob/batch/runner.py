@@ -8,6 +8,9 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..arguments import count
+from ..errors import ArgumentError
+from ..limits import MAX_PARTS
 from .columns import Field, flat_names, flatten, pose_fields, result_fields
 from .extra import require
 from .inputs import discover
@@ -79,11 +82,14 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
         pose_table = values.pop("pose_table", False) or bool(pose_out)
         options = Options(pose_table=pose_table, **values)
     elif values:
-        raise TypeError("give options or keyword options, not both")
+        raise ArgumentError("give options or keyword options, not both")
     if pose_out and not options.pose_table:
-        raise TypeError("pose_out needs options with pose_table=True")
+        raise ArgumentError("pose_out needs options with pose_table=True")
     if resume_by not in ("mtime", "hash"):
-        raise ValueError("resume_by is 'mtime' (path, size and time) or 'hash' (content)")
+        raise ArgumentError("resume_by is 'mtime' (path, size and time) or 'hash' (content)")
+    if isinstance(inputs, (str, bytes, os.PathLike)) or not hasattr(inputs, "__iter__"):
+        raise ArgumentError(f"inputs must be a list of files, folders or globs, not {inputs!r}")
+    jobs = None if jobs is None else count(jobs, "jobs", MAX_PARTS, minimum=1)
     fields, pfields = result_fields(options), pose_fields()
     writer = open_writer(out, fields) if out else None
     pose_writer = open_writer(pose_out, pfields) if pose_out else None

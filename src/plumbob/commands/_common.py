@@ -28,8 +28,11 @@ __all__ = [
     "count",
     "parse_vector",
     "material_name",
+    "direction",
     "tilt_limit",
     "require_finite",
+    "add_report_units_argument",
+    "report_units",
     "number_option",
     "add_body_arguments",
     "add_stability_arguments",
@@ -99,6 +102,14 @@ def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
     return values
 
 
+def direction(text: str) -> list[float]:
+    """An argparse type: 'X,Y[,Z]', a direction (``--down``): finite and not zero."""
+    values = parse_vector(text)
+    if not any(values):
+        raise argparse.ArgumentTypeError(f"a direction must not be the zero vector: {text!r}")
+    return values
+
+
 def material_name(text: str) -> str:
     """An argparse type: a material name, not empty (``--material ''`` is a mistake,
     never "no material")."""
@@ -157,6 +168,35 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         help="repair small defects in meshes (holes, winding) and report them",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+
+
+def add_report_units_argument(parser: argparse.ArgumentParser) -> None:
+    """--report-units: the text report in other length and mass units (JSON stays SI)."""
+    parser.add_argument("--report-units", type=_report_units, metavar="LENGTH,MASS",
+                        help="show the text report in these units, e.g. mm,g or in,lb "
+                             "(lengths: m, cm, mm, km, in, ft; masses: kg, g, t, lb); "
+                             "the JSON stays in SI units")
+
+
+def _report_units(text: str):
+    from ..report import ReportUnits
+
+    try:
+        return ReportUnits.parse(text)
+    except ArgumentError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def report_units(args: argparse.Namespace):
+    """The units of the text report: ``--report-units``, else SI. Asked for with
+    ``--json`` it is an error (the JSON is always SI), never silently ignored."""
+    from ..report import ReportUnits
+
+    units = getattr(args, "report_units", None)
+    if units is not None and getattr(args, "json", False):
+        raise ArgumentError("--report-units changes the text report only; the JSON is always "
+                            "in SI units (leave out one of them)")
+    return units or ReportUnits()
 
 
 def add_stability_arguments(parser: argparse.ArgumentParser) -> None:

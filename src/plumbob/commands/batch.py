@@ -10,7 +10,7 @@ import sys
 
 from ..errors import printable
 from ..units import LENGTH_UNITS, STANDARD_GRAVITY
-from ._common import count, material_name, non_negative, number, parse_vector, positive, tilt_limit
+from ._common import count, direction, material_name, non_negative, number, positive, tilt_limit
 
 __all__ = ["register", "run"]
 
@@ -63,7 +63,7 @@ def register(subparsers) -> None:
     body.add_argument("--units", choices=sorted(LENGTH_UNITS),
                       help="length unit of the files' coordinates (default: each file's, else m)")
     body.add_argument("--repair", action="store_true", help="repair small mesh defects")
-    body.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
+    body.add_argument("--down", type=direction, metavar="X,Y,Z",
                       help="direction of gravity for --check (default -z; -y for a lamina)")
     body.add_argument("--tilt", type=non_negative, metavar="DEG",
                       help="--check also on a plane tilted DEG degrees")
@@ -74,7 +74,7 @@ def register(subparsers) -> None:
     body.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
                       help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
     harness = parser.add_argument_group("running")
-    harness.add_argument("--timeout", type=positive, metavar="S",
+    harness.add_argument("--timeout", type=_timeout, metavar="S",
                          help="seconds allowed per file (default: no limit)")
     harness.add_argument("--jobs", type=count, metavar="N",
                          help="worker processes (default: every core)")
@@ -90,9 +90,35 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
+#: The longest --timeout, s (a week): beyond it a time limit is no limit, and the
+#: process pool's clocks overflow.
+MAX_TIMEOUT = 7 * 24 * 3600.0
+
+
+def _timeout(text: str) -> float:
+    value = positive(text)
+    if value > MAX_TIMEOUT:
+        raise argparse.ArgumentTypeError(f"at most {MAX_TIMEOUT:g} s (a week), not {text}; "
+                                         "leave --timeout out for no limit")
+    return value
+
+
+def _writable(path: str | None, option: str) -> None:
+    """An output's folder must exist: said before any file is measured, not after."""
+    import os
+
+    from ..errors import InputFileError
+
+    if path is not None and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+        raise InputFileError(f"cannot write {option} {path}: its folder does not exist")
+
+
 def run(args: argparse.Namespace) -> int:
     from ..batch import Options
     from ..batch import run as run_batch
+
+    _writable(args.out, "--out")
+    _writable(args.pose_table, "--pose-table")
 
     options = Options(
         units=args.units, material=args.material, density=args.density, repair=args.repair,

@@ -11,15 +11,17 @@ import argparse
 
 from ..plot.files import add_plot_argument, write_plot
 from ._common import (
+    add_report_units_argument,
     add_stability_arguments,
     clean,
+    direction,
     header,
     non_negative,
     number,
     open_body,
-    parse_vector,
     positive,
     print_json,
+    report_units,
     require_finite,
     tilt_limit,
 )
@@ -40,8 +42,9 @@ def register(subparsers) -> None:
         "check", help="will it stand? stability margin, tilt limits, tilt test",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
+    add_report_units_argument(parser)
     where = parser.add_mutually_exclusive_group()
-    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
+    where.add_argument("--down", type=direction, metavar="X,Y,Z",
                        help="direction of gravity in the body's frame (default -z; -y for a "
                             "lamina)")
     where.add_argument("--pose", type=int, metavar="K",
@@ -63,7 +66,7 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-def _text(v, path: str, kind: str, notes: list[str]) -> str:
+def _text(v, path: str, kind: str, notes: list[str], u) -> str:
     import numpy as np
 
     from ..errors import printable
@@ -78,34 +81,42 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
     def vec(values, digits: int = 6) -> str:
         return vector(clean(values, scale), digits)
 
+    def at(value, digits: int = 6) -> str:  # a length or a point, in the report's unit
+        if np.ndim(value):
+            return f"{vector(u.length(clean(value, scale)), digits)} {u.length_unit}"
+        return f"{format_number(u.length(float(clean(value, scale))), digits)} {u.length_unit}"
+
     s = v.support
     if s.kind == "point":
-        where = f"a point, {vec(s.polygon[0])} m"
+        where = f"a point, {at(s.polygon[0])}"
     elif s.kind == "segment":
-        where = f"a segment from {vec(s.polygon[0])} to {vec(s.polygon[1])} m"
+        where = f"a segment from {at(s.polygon[0])[:-len(u.length_unit) - 1]} to " \
+                f"{at(s.polygon[1])}"
     else:
         where = f"a polygon of {len(s.vertices)} corners"
     verdict = {"stands": "stands", "topples": "TOPPLES",
                "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
     rows = [
         ("verdict", verdict),
-        ("mass", f"{num(v.mass)} kg"),
-        ("centre of mass", f"{vec(v.center_of_mass)} m"),
+        ("mass", f"{format_number(u.mass(v.mass))} {u.mass_unit}"),
+        ("centre of mass", at(v.center_of_mass)),
         ("down", vec(v.down)),
-        ("height of centre", f"{num(v.com_height)} m"),
+        ("height of centre", at(v.com_height)),
         ("support", where),
-        ("stability margin", f"{num(v.margin)} m"),
+        ("stability margin", at(v.margin)),
         ("critical tilt", f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"),
         ("energy to topple", f"{num(v.energy_to_topple)} J"),
     ]
     lines = [table(rows, title=f"plumbob check {path} ({kind})")]
     if v.edges:
         lines.append("")
-        lines.append(f"{'tipping over':<34}{'distance m':>13}{'angle °':>10}{'energy J':>14}")
+        lines.append(f"{'tipping over':<34}{f'distance {u.length_unit}':>13}{'angle °':>10}"
+                     f"{'energy J':>14}")
         for e in v.edges:
-            where = vec(e.start, 4) if np.allclose(e.start, e.end) else \
-                f"{vec(e.start, 4)}-{vec(e.end, 4)}"
-            lines.append(f"{where:<34} {num(e.distance, 5):>12} {num(e.tipping_angle_deg, 4):>9}"
+            start, end = (vector(u.length(clean(p, scale)), 4) for p in (e.start, e.end))
+            where = start if np.allclose(e.start, e.end) else f"{start}-{end}"
+            distance = format_number(u.length(float(clean(e.distance, scale))), 5)
+            lines.append(f"{where:<34} {distance:>12} {num(e.tipping_angle_deg, 4):>9}"
                          f" {num(e.energy, 5):>13}")
     if v.slope is not None:
         sl = v.slope
@@ -144,6 +155,7 @@ def run(args) -> int:
 
     if args.toward is not None and args.tilt is None:
         raise StabilityError("--toward needs --tilt DEG")
+    units = report_units(args)
     reading, props, notes = open_body(args)
     body = reading.body
     down = args.down
@@ -163,5 +175,5 @@ def run(args) -> int:
     if args.json:
         print_json({**header(reading, kind), **v.as_dict()}, reading, notes)
     else:
-        print(_text(v, args.path, kind, notes))
+        print(_text(v, args.path, kind, notes, units))
     return 1 if v.passes is False else 0

@@ -10,6 +10,7 @@ import argparse
 
 from ..plot.files import add_plot_argument, write_plot
 from ._common import (
+    add_report_units_argument,
     add_stability_arguments,
     count,
     header,
@@ -17,6 +18,7 @@ from ._common import (
     open_body,
     positive,
     print_json,
+    report_units,
     require_finite,
 )
 
@@ -36,6 +38,7 @@ def register(subparsers) -> None:
         "lift", help="energy to lift a structure's material into place, and crew time",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
+    add_report_units_argument(parser)
     parser.add_argument("--datum", type=number, metavar="Z",
                         help="height of the ground, m (default: the body's lowest point)")
     parser.add_argument("--work-per-day", type=positive, metavar="J",
@@ -52,6 +55,7 @@ def run(args) -> int:
     from ..report import format_number as num
     from ..report import table
 
+    u = report_units(args)
     reading, props, notes = open_body(args)
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
@@ -72,9 +76,9 @@ def run(args) -> int:
         print_json(out, reading, notes)
         return 0
     rows = [
-        ("mass", f"{num(lift.mass)} kg"),
-        ("ground datum", f"{num(lift.datum)} m"),
-        ("centre of mass above it", f"{num(lift.com_height)} m"),
+        ("mass", f"{num(u.mass(lift.mass))} {u.mass_unit}"),
+        ("ground datum", f"{num(u.length(lift.datum))} {u.length_unit}"),
+        ("centre of mass above it", f"{num(u.length(lift.com_height))} {u.length_unit}"),
         ("lift energy", f"{num(lift.lift_energy)} J"),
     ]
     if crew is not None:

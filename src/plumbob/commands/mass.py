@@ -5,7 +5,15 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_body_arguments, dump_json, load_body, print_notices, require_finite
+from ._common import (
+    add_body_arguments,
+    add_report_units_argument,
+    dump_json,
+    load_body,
+    print_notices,
+    report_units,
+    require_finite,
+)
 
 
 def register(subparsers) -> None:
@@ -16,6 +24,7 @@ def register(subparsers) -> None:
         "and principal axes of the body in PATH.",
     )
     add_body_arguments(parser)
+    add_report_units_argument(parser)
     add_plot_argument(parser)
     parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
                         help="print the simulator's inertial block instead (SI units)")
@@ -25,6 +34,7 @@ def register(subparsers) -> None:
 def run(args: argparse.Namespace) -> int:
     from .mass_report import MassReport
 
+    units = report_units(args)
     reading = load_body(args)
     print_notices(reading)
     report = MassReport.of(reading)
@@ -38,5 +48,5 @@ def run(args: argparse.Namespace) -> int:
     elif args.json:
         dump_json(report.as_dict())
     else:
-        print(report.text())
+        print(report.text(units))
     return 0

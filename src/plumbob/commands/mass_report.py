@@ -12,8 +12,9 @@ from ..bodies.csg import Assembly
 from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
-from ..report import format_number, format_vector, table
+from ..report import ReportUnits, format_number, format_vector, table
 from ..results import Result
+from ..tolerances import TEXT_ROUND_OFF
 from ._common import header
 
 __all__ = ["MassReport"]
@@ -69,23 +70,31 @@ class MassReport(Result):
             out["notices"] = list(self.reading.notices)
         return out
 
-    def text(self) -> str:
-        """A readable table, then a line per part and the notes."""
+    def text(self, units: ReportUnits | None = None) -> str:
+        """A readable table, then a line per part and the notes; lengths and masses in
+        ``units`` (default SI)."""
+        u = units or ReportUnits()
         props = self.props
-        size_label, size_unit = ("area", "m²") if props.dim == 2 and props.measure else ("volume", "m³")
-        rows = [("kind", self.kind), ("mass", f"{format_number(props.mass)} kg")]
+        dim = 2 if props.dim == 2 and props.measure else 3
+        size_label = "area" if dim == 2 else "volume"
+        rows = [("kind", self.kind), ("mass", f"{format_number(u.mass(props.mass))} {u.mass_unit}")]
         if props.measure:
-            rows.append((size_label, f"{format_number(props.measure)} {size_unit}"))
-            density_unit = "kg/m²" if props.dim == 2 else "kg/m³"
-            rows.append(("mean density", f"{format_number(props.density)} {density_unit}"))
+            rows.append((size_label, f"{format_number(u.measure(props.measure, dim))} "
+                                     f"{u.unit('measure', dim)}"))
+            rows.append(("mean density", f"{format_number(u.density(props.density, props.dim))} "
+                                         f"{u.unit('density', props.dim)}"))
         # Round-off far below the body's size is shown as 0 (the JSON keeps every digit).
         scale = float(np.abs(props.center_of_mass).max() + np.sqrt(np.trace(props.inertia) / props.mass))
-        rows.append(("centre of mass", f"{format_vector(props.center_of_mass, scale=scale)} m"))
+        centre = np.where(np.abs(props.center_of_mass) < TEXT_ROUND_OFF * scale, 0.0,
+                          props.center_of_mass)
+        rows.append(("centre of mass", f"{format_vector(u.length(centre))} {u.length_unit}"))
         inertia = np.where(np.abs(props.inertia) < 1e-12 * np.abs(props.inertia).max(), 0.0, props.inertia)
         labels = ("inertia (about centre)", "", "")
-        for label, row in zip(labels, inertia):
-            rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row) + "]  kg·m²"))
-        rows.append(("principal moments", f"{format_vector(props.principal_moments)} kg·m²"))
+        for label, row in zip(labels, u.inertia(inertia)):
+            rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row)
+                         + f"]  {u.unit('inertia')}"))
+        rows.append(("principal moments", f"{format_vector(u.inertia(props.principal_moments))} "
+                                          f"{u.unit('inertia')}"))
         for i, axis in enumerate(props.principal_axes):
             rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
         rows.append(
@@ -97,9 +106,11 @@ class MassReport(Result):
         if self.parts:
             names = [printable(n) for n, _, _ in self.parts]
             width = max(len(n) for n in names)
-            lines = ["", f"{'part':<{width}}  {'mass (kg)':>12}  centre of mass (m)"]
+            lines = ["", f"{'part':<{width}}  {f'mass ({u.mass_unit})':>12}  "
+                         f"centre of mass ({u.length_unit})"]
             lines += [
-                f"{name:<{width}}  {format_number(p.mass):>12}  {format_vector(p.center_of_mass)}"
+                f"{name:<{width}}  {format_number(u.mass(p.mass)):>12}  "
+                f"{format_vector(u.length(p.center_of_mass))}"
                 for name, (_, _, p) in zip(names, self.parts)
             ]
             text += "\n" + "\n".join(lines)

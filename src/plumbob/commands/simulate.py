@@ -12,7 +12,7 @@ from ..arguments import count
 from ..errors import DynamicsError, printable
 from ..limits import MAX_SAMPLES
 from ..report import format_number, format_vector, table
-from ._common import dump_json, number_option
+from ._common import dump_json, number_option, require_finite
 
 HELP = "integrate a particle system (springs, rods, strings, gravity, friction) over time"
 
@@ -40,6 +40,7 @@ def run(args: argparse.Namespace) -> int:
                     minimum=2, error=DynamicsError)
     spec = load_simulation(args.spec)
     result = simulate(spec.model, until, samples, **spec.options)
+    require_finite(result.as_dict())
     if args.json:
         out = {"spec": args.spec, "title": spec.title, "until": until}
         out.update(result.as_dict())

@@ -21,15 +21,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 
 from ..errors import LimitError
 from ..limits import MAX_PERIODS
 
-if TYPE_CHECKING:
-    from .motion import MotionModel
+#: a :class:`~plumbob.dynamics.motion.MotionModel` (not imported: motion imports this)
+MotionModel = Any
 
 __all__ = ["RESOLUTION", "check_feasible", "fastest_frequency"]
 

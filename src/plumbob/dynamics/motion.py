@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from ..arguments import count
+from ..arguments import count, instance, positive, vector
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
 from ..limits import MAX_SAMPLES
@@ -119,6 +119,7 @@ class MotionModel:
     names: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
+        instance(self.system, "system", ParticleSystem, error=DynamicsError)
         system = self.system
         n, d = len(system.masses), system.dim
         names = system.names or tuple(f"particle {k + 1}" for k in range(n))
@@ -126,9 +127,7 @@ class MotionModel:
         object.__setattr__(self, "springs", tuple(self.springs))
         object.__setattr__(self, "links", tuple(self.links))
         if self.gravity is not None:
-            g = np.array(self.gravity, dtype=float).reshape(-1)
-            if g.shape != (d,) or not np.all(np.isfinite(g)):
-                raise DynamicsError(f"gravity must be a vector of {d} finite numbers (m/s²)")
+            g = vector(self.gravity, "gravity (m/s²)", (d,), error=DynamicsError)
             object.__setattr__(self, "gravity", g)
         if self.forces is not None:
             object.__setattr__(self, "forces", _as_forces(self.forces, n, d, "the applied forces"))
@@ -445,6 +444,10 @@ def _scales(model: MotionModel, until: float) -> tuple[float, float]:
     return length, speed
 
 
+#: the ``solve_ivp`` methods a simulation may use
+_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+
+
 def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: float = 1e-10,
              method: str | None = None, stabilization: float | None = None,
              friction_speed: float | None = None) -> SimulationResult:
@@ -467,12 +470,7 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
     """
     from scipy.integrate import solve_ivp
 
-    try:
-        until = float(until)
-    except (TypeError, ValueError):
-        raise DynamicsError(f"the end time must be a number of seconds (got {until!r})") from None
-    if not (math.isfinite(until) and until > 0):
-        raise DynamicsError(f"the end time must be a positive number of seconds (got {until})")
+    until = positive(until, "the end time (s)", error=DynamicsError)
     samples = count(samples, "samples", MAX_SAMPLES, minimum=2, error=DynamicsError)
     if not (0 < rtol < 1):
         raise DynamicsError(f"rtol must lie between 0 and 1 (got {rtol})")
@@ -488,6 +486,8 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
         raise DynamicsError("the friction regularisation speed must be positive (m/s)")
     if method is None:
         method = "LSODA" if model.has_friction else "DOP853"
+    if method not in _METHODS:
+        raise DynamicsError(f"method must be one of {', '.join(_METHODS)}, not {method!r}")
     dyn = _Dynamics(model, stabilization, friction_speed, rtol)
     system = model.system
     n, d = dyn.n, dyn.d

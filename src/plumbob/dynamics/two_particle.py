@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import positive
 from ..errors import DynamicsError
 from ..results import Result
 from ..units import STANDARD_GRAVITY
@@ -38,13 +39,7 @@ __all__ = [
 
 
 def _positive(value: float, label: str, unit: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise DynamicsError(f"{label} must be a number (got {value!r})") from None
-    if not (math.isfinite(x) and x > 0):
-        raise DynamicsError(f"{label} must be a positive, finite number (got {value!r} {unit})")
-    return x
+    return positive(value, f"{label} ({unit})", error=DynamicsError)
 
 
 # ---------------------------------------------------------------------- lift

@@ -399,6 +399,9 @@ def support_polygon(body, down=None, *, tolerance: float | None = None,
     tol = DEFAULT_RELATIVE_TOLERANCE * size if tolerance is None else float(tolerance)
     if not (np.isfinite(tol) and tol > 0):
         raise StabilityError(f"the contact tolerance must be a positive length, not {tol:g}")
+    if tol >= 0.1 * size:  # else every point touches and the verdict is about nothing
+        raise StabilityError(f"the contact tolerance {tol:g} m is not small beside the body "
+                             f"(size {size:.6g} m); the default is 1e-6 of the size")
     frame = ground_frame(down)
     pts = support_points(body, down, tol)
     depth = pts @ down

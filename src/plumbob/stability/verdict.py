@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..arguments import answering, in_range, instance, number, optional, positive, vector
+from ..arguments import answering, finite_result, in_range, instance, number, optional, positive, vector
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
@@ -274,7 +274,7 @@ def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY,
         verdict = "topples"
     else:
         verdict = "neutral"
-    weight = mass * g
+    weight = finite_result(mass * g, "the weight M g", error=StabilityError)
     angle = float(np.degrees(np.arctan2(margin, h))) if verdict != "neutral" else 0.0
     energy = float(_energy(weight, margin, h)) if verdict == "stands" else 0.0
     roll = None

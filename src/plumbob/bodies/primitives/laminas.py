@@ -219,7 +219,7 @@ def triangle(p0, p1, p2, **kw) -> Lamina:
     ...
     plumbob.errors.GeometryError: the polygon has zero area: its points lie on a line and enclose no area
     """
-    return polygon(np.array([p0, p1, p2], dtype=float), **kw)
+    return polygon(floats([p0, p1, p2], "a triangle's corners", error=GeometryError), **kw)
 
 
 def regular_polygon(sides: int, circumradius: float, **kw) -> Lamina:

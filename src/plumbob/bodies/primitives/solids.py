@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...arguments import floats
 from ...errors import GeometryError
 from ..lamina import Lamina
 from ..region import Region, Ring
@@ -132,7 +133,10 @@ def tetrahedron(p0, p1, p2, p3, **kw) -> MeshSolid:
     ...
     plumbob.errors.GeometryError: the tetrahedron's four points are coplanar
     """
-    v = np.array([p0, p1, p2, p3], dtype=float)
+    v = floats([p0, p1, p2, p3], "a tetrahedron's corners", error=GeometryError)
+    if v.shape != (4, 3) or not np.all(np.isfinite(v)):
+        raise GeometryError(f"a tetrahedron needs four finite corners of 3 coordinates, not "
+                            f"an array of shape {v.shape}")
     if np.linalg.det(v[1:] - v[0]) < 0:
         v[[1, 2]] = v[[2, 1]]
     if np.linalg.det(v[1:] - v[0]) == 0:

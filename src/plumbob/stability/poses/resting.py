@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...arguments import answering, instance, non_negative, optional, positive
+from ...arguments import answering, finite_result, instance, non_negative, optional, positive
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import contact_tolerance, sampling_tolerance
@@ -240,6 +240,7 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     hull_tolerance = optional(positive, hull_tolerance, "hull_tolerance", error=StabilityError)
     neutral_height = optional(non_negative, neutral_height, "neutral_height", error=StabilityError)
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
+    finite_result(props.mass * g, "the weight M g", error=StabilityError)
     dim = body_dim(body, props)
     size = body_size(body)
     htol = sampling_tolerance(size, hull_tolerance)

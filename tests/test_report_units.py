@@ -1,0 +1,94 @@
+"""``--report-units``: the text report of mass, check and lift in other length and mass
+units; the JSON stays SI. Each converted number is checked against the SI JSON."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+
+import pytest
+
+from plumbob.cli import main
+from plumbob.errors import ArgumentError
+from plumbob.report import ReportUnits
+
+NUMBER = r"(-?[\d.]+(?:e[+-]?\d+)?)"
+
+
+def _run(capsys, *args: str) -> str:
+    assert main(list(args)) == 0
+    return capsys.readouterr().out
+
+
+def _row(text: str, label: str) -> str:
+    return next(line for line in text.splitlines() if line.startswith(label))
+
+
+def _numbers(text: str) -> list[float]:
+    return [float(x) for x in re.findall(NUMBER, text)]
+
+
+@pytest.fixture
+def mace(shapes_dir):
+    return os.path.join(shapes_dir, "mace_assembly.toml")
+
+
+def test_mass_in_mm_and_g_is_the_si_report_scaled(capsys, mace):
+    si = json.loads(_run(capsys, "mass", mace, "--json"))
+    text = _run(capsys, "mass", mace, "--report-units", "mm,g")
+    assert _numbers(_row(text, "mass"))[0] == pytest.approx(si["mass"] * 1e3, rel=1e-5)
+    assert "g" == _row(text, "mass").split()[-1]
+    assert _numbers(_row(text, "volume"))[0] == pytest.approx(si["volume"] * 1e9, rel=1e-5)
+    assert _row(text, "volume").endswith("mm³")
+    assert _row(text, "mean density").endswith("g/mm³")
+    assert _numbers(_row(text, "mean density"))[0] == pytest.approx(
+        si["mass"] * 1e3 / (si["volume"] * 1e9), rel=1e-5)
+    assert _numbers(_row(text, "centre of mass")) == pytest.approx(
+        [c * 1e3 for c in si["center_of_mass"]], rel=1e-5, abs=1e-9)
+    assert _numbers(_row(text, "principal moments"))[:3] == pytest.approx(
+        [m * 1e9 for m in si["principal_moments"]], rel=1e-5)
+    assert _row(text, "principal moments").endswith("g·mm²")
+    head = _row(text, "head")
+    assert _numbers(head)[0] == pytest.approx(si["part_properties"][1]["mass"] * 1e3, rel=1e-5)
+
+
+def test_one_unit_changes_only_its_quantity(capsys, shapes_dir):
+    block = os.path.join(shapes_dir, "block.toml")
+    text = _run(capsys, "mass", block, "--report-units", "t")
+    assert _row(text, "mass").split()[-2:] == ["4", "t"]
+    assert _row(text, "centre of mass").endswith("(0.5, 0.5, 2) m")
+
+
+def test_lift_and_check_in_other_units(capsys, shapes_dir):
+    block = os.path.join(shapes_dir, "block.toml")
+    lift = _run(capsys, "lift", block, "--report-units", "in,lb")
+    assert _numbers(_row(lift, "centre of mass above it"))[0] == pytest.approx(2 / 0.0254)
+    assert _numbers(_row(lift, "mass"))[0] == pytest.approx(4000 / 0.45359237, rel=1e-5)
+    assert _row(lift, "lift energy").endswith(" J")  # energies stay in joules
+    check = _run(capsys, "check", block, "--report-units", "mm")
+    assert _row(check, "height of centre").endswith("2000 mm")
+    assert _row(check, "stability margin").endswith("500 mm")
+    assert "distance mm" in check
+
+
+def test_the_default_report_is_si(capsys, shapes_dir):
+    block = os.path.join(shapes_dir, "block.toml")
+    assert _row(_run(capsys, "check", block), "height of centre").endswith("2 m")
+
+
+@pytest.mark.parametrize("command", ["mass", "check", "lift"])
+def test_report_units_with_json_is_an_error_not_ignored(capsys, shapes_dir, command):
+    block = os.path.join(shapes_dir, "block.toml")
+    assert main([command, block, "--json", "--report-units", "mm"]) == 2
+    assert "JSON is always in SI" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("text", ["furlong", "mm,cm", "g,kg", "", "mm,,g"])
+def test_bad_report_units_are_refused(text):
+    with pytest.raises(ArgumentError):
+        ReportUnits.parse(text)
+
+
+def test_parse_order_does_not_matter():
+    assert ReportUnits.parse("g,mm") == ReportUnits.parse("mm,g") == ReportUnits("mm", "g")
