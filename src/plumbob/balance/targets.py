@@ -72,7 +72,8 @@ class Target:
 
 
 def target_for(body, *, down=None, margin: float | None = None,
-               require_tilt: float | None = None, support: Support | None = None) -> Target:
+               require_tilt: float | None = None, support: Support | None = None,
+               toward=None) -> Target:
     """The :class:`Target` for ``body`` resting with gravity along ``down``.
 
     Parameters
@@ -87,6 +88,12 @@ def target_for(body, *, down=None, margin: float | None = None,
         Critical tilt asked for in every direction, **radians**, in [0, π/2).
     support : Support, optional
         The support polygon, when already measured (its ``down`` is used).
+    toward : array_like, optional
+        With ``require_tilt``: only a plane descending toward this horizontal direction
+        (body frame). It tips at ``atan(s/h)``, ``s`` the distance to the support's
+        boundary along the direction: ``s = min d_e / cos_e`` over the edges facing it
+        (``cos_e`` their outward normal's cosine with it), so the rows are
+        ``d_e − cos_e · tan θ · h ≥ 0``.
 
     Without ``margin`` and ``require_tilt`` the target is to stand: margin 0.
 
@@ -125,11 +132,18 @@ def target_for(body, *, down=None, margin: float | None = None,
         offsets.append(base + (margin or 0.0))
         kinds += ["margin"] * len(inward)
     if require_tilt is not None:
-        t = np.tan(require_tilt)
+        t = np.full(len(inward), np.tan(require_tilt))
+        keep = np.ones(len(inward), dtype=bool)
+        if toward is not None:
+            u = frame.to_ground(np.asarray(toward, dtype=float))
+            u = u / np.linalg.norm(u)
+            cos = support.edge_normals @ u
+            keep = cos > 1e-12
+            t = t * cos
         up = frame.up
-        rows.append(inward - t * up)
-        offsets.append(base - t * (up @ support.plane_point))
-        kinds += ["tilt"] * len(inward)
+        rows.append(inward[keep] - t[keep, None] * up)
+        offsets.append(base[keep] - t[keep] * (up @ support.plane_point))
+        kinds += ["tilt"] * int(keep.sum())
     return Target(np.concatenate(rows), np.concatenate(offsets), frame.down.copy(), margin,
                   require_tilt, support, tuple(kinds))
 
