@@ -35,7 +35,9 @@ SHAPES = ("box", "cylinder")
 _GRID = {2: 160, 3: 28}  # grid cells per axis of the first search
 _REFINE_ROUNDS = 6
 _BATCH = 256  # candidates tested for fit at once
-_SAFETY = 2.0  # the plan aims this many contact tolerances inside every row
+# The plan aims this many contact tolerances inside every margin row (the check calls a
+# margin within one tolerance neutral) and a round-off's worth inside every tilt row.
+_SAFETY = {"margin": 2.0, "tilt": 1e-3}
 
 
 @dataclass(frozen=True)
@@ -135,7 +137,9 @@ def plan_ballast(region, target: Target, mass: float, center: np.ndarray, *,
     center = np.asarray(center, dtype=float)
     dim = target.dim
     tol = target.support.tolerance
-    goal = replace(target, offsets=target.offsets + _SAFETY * tol)
+    safety = np.array([_SAFETY.get(kind, 2.0) for kind in target.kinds] or
+                      np.full(len(target.offsets), 2.0))
+    goal = replace(target, offsets=target.offsets + safety * tol)
     if goal.met_by(center):
         return BallastPlan(0.0, center.copy())
     if density is not None and shape not in SHAPES:

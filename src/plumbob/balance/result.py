@@ -21,7 +21,11 @@ __all__ = ["BalanceResult", "balance"]
 class BalanceResult(Result):
     """The least ballast that meets a stability target, and the stability it gives.
 
-    ballast_mass: kg (0 when the body meets the target as it is).
+    ballast_mass: kg, the ballast's own mass (0 when the body meets the target as it is).
+    added_mass: kg, what the body gains: the ballast's mass less the body's material its
+        pocket removes (a ballast of a material placed inside the body fills a pocket cut
+        for it; a point mass, or a ballast in a separate region, adds all of its mass).
+    pocket: whether the ballast fills a pocket cut in the body.
     ballast_point: (dim,) m, body frame: where the ballast's centre goes.
     ballast_material, ballast_density: the material given (kg/m³), or None for a point mass.
     ballast_volume: m³; ballast_shape: ``"box"``, ``"cylinder"`` or ``"square"`` (a lamina's,
@@ -48,6 +52,8 @@ class BalanceResult(Result):
     ballast_dimensions: tuple[float, ...] | None = None
     ballast_depth: float | None = None
     toward: np.ndarray | None = None
+    added_mass: float | None = None
+    pocket: bool = False
 
     _repr_fields = ("ballast_mass", "ballast_point", "ballast_volume", "ballast_shape",
                     "passes")
@@ -62,7 +68,8 @@ class BalanceResult(Result):
         out: dict[str, Any] = {
             "target": {"margin": self.margin_target, "require_tilt_deg": self.require_tilt_deg,
                        "toward": self.toward, "down": self.down},
-            "ballast": {"mass": self.ballast_mass, "center_of_mass": self.ballast_point},
+            "ballast": {"mass": self.ballast_mass, "center_of_mass": self.ballast_point,
+                        "added_mass": self.added_mass, "pocket": self.pocket},
             "before": state(self.before), "after": state(self.after), "passes": self.passes,
         }
         if self.ballast_density is not None:
@@ -159,17 +166,31 @@ def balance(body, down=None, *, margin: float | None = None,
 
         raise StabilityError("a lamina without a thickness has no volume for a ballast "
                              "material: give the lamina a thickness, or no ballast material")
+    pocket = density is not None and region is None
+    net = density
+    if pocket:  # the ballast fills a pocket: it adds its density less the body's
+        net = density - props.mass / (props.measure * (depth or 1.0))
+        if net <= 0:
+            from ..errors import StabilityError
+
+            raise StabilityError(
+                f"the ballast material ({density:g} kg/m³) is not denser than the body "
+                f"({density - net:g} kg/m³): a pocket of it would make the body lighter there")
     plan = plan_ballast(body if region is None else region, target, props.mass,
-                        before.center_of_mass, density=density, shape=shape, depth=depth)
+                        before.center_of_mass, density=net, shape=shape, depth=depth)
     if plan.mass > 0:
         from ..bodies.csg import Assembly
 
+        # body + pocket filled = body + the ballast's shape at the density difference:
+        # the same mass properties, the same support (the shape is inside the body)
         with_ballast = Assembly((body, ballast_body(plan, target)))
         after = check(with_ballast, target.down, g=g, require_tilt_deg=every,
                       tolerance=before.support.tolerance)
     else:
         after = before
+    own = plan.mass if plan.volume is None else density * plan.volume
     return BalanceResult(
-        plan.mass, plan.point, margin, require_tilt_deg, target.down, before, after,
+        own, plan.point, margin, require_tilt_deg, target.down, before, after,
         meets(after, margin, require_tilt_deg, before.support.tolerance, toward), material,
-        plan.density, plan.volume, plan.shape, plan.dimensions or None, plan.depth, toward)
+        density if plan.volume is not None else None, plan.volume, plan.shape,
+        plan.dimensions or None, plan.depth, toward, plan.mass, pocket and plan.mass > 0)

@@ -155,6 +155,9 @@ def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
             rows.append(("ballast shape", f"{r.ballast_material} ({num(r.ballast_density)} "
                                           f"kg/m³), {num(r.ballast_volume, 4)} m³: {shape}, "
                                           "fits inside"))
+            if r.pocket:
+                rows.append(("pocket", f"it fills a pocket cut for it: the body gains "
+                                       f"{num(r.added_mass)} kg"))
         rows.append(("after", state(r.after) + f", mass {num(r.after.mass)} kg"))
     rows.append(("result", "meets the target (checked with the ballast added)" if r.passes
                  else "does NOT meet the target"))

@@ -1,0 +1,151 @@
+"""Ballast: the least added mass against closed forms, and the acceptance test — the
+answer added to the sculpture's spec passes ``plumbob check --require-tilt 10``, 99% of
+it does not."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+from conftest import SHAPES
+
+from plumbob.balance.ballast import required_mass
+from plumbob.balance.result import balance
+from plumbob.balance.targets import target_for
+from plumbob.bodies.csg import Assembly
+from plumbob.bodies.particles import ParticleSystem
+from plumbob.bodies.primitives import box, cylinder
+from plumbob.cli import main
+from plumbob.errors import StabilityError
+from plumbob.loading import read
+from plumbob.stability import check
+
+A = np.sqrt(3) / 2
+SCULPTURE = os.path.join(SHAPES, "sculpture.toml")
+
+
+def test_block_closed_form():
+    """1 × 1 × 4 m, 4000 kg: a mass m at the bottom centre lowers the centre to
+    h = 2·4000/(4000 + m); 20° needs h ≤ 0.5/tan 20°."""
+    r = balance(box(1, 1, 4, density=1000.0), require_tilt_deg=20)
+    h = 0.5 / np.tan(np.radians(20))
+    assert r.ballast_mass == pytest.approx(4000 * (2 / h - 1), rel=1e-4)
+    assert r.ballast_point == pytest.approx([0.5, 0.5, 0.0], abs=1e-3)
+    assert r.passes and r.after.critical_tilt_deg >= 20
+    assert r.before.critical_tilt_deg == pytest.approx(np.degrees(np.arctan(0.25)))
+
+
+def test_cylinder_closed_form():
+    """A cylinder (radius 0.3, height 1) to 40°: its critical tilt is atan(r/h)."""
+    r = balance(cylinder(0.3, 1.0, density=1000.0), require_tilt_deg=40)
+    mass = np.pi * 0.09 * 1000
+    h = 0.3 / np.tan(np.radians(40))
+    assert r.ballast_mass == pytest.approx(mass * (0.5 / h - 1), rel=1e-4)
+    assert r.passes
+
+
+def test_sculpture_closed_form():
+    """The best point is the base's far corner (−2a, 0): it has the most slack per kg."""
+    body = read(SCULPTURE).body
+    props = body.mass_properties()
+    t = target_for(body, require_tilt=np.radians(10))
+    corner = np.array([[-2 * A, 0.0]])
+    expected = required_mass(t, props.mass, props.center_of_mass, corner)[0]
+    r = balance(body, require_tilt_deg=10)
+    assert r.ballast_mass == pytest.approx(expected, rel=1e-4)
+    assert r.ballast_point == pytest.approx(corner[0], abs=1e-3)
+
+
+def test_point_ballast_is_least_by_the_check():
+    """The check of the body with the particle passes; with 99% of it, it fails."""
+    body = read(SCULPTURE).body
+    r = balance(body, require_tilt_deg=10)
+    for factor, passes in ((1.0, True), (0.99, False)):
+        both = Assembly((body, ParticleSystem([factor * r.ballast_mass], [r.ballast_point])))
+        assert check(both, require_tilt_deg=10).passes is passes
+
+
+def _spec_with_ballast(tmp_path, ballast: dict, density: float) -> str:
+    """The sculpture's spec with a pocket cut for the ballast and the ballast, a steel
+    square through its 1 m, added in it."""
+    side = ballast["dimensions"][0]
+    x, y = ballast["center_of_mass"]
+    square = (f'type = "rectangle"\nwidth = {side!r}\nheight = {side!r}\ncentered = true\n'
+              f'at = [{x!r}, {y!r}]\n')
+    text = open(SCULPTURE, encoding="utf-8").read()
+    text += f'\n[[part]]\nname = "pocket"\nop = "subtract"\n{square}'
+    text += f'\n[[part]]\nname = "ballast"\n{square}density = {density!r}\nthickness = 1\n'
+    path = tmp_path / f"sculpture_ballast_{density:.0f}.toml"
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def test_acceptance_sculpture_ballast_in_a_spec(tmp_path, capsys):
+    assert main(["check", SCULPTURE, "--require-tilt", "10"]) == 1
+    capsys.readouterr()
+    assert main(["balance", SCULPTURE, "--require-tilt", "10", "--ballast-material", "steel",
+                 "--json"]) == 0
+    ballast = json.loads(capsys.readouterr().out)["ballast"]
+    assert ballast["shape"] == "square" and ballast["density"] == 7850.0 and ballast["pocket"]
+    assert ballast["volume"] == pytest.approx(ballast["dimensions"][0] ** 2 * 1.0)
+    assert ballast["added_mass"] == pytest.approx((7850.0 - 2400.0) * ballast["volume"])
+    spec = _spec_with_ballast(tmp_path, ballast, 7850.0)
+    assert main(["check", spec, "--require-tilt", "10", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["mass"] == pytest.approx(read(SCULPTURE).body.mass_properties().mass
+                                         + ballast["added_mass"], rel=1e-9)
+    light = _spec_with_ballast(tmp_path, ballast, 0.99 * 7850.0)
+    assert main(["check", light, "--require-tilt", "10"]) == 1
+
+
+def test_region_keeps_the_ballast_inside_it(tmp_path, capsys):
+    """Confined to the block's half y ≥ 0.5, the ballast can only lower the centre."""
+    region = tmp_path / "half.toml"
+    region.write_text('[shape]\nkind = "solid"\n[[part]]\ntype = "box"\nlength = 1\n'
+                      'width = 0.5\nheight = 1\nat = [0, 0.5, 0]\n', encoding="utf-8")
+    assert main(["balance", os.path.join(SHAPES, "block.toml"), "--require-tilt", "20",
+                 "--ballast-region", str(region), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    h = 0.5 / np.tan(np.radians(20))
+    assert data["ballast"]["mass"] == pytest.approx(4000 * (2 / h - 1), rel=1e-4)
+    assert data["ballast"]["center_of_mass"][1] >= 0.5
+    assert data["after"]["critical_tilt_deg"] >= 20 and data["passes"] is True
+
+
+def test_one_direction_needs_less_than_every_direction():
+    """Toward +y only, a mass at y = 0 both lowers and shifts the centre."""
+    block = box(1, 1, 4, density=1000.0)
+    every = balance(block, require_tilt_deg=20)
+    one = balance(block, require_tilt_deg=20, toward=[0, 1, 0])
+    assert one.ballast_mass < every.ballast_mass and one.passes
+    assert one.after.tipping_angle_deg([0, 1, 0]) >= 20
+    # closed form: at (x, 0, 0) the centre has y = 2000/(M + m), h = 8000/(M + m), and
+    # 1 − y ≥ tan 20° · h gives m = 8000 tan 20° − 2000
+    assert one.ballast_mass == pytest.approx(8000 * np.tan(np.radians(20)) - 2000, rel=1e-4)
+    assert one.ballast_point[1:] == pytest.approx([0, 0], abs=1e-3)
+
+
+def test_material_ballast_fits_and_weighs_its_volume():
+    block = box(1, 1, 4, density=1000.0)
+    for shape in ("box", "cylinder"):
+        r = balance(block, require_tilt_deg=20, density=7850.0, material="steel", shape=shape)
+        assert r.ballast_mass == pytest.approx(7850.0 * r.ballast_volume)
+        assert r.added_mass == pytest.approx(6850.0 * r.ballast_volume) and r.pocket
+        if shape == "box":
+            assert r.ballast_dimensions[0] ** 3 == pytest.approx(r.ballast_volume)
+        else:
+            rad, height = r.ballast_dimensions
+            assert np.pi * rad**2 * height == pytest.approx(r.ballast_volume)
+        half = r.ballast_dimensions[0] / 2 if shape == "box" else r.ballast_dimensions[1] / 2
+        assert r.ballast_point[2] >= half - 1e-9  # it sits on or above the base, inside
+        assert r.passes
+
+
+def test_already_meets_it():
+    r = balance(box(1, 1, 4), margin=0.1)
+    assert r.ballast_mass == 0 and r.after is r.before and r.passes
+
+
+def test_unreachable_target():
+    with pytest.raises(StabilityError, match="too narrow"):
+        balance(box(1, 1, 4), margin=0.6)
