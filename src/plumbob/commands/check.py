@@ -24,6 +24,9 @@ from ._common import (
 
 __all__ = ["register", "run"]
 
+#: how many tipping edges (or arcs) the text report lists without --all-edges
+WEAKEST = 4
+
 DESCRIPTION = """\
 Will the body stand on a horizontal plane? Reports the verdict (stands, topples,
 neutral), the static stability margin (distance from the foot of the centre of mass
@@ -57,11 +60,15 @@ def register(subparsers) -> None:
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
+    parser.add_argument("--all-edges", action="store_true",
+                        help=f"list every tipping edge (default: the {WEAKEST} weakest; runs of "
+                             "short edges of a round base are one arc either way; the JSON "
+                             "always has every edge)")
     add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
-def _text(v, path: str, kind: str, notes: list[str]) -> str:
+def _text(v, path: str, kind: str, notes: list[str], all_edges: bool = False) -> str:
     import numpy as np
 
     from ..report import format_number, table
@@ -76,14 +83,28 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
         return vector(clean(values, scale), digits)
 
     s = v.support
+    groups = v.edge_groups()
     if s.kind == "point":
         where = f"a point, {vec(s.polygon[0])} m"
     elif s.kind == "segment":
         where = f"a segment from {vec(s.polygon[0])} to {vec(s.polygon[1])} m"
     else:
+        arcs = [g for g in groups if g.kind == "arc"]
         where = f"a polygon of {len(s.vertices)} corners"
+        if arcs:
+            on = sum(g.count for g in arcs)
+            where += (f" ({on} short edges on {len(arcs)} arc{'s' if len(arcs) > 1 else ''}, "
+                      "of a round base)")
     verdict = {"stands": "stands", "topples": "TOPPLES",
                "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
+    if v.verdict == "topples":
+        margin = (f"{num(v.margin)} m: the centre of mass is {num(v.overhang)} m beyond "
+                  "the support")
+        critical = (f"none: it is over by {num(v.over_by_deg, 4)}°, falling toward "
+                    f"{vec(v.critical_direction, 4)}")
+    else:
+        margin = f"{num(v.margin)} m"
+        critical = f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"
     rows = [
         ("verdict", verdict),
         ("mass", f"{num(v.mass)} kg"),
@@ -91,19 +112,35 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
         ("down", vec(v.down)),
         ("height of centre", f"{num(v.com_height)} m"),
         ("support", where),
-        ("stability margin", f"{num(v.margin)} m"),
-        ("critical tilt", f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"),
+        ("stability margin", margin),
+        ("critical tilt", critical),
         ("energy to topple", f"{num(v.energy_to_topple)} J"),
     ]
     lines = [table(rows, title=f"plumbob check {path} ({kind})")]
-    if v.edges:
+    if groups:
+        shown = groups if all_edges else groups[:WEAKEST]
         lines.append("")
-        lines.append(f"{'tipping over':<34}{'distance m':>13}{'angle °':>10}{'energy J':>14}")
-        for e in v.edges:
-            where = vec(e.start, 4) if np.allclose(e.start, e.end) else \
-                f"{vec(e.start, 4)}-{vec(e.end, 4)}"
-            lines.append(f"{where:<34} {num(e.distance, 5):>12} {num(e.tipping_angle_deg, 4):>9}"
-                         f" {num(e.energy, 5):>13}")
+        title = "tipping over" if len(shown) == len(groups) else "weakest tipping edges"
+        labels = []
+        for g in shown:
+            if g.kind == "arc" and g.count == len(v.edges):
+                labels.append(f"the whole round rim ({g.count} edges)")
+            elif g.kind == "arc":
+                labels.append(f"arc of {g.count} edges {vec(g.start, 4)}-{vec(g.end, 4)}")
+            elif np.allclose(g.start, g.end):
+                labels.append(vec(g.start, 4))
+            else:
+                labels.append(f"{vec(g.start, 4)}-{vec(g.end, 4)}")
+        width = max(33, *(len(label) for label in labels)) + 1
+        lines.append(f"{title:<{width}}{'distance m':>13}{'angle °':>10}{'energy J':>14}")
+        for label, g in zip(labels, shown):
+            lines.append(f"{label:<{width}} {num(g.distance, 5):>12} "
+                         f"{num(g.tipping_angle_deg, 4):>9} {num(g.energy, 5):>13}")
+        if len(shown) < len(groups):
+            rest = groups[len(shown):]
+            edges = sum(g.count for g in rest)
+            lines.append(f"… and {len(rest)} more ({edges} edge{'s' if edges > 1 else ''}, "
+                         "--all-edges lists them)")
     if v.slope is not None:
         sl = v.slope
         lines.append("")
@@ -126,9 +163,18 @@ def _text(v, path: str, kind: str, notes: list[str]) -> str:
                          "direction it topples before it slides")
     if v.required_tilt_deg is not None:
         lines.append("")
-        status = "PASS" if v.passes else "FAIL"
-        lines.append(f"design check, no overturning at {num(v.required_tilt_deg, 4)}° in any "
-                     f"direction: {status} (critical tilt {num(v.critical_tilt_deg, 4)}°)")
+        required = num(v.required_tilt_deg, 4)
+        if v.passes:
+            status = f"PASS (critical tilt {num(v.critical_tilt_deg, 4)}°)"
+        elif v.verdict == "topples":
+            status = (f"FAIL (it topples, over by {num(v.over_by_deg, 4)}°: "
+                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
+        elif v.verdict == "neutral":
+            status = "FAIL (it is balanced on the edge of its support: critical tilt 0°)"
+        else:
+            status = (f"FAIL (critical tilt {num(v.critical_tilt_deg, 4)}°, "
+                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
+        lines.append(f"design check, no overturning at {required}° in any direction: {status}")
     for note in notes:
         lines.append(f"note: {note}")
     return "\n".join(lines)
@@ -159,5 +205,5 @@ def run(args) -> int:
     if args.json:
         print_json({**header(reading, kind), **v.as_dict()}, reading, notes)
     else:
-        print(_text(v, args.path, kind, notes))
+        print(_text(v, args.path, kind, notes, args.all_edges))
     return 1 if v.passes is False else 0
