@@ -163,8 +163,19 @@ def plan_ballast(region, target: Target, mass: float, center: np.ndarray, *,
         if len(points) == 0:
             return None
         need = required_mass(goal, mass, center, points)
-        order = np.argsort(need, kind="stable")
-        order = order[np.isfinite(need[order])]
+        finite = np.isfinite(need)
+        if not finite.any():
+            return None
+        # least mass first; among equal masses the point leaving the most slack in every
+        # row (a counterweight for the front edge goes in the middle, not in a corner)
+        total = mass + np.where(finite, need, 0.0)
+        s0 = goal.slack(center)
+        met = s0 >= 0  # the rows the ballast is not for: keep as much of their slack
+        after = ((mass * s0[met, None] + need * goal.slack(points)[met]).min(axis=0)
+                 if met.any() else np.zeros(len(points)))
+        level = np.round(need / max(float(need[finite].min()), 1e-300), 9)
+        order = np.lexsort((-np.where(finite, after / total, 0.0), level))
+        order = order[finite[order]]
         for start in range(0, len(order), _BATCH):
             idx = order[start:start + _BATCH]
             pts, scale = points[idx], sizes(need[idx])

@@ -147,7 +147,8 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
 def load_body(args: argparse.Namespace) -> Reading:
     """Read ``args.path`` and apply ``--density`` / ``--material``."""
     reading = read(
-        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False)
+        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
+        parameters=getattr(args, "parameters", None),
     )
     density = None
     if getattr(args, "material", None):

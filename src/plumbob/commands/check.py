@@ -58,6 +58,12 @@ def register(subparsers) -> None:
     parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
                         help="design check: it must not topple when tilted DEG degrees in any "
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
+    parser.add_argument("--margin", type=non_negative, metavar="M",
+                        help="design check: the static stability margin must be at least M "
+                             "metres; exit status 1 if it is not")
+    parser.add_argument("--solve-for", metavar="NAME",
+                        help="with --require-tilt or --margin: the smallest change of the "
+                             "spec's parameter NAME that meets it (a 1-D root find)")
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
     parser.add_argument("--all-edges", action="store_true",
@@ -180,15 +186,12 @@ def _text(v, path: str, kind: str, notes: list[str], all_edges: bool = False) ->
     return "\n".join(lines)
 
 
-def run(args) -> int:
+def _verdict(args, body, props):
+    """plumbob's check of ``body`` with the command's options."""
     from ..errors import StabilityError
     from ..stability.poses import resting_poses
     from ..stability.verdict import check
 
-    if args.toward is not None and args.tilt is None:
-        raise StabilityError("--toward needs --tilt DEG")
-    reading, props, notes = open_body(args)
-    body = reading.body
     down = args.down
     if args.pose is not None:
         poses = resting_poses(body, g=args.g, props=props)
@@ -196,14 +199,96 @@ def run(args) -> int:
             raise StabilityError(f"--pose must be between 1 and {len(poses)} (the body has "
                                  f"{len(poses)} resting poses)")
         down = poses[args.pose - 1].down
-    v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
-              friction=args.friction, require_tilt_deg=args.require_tilt,
-              tolerance=args.tolerance, props=props)
+    return check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
+                 friction=args.friction, require_tilt_deg=args.require_tilt,
+                 tolerance=args.tolerance, props=props)
+
+
+def _margin_passes(v, required: float) -> bool:
+    return bool(v.verdict == "stands" and v.margin >= required)
+
+
+def _solve(args):
+    """The smallest change of ``--solve-for``'s parameter that meets the requirement."""
+    import argparse as _argparse
+
+    from ..balance.solve import solve_parameter
+    from ..errors import SpecError, StabilityError
+    from ..loading import SUFFIXES
+    from ..spec.loader import spec_parameters
+    from ._common import load_body
+
+    if (args.require_tilt is None) == (args.margin is None):
+        raise StabilityError("--solve-for needs one requirement: --require-tilt DEG or "
+                             "--margin M")
+    import os
+
+    if SUFFIXES.get(os.path.splitext(args.path)[1].lower()) != "spec":
+        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
+                        "[parameters]", path=args.path)
+    known = spec_parameters(args.path)
+    name = args.solve_for
+    if name not in known:
+        listed = ", ".join(known) if known else "none (the spec has no [parameters])"
+        raise SpecError(f"--solve-for: unknown parameter {name!r}; the spec's parameters: "
+                        f"{listed}", path=args.path)
+    tilt = args.require_tilt is not None
+
+    def evaluate(value: float) -> float:
+        given = {**(getattr(args, "parameters", None) or {}), name: value}
+        body = load_body(_argparse.Namespace(**{**vars(args), "parameters": given})).body
+        v = _verdict(args, body, body.mass_properties())
+        if v.verdict == "neutral":
+            return 0.0
+        return v.critical_tilt_deg if tilt else v.margin
+
+    return solve_parameter(name, known[name], evaluate,
+                           args.require_tilt if tilt else args.margin,
+                           measure="critical_tilt_deg" if tilt else "margin")
+
+
+def _solution_text(sol) -> str:
+    from ..report import format_number as num
+
+    what = (f"critical tilt {num(sol.achieved, 6)}° (≥ {num(sol.required, 4)}°)"
+            if sol.measure == "critical_tilt_deg"
+            else f"stability margin {num(sol.achieved)} m (≥ {num(sol.required)} m)")
+    if sol.change == 0:
+        return f"{sol.name} = {num(sol.start)} meets it already: {what}"
+    return (f"smallest change of {sol.name} that meets it: {num(sol.start)} → "
+            f"{num(sol.value)} ({sol.change:+.6g}): {what}, by the check of the rebuilt body")
+
+
+def run(args) -> int:
+    from ..errors import StabilityError
+
+    if args.toward is not None and args.tilt is None:
+        raise StabilityError("--toward needs --tilt DEG")
+    if args.solve_for is not None and args.require_tilt is None and args.margin is None:
+        raise StabilityError("--solve-for needs a requirement: --require-tilt DEG or "
+                             "--margin M")
+    reading, props, notes = open_body(args)
+    body = reading.body
+    v = _verdict(args, body, props)
+    solution = _solve(args) if args.solve_for is not None else None
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
+    margin_ok = None if args.margin is None else _margin_passes(v, args.margin)
     if args.json:
-        print_json({**header(reading, kind), **v.as_dict()}, reading, notes)
+        out = {**header(reading, kind), **v.as_dict()}
+        if args.margin is not None:
+            out.update(required_margin=args.margin, margin_passes=margin_ok)
+        if solution is not None:
+            out["solution"] = solution.as_dict()
+        print_json(out, reading, notes)
     else:
-        print(_text(v, args.path, kind, notes, args.all_edges))
-    return 1 if v.passes is False else 0
+        lines = [_text(v, args.path, kind, notes, args.all_edges)]
+        if args.margin is not None:
+            status = "PASS" if margin_ok else (
+                f"FAIL ({max(args.margin - v.margin, 0.0):.6g} m short)")
+            lines.append(f"design check, stability margin at least {args.margin:g} m: {status}")
+        if solution is not None:
+            lines.append(_solution_text(solution))
+        print("\n".join(lines))
+    return 1 if v.passes is False or margin_ok is False else 0
