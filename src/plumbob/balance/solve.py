@@ -21,8 +21,8 @@ from ..results import Result
 
 __all__ = ["ParameterSolution", "solve_parameter"]
 
-_STEPS = 48  # doublings of the step on each side before giving up
-_FIRST_STEP = 1e-3  # of the parameter's size (or of 1 when it is 0)
+_STEPS = 20  # doublings of the step on each side: up to ~1000 times the start
+_FIRST_STEP = 1e-2  # of the parameter's size (or of 1 when it is 0)
 
 
 @dataclass(frozen=True, repr=False)
@@ -63,25 +63,30 @@ def solve_parameter(name: str, start: float, evaluate: Callable[[float], float],
     here = gap(start)
     if here >= 0:
         return ParameterSolution(name, start, start, 0.0, measure, required, here + required)
-    step = _FIRST_STEP * (abs(start) or 1.0)
-    open_sides = {1.0: (start, here), -1.0: (start, here)}  # side -> last value, gap
+    first = _FIRST_STEP * (abs(start) or 1.0)
+    # per side: the last value tried that builds (and its gap), the next step, and the
+    # nearest value that does not build (steps then halve toward it instead of doubling)
+    sides = {side: [start, first, None] for side in (1.0, -1.0)}
     bracket = None
-    for k in range(_STEPS):
-        for side in list(open_sides):
-            value = start + side * step * 2.0 ** k
+    for _ in range(2 * _STEPS):
+        for side in list(sides):
+            last, step, bad = sides[side]
+            value = last + side * step if bad is None else (last + bad) / 2
             try:
                 g = gap(value)
-            except PlumbobError:
-                del open_sides[side]  # the spec cannot take it: search no further this way
-                continue
-            if not np.isfinite(g):
-                del open_sides[side]
+                ok = bool(np.isfinite(g))
+            except PlumbobError:  # the spec cannot take it: look between here and there
+                ok = False
+            if not ok:
+                sides[side][2] = value
+                if abs(value - last) <= 1e-9 * (abs(start) or 1.0):
+                    del sides[side]
                 continue
             if g >= 0:
-                bracket = (open_sides[side][0], value)
+                bracket = (last, value)
                 break
-            open_sides[side] = (value, g)
-        if bracket is not None or not open_sides:
+            sides[side] = [value, step * 2.0, bad]
+        if bracket is not None or not sides:
             break
     if bracket is None:
         raise StabilityError(

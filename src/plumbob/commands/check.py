@@ -208,25 +208,32 @@ def _margin_passes(v, required: float) -> bool:
     return bool(v.verdict == "stands" and v.margin >= required)
 
 
+def _spec_parameters(path: str) -> dict:
+    """The parameters of the spec at ``path``, or a SpecError when it is not a spec."""
+    import os
+
+    from ..errors import SpecError
+    from ..loading import SUFFIXES
+    from ..spec.loader import spec_parameters
+
+    if SUFFIXES.get(os.path.splitext(path)[1].lower()) != "spec":
+        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
+                        "[parameters]", path=path)
+    return spec_parameters(path)
+
+
 def _solve(args):
     """The smallest change of ``--solve-for``'s parameter that meets the requirement."""
     import argparse as _argparse
 
     from ..balance.solve import solve_parameter
     from ..errors import SpecError, StabilityError
-    from ..loading import SUFFIXES
-    from ..spec.loader import spec_parameters
     from ._common import load_body
 
     if (args.require_tilt is None) == (args.margin is None):
         raise StabilityError("--solve-for needs one requirement: --require-tilt DEG or "
                              "--margin M")
-    import os
-
-    if SUFFIXES.get(os.path.splitext(args.path)[1].lower()) != "spec":
-        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
-                        "[parameters]", path=args.path)
-    known = spec_parameters(args.path)
+    known = _spec_parameters(args.path)
     name = args.solve_for
     if name not in known:
         listed = ", ".join(known) if known else "none (the spec has no [parameters])"
@@ -267,6 +274,8 @@ def run(args) -> int:
     if args.solve_for is not None and args.require_tilt is None and args.margin is None:
         raise StabilityError("--solve-for needs a requirement: --require-tilt DEG or "
                              "--margin M")
+    if args.solve_for is not None:
+        _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
     reading, props, notes = open_body(args)
     body = reading.body
     v = _verdict(args, body, props)
