@@ -35,6 +35,8 @@ SHAPES = ("box", "cylinder")
 _GRID = {2: 160, 3: 28}  # grid cells per axis of the first search
 _REFINE_ROUNDS = 6
 _BATCH = 256  # candidates tested for fit at once
+_CHUNK = 2048  # candidates scored at once
+_TIE_ROWS = 3  # equal masses are ranked by their smallest this many slacks
 # The plan aims this many contact tolerances inside every margin row (the check calls a
 # margin within one tolerance neutral) and a round-off's worth inside every tilt row.
 _SAFETY = {"margin": 2.0, "tilt": 1e-3}
@@ -74,6 +76,37 @@ def required_mass(target: Target, mass: float, center: np.ndarray,
     lo = need.max(axis=0) if need.size else np.zeros(s.shape[1])
     hi = cap.min(axis=0) if cap.size else np.full(s.shape[1], np.inf)
     return np.where(lo <= hi, lo, np.inf)
+
+
+def _ranking(goal: Target, mass: float, center: np.ndarray,
+             points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The least mass at each point, and the points that can take one, best first.
+
+    Least mass first; among equal masses, the point that leaves the rows the body
+    already meets the most slack — the smallest first, then the next (a counterweight
+    for the front edge goes in the middle, not in a corner). Points are scored in
+    chunks so a round base's thousands of rows never make a huge array.
+    """
+    s0 = goal.slack(center)
+    met = s0 >= 0
+    need = np.empty(len(points))
+    keys = np.zeros((len(points), _TIE_ROWS))
+    for start in range(0, len(points), _CHUNK):
+        chunk = points[start:start + _CHUNK]
+        m = required_mass(goal, mass, center, chunk)
+        need[start:start + _CHUNK] = m
+        if met.any():
+            m0 = np.where(np.isfinite(m), m, 0.0)
+            after = (mass * s0[met, None] + m0 * goal.slack(chunk)[met]) / (mass + m0)
+            low = min(_TIE_ROWS, after.shape[0])
+            smallest = np.sort(np.partition(after, low - 1, axis=0)[:low], axis=0)
+            keys[start:start + _CHUNK, :low] = smallest.T
+    finite = np.isfinite(need)
+    if not finite.any():
+        return need, np.zeros(0, dtype=int)
+    level = np.round(need / max(float(need[finite].min()), 1e-300), 9)
+    order = np.lexsort((*(-keys[:, i] for i in reversed(range(_TIE_ROWS))), level))
+    return need, order[finite[order]]
 
 
 def _grid(lo: np.ndarray, hi: np.ndarray, n: int) -> np.ndarray:
@@ -162,20 +195,9 @@ def plan_ballast(region, target: Target, mass: float, center: np.ndarray, *,
         points = points[points @ target.support.frame.up > plane]
         if len(points) == 0:
             return None
-        need = required_mass(goal, mass, center, points)
-        finite = np.isfinite(need)
-        if not finite.any():
+        need, order = _ranking(goal, mass, center, points)
+        if len(order) == 0:
             return None
-        # least mass first; among equal masses the point leaving the most slack in every
-        # row (a counterweight for the front edge goes in the middle, not in a corner)
-        total = mass + np.where(finite, need, 0.0)
-        s0 = goal.slack(center)
-        met = s0 >= 0  # the rows the ballast is not for: keep as much of their slack
-        after = ((mass * s0[met, None] + need * goal.slack(points)[met]).min(axis=0)
-                 if met.any() else np.zeros(len(points)))
-        level = np.round(need / max(float(need[finite].min()), 1e-300), 9)
-        order = np.lexsort((-np.where(finite, after / total, 0.0), level))
-        order = order[finite[order]]
         for start in range(0, len(order), _BATCH):
             idx = order[start:start + _BATCH]
             pts, scale = points[idx], sizes(need[idx])

@@ -95,7 +95,8 @@ def target_for(body, *, down=None, margin: float | None = None,
         (``cos_e`` their outward normal's cosine with it), so the rows are
         ``d_e − cos_e · tan θ · h ≥ 0``.
 
-    Without ``margin`` and ``require_tilt`` the target is to stand: margin 0.
+    Without ``margin`` and ``require_tilt`` the target is to stand: margin 0 (and with a
+    tilt ``toward`` one way, margin 0 on the other edges too).
 
     Examples
     --------
@@ -127,7 +128,8 @@ def target_for(body, *, down=None, margin: float | None = None,
         if not (np.isfinite(require_tilt) and 0 <= require_tilt < np.pi / 2):
             raise StabilityError(
                 f"a required tilt must be between 0° and 90°, not {np.degrees(require_tilt):g}°")
-    if margin is not None or require_tilt is None:
+    # a tilt toward one way still asks it to stand on level ground (margin 0 elsewhere)
+    if margin is not None or require_tilt is None or toward is not None:
         rows.append(inward)
         offsets.append(base + (margin or 0.0))
         kinds += ["margin"] * len(inward)

@@ -30,6 +30,8 @@ __all__ = [
     "number_option",
     "add_body_arguments",
     "add_stability_arguments",
+    "add_orientation_arguments",
+    "pose_down",
     "load_body",
     "open_body",
     "print_notices",
@@ -142,6 +144,37 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
     add_body_arguments(parser)
     parser.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
                         help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
+
+
+def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--pose",
+                              tilt_help: str = "also check it on a plane tilted by DEG "
+                                               "degrees") -> None:
+    """--down X,Y,Z or ``pose`` K (the K-th resting pose), and --tilt DEG --toward DEG: how
+    the body rests, for check and balance alike."""
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
+                       help="direction of gravity in the body's frame (default -z; -y for a "
+                            "lamina)")
+    where.add_argument(pose, type=int, metavar="K",
+                       help="rest it in its K-th most probable resting pose (see 'plumbob "
+                            "poses')")
+    parser.add_argument("--tilt", type=non_negative, metavar="DEG", help=tilt_help)
+    parser.add_argument("--toward", type=number, metavar="DEG",
+                        help="the tilted plane descends toward this direction, degrees from "
+                             "+x toward +y (default: the worst direction)")
+
+
+def pose_down(body, index: int, option: str, g: float, props):
+    """The down vector of the body's ``index``-th most probable resting pose (1-based);
+    ``option`` names the command-line option in the error for an index out of range."""
+    from ..errors import StabilityError
+    from ..stability.poses import resting_poses
+
+    poses = resting_poses(body, g=g, props=props)
+    if not 1 <= index <= len(poses):
+        raise StabilityError(f"{option} must be between 1 and {len(poses)} (the body has "
+                             f"{len(poses)} resting poses)")
+    return poses[index - 1].down
 
 
 def load_body(args: argparse.Namespace) -> Reading:

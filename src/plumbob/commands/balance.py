@@ -12,13 +12,13 @@ import argparse
 import re
 
 from ._common import (
+    add_orientation_arguments,
     add_stability_arguments,
     clean,
     header,
     non_negative,
-    number,
     open_body,
-    parse_vector,
+    pose_down,
     print_json,
 )
 
@@ -55,23 +55,14 @@ def register(subparsers) -> None:
         "balance", help="make it stand: the least ballast that meets a margin or tilt",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
-    where = parser.add_mutually_exclusive_group()
-    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
-                       help="direction of gravity in the body's frame (default -z; -y for a "
-                            "lamina)")
-    where.add_argument("--target-pose", type=int, metavar="N",
-                       help="rest it in its N-th most probable resting pose ('plumbob poses')")
+    add_orientation_arguments(parser, "--target-pose",
+                              tilt_help="it must stand on a plane tilted DEG degrees (toward "
+                                        "--toward, else in every direction)")
     parser.add_argument("--margin", type=length, metavar="M",
                         help="static stability margin to reach, m (or with a unit: 3mm)")
     parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
                         help="critical tilt to reach in every direction, degrees (IEC 62368-1: "
                              "10)")
-    parser.add_argument("--tilt", type=non_negative, metavar="DEG",
-                        help="it must stand on a plane tilted DEG degrees (toward --toward, "
-                             "else in every direction)")
-    parser.add_argument("--toward", type=number, metavar="DEG",
-                        help="the tilted plane descends toward this direction, degrees from "
-                             "+x toward +y")
     parser.add_argument("--ballast-region", metavar="FILE",
                         help="a body (mesh or spec) the ballast must lie in (default: the body)")
     parser.add_argument("--ballast-material", metavar="NAME",
@@ -100,13 +91,7 @@ def _target(args, body, props):
     dim = getattr(body, "dim", 3)
     down = args.down
     if args.target_pose is not None:
-        from ..stability.poses import resting_poses
-
-        poses = resting_poses(body, g=args.g, props=props)
-        if not 1 <= args.target_pose <= len(poses):
-            raise StabilityError(f"--target-pose must be between 1 and {len(poses)} (the body "
-                                 f"has {len(poses)} resting poses)")
-        down = poses[args.target_pose - 1].down
+        down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
     down = default_down(dim) if down is None else unit_vector(down, dim)
     toward = None if args.toward is None else ground_frame(down).direction(args.toward)
     return down, args.margin, tilt, toward

@@ -11,13 +11,13 @@ import argparse
 
 from ..plot.files import add_plot_argument, write_plot
 from ._common import (
+    add_orientation_arguments,
     add_stability_arguments,
     clean,
     header,
     non_negative,
-    number,
     open_body,
-    parse_vector,
+    pose_down,
     positive,
     print_json,
 )
@@ -41,18 +41,7 @@ def register(subparsers) -> None:
         "check", help="will it stand? stability margin, tilt limits, tilt test",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
-    where = parser.add_mutually_exclusive_group()
-    where.add_argument("--down", type=parse_vector, metavar="X,Y,Z",
-                       help="direction of gravity in the body's frame (default -z; -y for a "
-                            "lamina)")
-    where.add_argument("--pose", type=int, metavar="K",
-                       help="rest it in its K-th most probable resting pose (see 'plumbob "
-                            "poses')")
-    parser.add_argument("--tilt", type=non_negative, metavar="DEG",
-                        help="also check it on a plane tilted by DEG degrees")
-    parser.add_argument("--toward", type=number, metavar="DEG",
-                        help="the tilted plane descends toward this direction, degrees from "
-                             "+x toward +y (default: the worst direction)")
+    add_orientation_arguments(parser)
     parser.add_argument("--friction", type=non_negative, metavar="MU",
                         help="friction coefficient: does it slide before it topples?")
     parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
@@ -188,17 +177,10 @@ def _text(v, path: str, kind: str, notes: list[str], all_edges: bool = False) ->
 
 def _verdict(args, body, props):
     """plumbob's check of ``body`` with the command's options."""
-    from ..errors import StabilityError
-    from ..stability.poses import resting_poses
     from ..stability.verdict import check
 
-    down = args.down
-    if args.pose is not None:
-        poses = resting_poses(body, g=args.g, props=props)
-        if not 1 <= args.pose <= len(poses):
-            raise StabilityError(f"--pose must be between 1 and {len(poses)} (the body has "
-                                 f"{len(poses)} resting poses)")
-        down = poses[args.pose - 1].down
+    down = args.down if args.pose is None else pose_down(body, args.pose, "--pose", args.g,
+                                                         props)
     return check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
                  friction=args.friction, require_tilt_deg=args.require_tilt,
                  tolerance=args.tolerance, props=props)
