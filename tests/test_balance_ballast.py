@@ -149,3 +149,31 @@ def test_already_meets_it():
 def test_unreachable_target():
     with pytest.raises(StabilityError, match="too narrow"):
         balance(box(1, 1, 4), margin=0.6)
+
+
+def test_balance_command_report_and_keys(capsys):
+    block = os.path.join(SHAPES, "block.toml")
+    assert main(["balance", block, "--tilt", "20", "--toward", "90"]) == 0
+    out = capsys.readouterr().out
+    assert "no toppling at 20° toward (0, 1, 0)" in out and "tips at 20° that way" in out
+    assert "meets the target (checked with the ballast added)" in out
+    assert main(["balance", block, "--margin", "3mm", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert set(data) >= {"target", "ballast", "before", "after", "passes", "path", "kind"}
+    assert data["target"]["margin"] == pytest.approx(0.003) and data["ballast"]["mass"] == 0
+    assert set(data["after"]) == {"verdict", "mass", "center_of_mass", "margin",
+                                  "critical_tilt_deg", "critical_direction", "com_height"}
+
+
+def test_target_pose(capsys):
+    """The block lying on its 1 × 4 side (pose 1): margin 0.5 across, 2 along."""
+    block = os.path.join(SHAPES, "block.toml")
+    assert main(["balance", block, "--target-pose", "1", "--require-tilt", "50",
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    down = np.array(data["target"]["down"])
+    assert abs(down[2]) < 1e-12  # lying down
+    assert data["before"]["critical_tilt_deg"] == pytest.approx(45.0)
+    # a mass at the bottom of the lying block: h = 0.5·4000/(4000 + m) ≤ 0.5/tan 50°
+    h = 0.5 / np.tan(np.radians(50))
+    assert data["ballast"]["mass"] == pytest.approx(4000 * (0.5 / h - 1), rel=1e-4)

@@ -93,3 +93,17 @@ def test_lamina_rows_are_in_its_plane():
     t = target_for(body, margin=0.25)
     assert t.normals.shape == (2, 2)
     assert t.slack(np.array([1.0, 0.5])).tolist() == pytest.approx([0.75, 0.75])
+
+
+@pytest.mark.parametrize("toward_deg", [0, 40, 100, 200, 300])
+def test_tilt_toward_one_way_matches_the_slope_check(toward_deg):
+    """Toward one direction the rows vanish at the slope check's tipping angle."""
+    body = BODIES["pyramid"]()
+    slope = check(body, tilt_deg=1, toward_deg=toward_deg).slope
+    limit = np.radians(slope.tipping_angle_deg)
+    t = target_for(body, require_tilt=limit, toward=slope.direction)
+    tilt_rows = np.array([k == "tilt" for k in t.kinds])
+    c = body.mass_properties().center_of_mass
+    assert t.slack(c)[tilt_rows].min() == pytest.approx(0.0, abs=1e-12 * body.size)
+    assert t.slack(c)[~tilt_rows].min() > 0  # and it stands on level ground
+    assert not target_for(body, require_tilt=limit + 1e-4, toward=slope.direction).met_by(c)

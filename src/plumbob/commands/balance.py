@@ -120,8 +120,11 @@ def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
         wanted.append(f"no toppling at {num(r.require_tilt_deg, 4)}° {way}")
 
     def state(v) -> str:
+        way = ("" if r.toward is None or v.verdict != "stands" else
+               f", tips at {num(v.tipping_angle_deg(r.toward), 4)}° that way")
         return (f"{v.verdict}, margin {num(v.margin)} m, critical tilt "
-                f"{num(v.critical_tilt_deg, 4)}°, centre of mass {vec(v.center_of_mass)} m")
+                f"{num(v.critical_tilt_deg, 4)}°{way}, centre of mass "
+                f"{vec(v.center_of_mass)} m")
 
     rows = [("target", ", ".join(wanted)), ("down", vec(r.down)), ("before", state(r.before))]
     if r.ballast_mass == 0:
