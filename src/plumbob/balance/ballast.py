@@ -11,7 +11,11 @@ the best candidate is refined on finer grids around it.
 One point is enough: the conditions depend on the added masses only through their
 total and their first moment, so masses at several points act as their total at
 their weighted centroid. Within a convex region that centroid is a point of the
-region, so no split beats the best single point.
+region, so no split beats the best single point. A point mass is also solved
+exactly over the region's convex hull (a linear program in the mass and its moment,
+:func:`_hull_optimum`); its answer is taken when its point lies in the region, which
+it always does for a convex one — the grid then only covers non-convex regions and
+ballasts of a given size.
 
 Candidates are the centres of a grid over the region (the body itself, or a second
 body the user gives), kept where the region ``contains`` them — with a ballast
@@ -107,6 +111,39 @@ def _ranking(goal: Target, mass: float, center: np.ndarray,
     level = np.round(need / max(float(need[finite].min()), 1e-300), 9)
     order = np.lexsort((*(-keys[:, i] for i in reversed(range(_TIE_ROWS))), level))
     return need, order[finite[order]]
+
+
+def _hull_optimum(region, goal: Target, mass: float,
+                  center: np.ndarray) -> tuple[float, np.ndarray] | None:
+    """The exact least point mass over the region's convex hull, when its point lies in
+    the region (always, for a convex region), else None.
+
+    With the moment ``q = m p`` the conditions are linear in ``(m, q)``:
+    ``M s(c) + N q − m b ≥ 0`` per row, and ``p`` in the hull ``A p + e ≤ 0`` is
+    ``A q + e m ≤ 0``; the least ``m`` is a linear program (scipy ``linprog``, HiGHS).
+    """
+    from scipy.optimize import linprog
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(np.asarray(region.hull_points(), dtype=float))
+    except QhullError:
+        return None
+    a, e = hull.equations[:, :-1], hull.equations[:, -1]
+    dim = goal.dim
+    rows = np.vstack((np.column_stack((goal.offsets, -goal.normals)), np.column_stack((e, a))))
+    bounds = np.concatenate((mass * goal.slack(center), np.zeros(len(e))))
+    cost = np.zeros(dim + 1)
+    cost[0] = 1.0
+    result = linprog(cost, A_ub=rows, b_ub=bounds, method="highs",
+                     bounds=[(0, None)] + [(None, None)] * dim)
+    if result.status != 0 or not result.x[0] > 0:
+        return None
+    point = result.x[1:] / result.x[0]
+    if not region.contains(point[None])[0]:
+        return None  # the hull's best point is outside a non-convex region
+    need = float(required_mass(goal, mass, center, point[None])[0])
+    return (need, point) if np.isfinite(need) else None
 
 
 def _grid(lo: np.ndarray, hi: np.ndarray, n: int) -> np.ndarray:
@@ -225,6 +262,9 @@ def plan_ballast(region, target: Target, mass: float, center: np.ndarray, *,
             found = better
     need, point = found
     if density is None:
+        exact = _hull_optimum(region, goal, mass, center)
+        if exact is not None and exact[0] <= need:
+            need, point = exact
         return BallastPlan(need, point)
     volume = need / density
     return BallastPlan(need, point, density, volume, "square" if dim == 2 else shape,
