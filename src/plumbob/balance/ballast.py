@@ -140,6 +140,8 @@ def _hull_optimum(region, goal: Target, mass: float,
     if result.status != 0 or not result.x[0] > 0:
         return None
     point = result.x[1:] / result.x[0]
+    size = float(np.linalg.norm(np.ptp(hull.points, axis=0)))
+    point = np.where(np.abs(point) < 1e-12 * size, 0.0, point) + 0.0  # round-off of a vertex
     if not region.contains(point[None])[0]:
         return None  # the hull's best point is outside a non-convex region
     need = float(required_mass(goal, mass, center, point[None])[0])
