@@ -8,6 +8,8 @@ import os
 import numpy as np
 import pytest
 from conftest import SHAPES
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from plumbob.balance.ballast import required_mass
 from plumbob.balance.result import balance
@@ -213,3 +215,21 @@ def test_the_point_search_meets_the_linear_program(tilt):
     assert exact > 0
     assert exact <= r.ballast_mass <= exact * 1.001
     assert r.passes
+
+
+@given(st.floats(0.5, 2.0), st.floats(0.5, 3.0), st.floats(0.0, 0.9), st.floats(1.0, 40.0))
+@settings(max_examples=25, deadline=None)
+def test_leaning_parallelograms(width, height, lean, tilt):
+    """A lamina leaning by ``lean·width``: the ballast the plan gives passes the check,
+    and 99% of it does not (unless none is needed: then the body passes as it is)."""
+    from plumbob.bodies.primitives import polygon
+
+    body = polygon([[0, 0], [width, 0], [width + lean * width, height], [lean * width, height]])
+    r = balance(body, require_tilt_deg=tilt)
+    assert r.passes
+    if r.ballast_mass == 0:
+        assert check(body, require_tilt_deg=tilt).passes
+        return
+    for factor, passes in ((1.0, True), (0.99, False)):
+        both = Assembly((body, ParticleSystem([factor * r.ballast_mass], [r.ballast_point])))
+        assert check(both, require_tilt_deg=tilt).passes is passes
