@@ -19,12 +19,13 @@ from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..tolerances import TEXT_ROUND_OFF
-from ..units import LENGTH_UNITS, STANDARD_GRAVITY
+from ..units import LENGTH_UNITS, STANDARD_GRAVITY, length_scale
 
 __all__ = [
     "number",
     "positive",
     "non_negative",
+    "length",
     "count",
     "parse_vector",
     "number_option",
@@ -79,6 +80,21 @@ def non_negative(text: str) -> float:
     if value < 0:
         raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
     return value
+
+
+def length(text: str) -> float:
+    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``)."""
+    import re
+
+    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z]*)\s*", text)
+    if not match:
+        raise argparse.ArgumentTypeError(f"not a length: {text!r} (e.g. 0.003 or 3mm)")
+    value = non_negative(match.group(1))
+    unit = match.group(2) or "m"
+    if unit not in LENGTH_UNITS:
+        raise argparse.ArgumentTypeError(
+            f"unknown length unit {unit!r}; use one of {', '.join(sorted(LENGTH_UNITS))}")
+    return value * length_scale(unit)
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:

@@ -9,20 +9,20 @@ balance code loads when the command runs.
 from __future__ import annotations
 
 import argparse
-import re
 
 from ._common import (
     add_orientation_arguments,
     add_stability_arguments,
     clean,
     header,
+    length,
     non_negative,
     open_body,
     pose_down,
     print_json,
 )
 
-__all__ = ["register", "run", "length"]
+__all__ = ["register", "run"]
 
 DESCRIPTION = """\
 Make it stand. Given a target -- a static stability margin (--margin), a critical tilt
@@ -33,21 +33,6 @@ finds the least added mass that meets it and where it goes: a point inside the b
 material that fits inside. The margin and tilt reported after are plumbob's check of
 the body with the ballast added, not the plan's."""
 
-
-
-def length(text: str) -> float:
-    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``)."""
-    from ..units import LENGTH_UNITS, length_scale
-
-    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z]*)\s*", text)
-    if not match:
-        raise argparse.ArgumentTypeError(f"not a length: {text!r} (e.g. 0.003 or 3mm)")
-    value = non_negative(match.group(1))
-    unit = match.group(2) or "m"
-    if unit not in LENGTH_UNITS:
-        raise argparse.ArgumentTypeError(
-            f"unknown length unit {unit!r}; use one of {', '.join(sorted(LENGTH_UNITS))}")
-    return value * length_scale(unit)
 
 
 def register(subparsers) -> None:

@@ -15,6 +15,7 @@ from ._common import (
     add_stability_arguments,
     clean,
     header,
+    length,
     non_negative,
     open_body,
     pose_down,
@@ -47,9 +48,9 @@ def register(subparsers) -> None:
     parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
                         help="design check: it must not topple when tilted DEG degrees in any "
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
-    parser.add_argument("--margin", type=non_negative, metavar="M",
+    parser.add_argument("--margin", type=length, metavar="M",
                         help="design check: the static stability margin must be at least M "
-                             "metres; exit status 1 if it is not")
+                             "metres (or with a unit: 3mm); exit status 1 if it is not")
     parser.add_argument("--solve-for", metavar="NAME",
                         help="with --require-tilt or --margin: the smallest change of the "
                              "spec's parameter NAME that meets it (a 1-D root find)")
