@@ -21,7 +21,8 @@ from .errors import PlumbobError, printable
 #: exit status of an unexpected failure: distinct from 1 (a requirement failed), 2 (bad input)
 INTERNAL_ERROR = 3
 
-COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate", "collide", "batch")
+COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate", "collide", "batch",
+            "balance")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -8,6 +8,8 @@ files through io while io never imports spec.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from . import io
 from .arguments import file_path
 from .reading import Reading
@@ -18,7 +20,8 @@ __all__ = ["read", "SUFFIXES"]
 SUFFIXES = {".toml": "spec", **io.SUFFIXES}
 
 
-def read(path: str, *, units: str | None = None, repair: bool = False) -> Reading:
+def read(path: str, *, units: str | None = None, repair: bool = False,
+         parameters: Mapping[str, float] | None = None) -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -32,6 +35,9 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
         notice). A spec gives its own units.
     repair : bool
         Close small holes in open meshes (reported in the notices).
+    parameters : mapping of str to float, optional
+        A spec's what-ifs: values replacing its named ``[parameters]`` entries (those
+        after one are evaluated with its new value). Only specs have parameters.
 
     Returns
     -------
@@ -57,5 +63,9 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
     if io.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
-        return load_spec(path)
+        return load_spec(path, parameters)
+    if parameters:
+        from .errors import SpecError
+
+        raise SpecError("only a spec (.toml) has parameters to set", path=path)
     return io.read(path, units=units, repair=repair)

@@ -19,12 +19,13 @@ from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..tolerances import TEXT_ROUND_OFF
-from ..units import LENGTH_UNITS, STANDARD_GRAVITY
+from ..units import LENGTH_UNITS, STANDARD_GRAVITY, length_scale
 
 __all__ = [
     "number",
     "positive",
     "non_negative",
+    "length",
     "count",
     "parse_vector",
     "material_name",
@@ -36,6 +37,8 @@ __all__ = [
     "number_option",
     "add_body_arguments",
     "add_stability_arguments",
+    "add_orientation_arguments",
+    "pose_down",
     "load_body",
     "open_body",
     "print_notices",
@@ -83,6 +86,21 @@ def non_negative(text: str) -> float:
     if value < 0:
         raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
     return value
+
+
+def length(text: str) -> float:
+    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``)."""
+    import re
+
+    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z]*)\s*", text)
+    if not match:
+        raise argparse.ArgumentTypeError(f"not a length: {text!r} (e.g. 0.003 or 3mm)")
+    value = non_negative(match.group(1))
+    unit = match.group(2) or "m"
+    if unit not in LENGTH_UNITS:
+        raise argparse.ArgumentTypeError(
+            f"unknown length unit {unit!r}; use one of {', '.join(sorted(LENGTH_UNITS))}")
+    return value * length_scale(unit)
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
@@ -207,10 +225,42 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
 
 
+def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--pose",
+                              tilt_help: str = "also check it on a plane tilted by DEG "
+                                               "degrees") -> None:
+    """--down X,Y,Z or ``pose`` K (the K-th resting pose), and --tilt DEG --toward DEG: how
+    the body rests, for check and balance alike."""
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--down", type=direction, metavar="X,Y,Z",
+                       help="direction of gravity in the body's frame (default -z; -y for a "
+                            "lamina)")
+    where.add_argument(pose, type=int, metavar="K",
+                       help="rest it in its K-th most probable resting pose (see 'plumbob "
+                            "poses')")
+    parser.add_argument("--tilt", type=non_negative, metavar="DEG", help=tilt_help)
+    parser.add_argument("--toward", type=number, metavar="DEG",
+                        help="the tilted plane descends toward this direction, degrees from "
+                             "+x toward +y (default: the worst direction)")
+
+
+def pose_down(body, index: int, option: str, g: float, props):
+    """The down vector of the body's ``index``-th most probable resting pose (1-based);
+    ``option`` names the command-line option in the error for an index out of range."""
+    from ..errors import StabilityError
+    from ..stability.poses import resting_poses
+
+    poses = resting_poses(body, g=g, props=props)
+    if not 1 <= index <= len(poses):
+        raise StabilityError(f"{option} must be between 1 and {len(poses)} (the body has "
+                             f"{len(poses)} resting poses)")
+    return poses[index - 1].down
+
+
 def load_body(args: argparse.Namespace) -> Reading:
     """Read ``args.path`` and apply ``--density`` / ``--material``."""
     reading = read(
-        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False)
+        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
+        parameters=getattr(args, "parameters", None),
     )
     density = None
     if getattr(args, "material", None):

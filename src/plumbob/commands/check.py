@@ -11,14 +11,15 @@ import argparse
 
 from ..plot.files import add_plot_argument, write_plot
 from ._common import (
+    add_orientation_arguments,
     add_report_units_argument,
     add_stability_arguments,
     clean,
-    direction,
     header,
+    length,
     non_negative,
-    number,
     open_body,
+    pose_down,
     positive,
     print_json,
     report_units,
@@ -27,6 +28,9 @@ from ._common import (
 )
 
 __all__ = ["register", "run"]
+
+#: how many tipping edges (or arcs) the text report lists without --all-edges
+WEAKEST = 4
 
 DESCRIPTION = """\
 Will the body stand on a horizontal plane? Reports the verdict (stands, topples,
@@ -43,30 +47,29 @@ def register(subparsers) -> None:
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
     add_report_units_argument(parser)
-    where = parser.add_mutually_exclusive_group()
-    where.add_argument("--down", type=direction, metavar="X,Y,Z",
-                       help="direction of gravity in the body's frame (default -z; -y for a "
-                            "lamina)")
-    where.add_argument("--pose", type=int, metavar="K",
-                       help="rest it in its K-th most probable resting pose (see 'plumbob "
-                            "poses')")
-    parser.add_argument("--tilt", type=non_negative, metavar="DEG",
-                        help="also check it on a plane tilted by DEG degrees")
-    parser.add_argument("--toward", type=number, metavar="DEG",
-                        help="the tilted plane descends toward this direction, degrees from "
-                             "+x toward +y (default: the worst direction)")
+    add_orientation_arguments(parser)
     parser.add_argument("--friction", type=non_negative, metavar="MU",
                         help="friction coefficient: does it slide before it topples?")
     parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="design check: it must not topple when tilted DEG degrees in any "
                              "direction (IEC 62368-1: 10); exit status 1 if it fails")
+    parser.add_argument("--margin", type=length, metavar="M",
+                        help="design check: the static stability margin must be at least M "
+                             "metres (or with a unit: 3mm); exit status 1 if it is not")
+    parser.add_argument("--solve-for", metavar="NAME",
+                        help="with --require-tilt or --margin: the smallest change of the "
+                             "spec's parameter NAME that meets it (a 1-D root find)")
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="contact tolerance, m (default 1e-6 of the body's size)")
+    parser.add_argument("--all-edges", action="store_true",
+                        help=f"list every tipping edge (default: the {WEAKEST} weakest; runs of "
+                             "short edges of a round base are one arc either way; the JSON "
+                             "always has every edge)")
     add_plot_argument(parser)
     parser.set_defaults(func=run)
 
 
-def _text(v, path: str, kind: str, notes: list[str], u) -> str:
+def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False) -> str:
     import numpy as np
 
     from ..errors import printable
@@ -86,16 +89,32 @@ def _text(v, path: str, kind: str, notes: list[str], u) -> str:
             return f"{vector(u.length(clean(value, scale)), digits)} {u.length_unit}"
         return f"{format_number(u.length(float(clean(value, scale))), digits)} {u.length_unit}"
 
+    def pt(value, digits: int = 4) -> str:  # a point without its unit, in the report's unit
+        return vector(u.length(clean(value, scale)), digits)
+
     s = v.support
+    groups = v.edge_groups()
     if s.kind == "point":
         where = f"a point, {at(s.polygon[0])}"
     elif s.kind == "segment":
-        where = f"a segment from {at(s.polygon[0])[:-len(u.length_unit) - 1]} to " \
-                f"{at(s.polygon[1])}"
+        where = f"a segment from {pt(s.polygon[0], 6)} to {at(s.polygon[1])}"
     else:
+        arcs = [g for g in groups if g.kind == "arc"]
         where = f"a polygon of {len(s.vertices)} corners"
+        if arcs:
+            on = sum(g.count for g in arcs)
+            where += (f" ({on} short edges on {len(arcs)} arc{'s' if len(arcs) > 1 else ''}, "
+                      "of a round base)")
     verdict = {"stands": "stands", "topples": "TOPPLES",
                "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
+    if v.verdict == "topples":
+        margin = (f"{at(v.margin)}: the centre of mass is {at(v.overhang)} beyond "
+                  "the support")
+        critical = (f"none: it is over by {num(v.over_by_deg, 4)}°, falling toward "
+                    f"{vec(v.critical_direction, 4)}")
+    else:
+        margin = at(v.margin)
+        critical = f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"
     rows = [
         ("verdict", verdict),
         ("mass", f"{format_number(u.mass(v.mass))} {u.mass_unit}"),
@@ -103,21 +122,37 @@ def _text(v, path: str, kind: str, notes: list[str], u) -> str:
         ("down", vec(v.down)),
         ("height of centre", at(v.com_height)),
         ("support", where),
-        ("stability margin", at(v.margin)),
-        ("critical tilt", f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"),
+        ("stability margin", margin),
+        ("critical tilt", critical),
         ("energy to topple", f"{num(v.energy_to_topple)} J"),
     ]
     lines = [table(rows, title=f"plumbob check {path} ({kind})")]
-    if v.edges:
+    if groups:
+        shown = groups if all_edges else groups[:WEAKEST]
         lines.append("")
-        lines.append(f"{'tipping over':<34}{f'distance {u.length_unit}':>13}{'angle °':>10}"
+        title = "tipping over" if len(shown) == len(groups) else "weakest tipping edges"
+        labels = []
+        for g in shown:
+            if g.kind == "arc" and g.count == len(v.edges):
+                labels.append(f"the whole round rim ({g.count} edges)")
+            elif g.kind == "arc":
+                labels.append(f"arc of {g.count} edges {pt(g.start)}-{pt(g.end)}")
+            elif np.allclose(g.start, g.end):
+                labels.append(pt(g.start))
+            else:
+                labels.append(f"{pt(g.start)}-{pt(g.end)}")
+        width = max(33, *(len(label) for label in labels)) + 1
+        lines.append(f"{title:<{width}}{f'distance {u.length_unit}':>13}{'angle °':>10}"
                      f"{'energy J':>14}")
-        for e in v.edges:
-            start, end = (vector(u.length(clean(p, scale)), 4) for p in (e.start, e.end))
-            where = start if np.allclose(e.start, e.end) else f"{start}-{end}"
-            distance = format_number(u.length(float(clean(e.distance, scale))), 5)
-            lines.append(f"{where:<34} {distance:>12} {num(e.tipping_angle_deg, 4):>9}"
-                         f" {num(e.energy, 5):>13}")
+        for label, g in zip(labels, shown):
+            distance = format_number(u.length(float(clean(g.distance, scale))), 5)
+            lines.append(f"{label:<{width}} {distance:>12} "
+                         f"{num(g.tipping_angle_deg, 4):>9} {num(g.energy, 5):>13}")
+        if len(shown) < len(groups):
+            rest = groups[len(shown):]
+            edges = sum(g.count for g in rest)
+            lines.append(f"… and {len(rest)} more ({edges} edge{'s' if edges > 1 else ''}, "
+                         "--all-edges lists them)")
     if v.slope is not None:
         sl = v.slope
         lines.append("")
@@ -140,40 +175,130 @@ def _text(v, path: str, kind: str, notes: list[str], u) -> str:
                          "direction it topples before it slides")
     if v.required_tilt_deg is not None:
         lines.append("")
-        status = "PASS" if v.passes else "FAIL"
-        lines.append(f"design check, no overturning at {num(v.required_tilt_deg, 4)}° in any "
-                     f"direction: {status} (critical tilt {num(v.critical_tilt_deg, 4)}°)")
+        required = num(v.required_tilt_deg, 4)
+        if v.passes:
+            status = f"PASS (critical tilt {num(v.critical_tilt_deg, 4)}°)"
+        elif v.verdict == "topples":
+            status = (f"FAIL (it topples, over by {num(v.over_by_deg, 4)}°: "
+                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
+        elif v.verdict == "neutral":
+            status = "FAIL (it is balanced on the edge of its support: critical tilt 0°)"
+        else:
+            status = (f"FAIL (critical tilt {num(v.critical_tilt_deg, 4)}°, "
+                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
+        lines.append(f"design check, no overturning at {required}° in any direction: {status}")
     for note in notes:
         lines.append(f"note: {printable(note)}")
     return "\n".join(lines)
 
 
+def _verdict(args, body, props):
+    """plumbob's check of ``body`` with the command's options."""
+    from ..stability.verdict import check
+
+    down = args.down if args.pose is None else pose_down(body, args.pose, "--pose", args.g,
+                                                         props)
+    return check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
+                 friction=args.friction, require_tilt_deg=args.require_tilt,
+                 tolerance=args.tolerance, props=props)
+
+
+def _margin_passes(v, required: float) -> bool:
+    return bool(v.verdict == "stands" and v.margin >= required)
+
+
+def _spec_parameters(path: str) -> dict:
+    """The parameters of the spec at ``path``, or a SpecError when it is not a spec."""
+    import os
+
+    from ..errors import SpecError
+    from ..loading import SUFFIXES
+    from ..spec.loader import spec_parameters
+
+    if SUFFIXES.get(os.path.splitext(path)[1].lower()) != "spec":
+        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
+                        "[parameters]", path=path)
+    return spec_parameters(path)
+
+
+def _solve(args):
+    """The smallest change of ``--solve-for``'s parameter that meets the requirement."""
+    import argparse as _argparse
+
+    from ..balance.solve import solve_parameter
+    from ..errors import SpecError, StabilityError
+    from ._common import load_body
+
+    if (args.require_tilt is None) == (args.margin is None):
+        raise StabilityError("--solve-for needs one requirement: --require-tilt DEG or "
+                             "--margin M")
+    known = _spec_parameters(args.path)
+    name = args.solve_for
+    if name not in known:
+        listed = ", ".join(known) if known else "none (the spec has no [parameters])"
+        raise SpecError(f"--solve-for: unknown parameter {name!r}; the spec's parameters: "
+                        f"{listed}", path=args.path)
+    tilt = args.require_tilt is not None
+
+    def evaluate(value: float) -> float:
+        given = {**(getattr(args, "parameters", None) or {}), name: value}
+        body = load_body(_argparse.Namespace(**{**vars(args), "parameters": given})).body
+        v = _verdict(args, body, body.mass_properties())
+        if v.verdict == "neutral":
+            return 0.0
+        return v.critical_tilt_deg if tilt else v.margin
+
+    return solve_parameter(name, known[name], evaluate,
+                           args.require_tilt if tilt else args.margin,
+                           measure="critical_tilt_deg" if tilt else "margin")
+
+
+def _solution_text(sol) -> str:
+    from ..report import format_number as num
+
+    what = (f"critical tilt {num(sol.achieved, 6)}° (≥ {num(sol.required, 4)}°)"
+            if sol.measure == "critical_tilt_deg"
+            else f"stability margin {num(sol.achieved)} m (≥ {num(sol.required)} m)")
+    if sol.change == 0:
+        return f"{sol.name} = {num(sol.start)} meets it already: {what}"
+    return (f"smallest change of {sol.name} that meets it: {num(sol.start)} → "
+            f"{num(sol.value)} ({sol.change:+.6g}): {what}, by the check of the rebuilt body")
+
+
 def run(args) -> int:
     from ..errors import StabilityError
-    from ..stability.poses import resting_poses
-    from ..stability.verdict import check
 
     if args.toward is not None and args.tilt is None:
         raise StabilityError("--toward needs --tilt DEG")
+    if args.solve_for is not None and args.require_tilt is None and args.margin is None:
+        raise StabilityError("--solve-for needs a requirement: --require-tilt DEG or "
+                             "--margin M")
+    if args.solve_for is not None:
+        _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
     units = report_units(args)
     reading, props, notes = open_body(args)
     body = reading.body
-    down = args.down
-    if args.pose is not None:
-        poses = resting_poses(body, g=args.g, props=props)
-        if not 1 <= args.pose <= len(poses):
-            raise StabilityError(f"--pose must be between 1 and {len(poses)} (the body has "
-                                 f"{len(poses)} resting poses)")
-        down = poses[args.pose - 1].down
-    v = check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
-              friction=args.friction, require_tilt_deg=args.require_tilt,
-              tolerance=args.tolerance, props=props)
+    v = _verdict(args, body, props)
     require_finite(v.as_dict())
+    solution = _solve(args) if args.solve_for is not None else None
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
+    margin_ok = None if args.margin is None else _margin_passes(v, args.margin)
     if args.json:
-        print_json({**header(reading, kind), **v.as_dict()}, reading, notes)
+        out = {**header(reading, kind), **v.as_dict()}
+        if args.margin is not None:
+            out.update(required_margin=args.margin, margin_passes=margin_ok)
+        if solution is not None:
+            out["solution"] = solution.as_dict()
+        print_json(out, reading, notes)
     else:
-        print(_text(v, args.path, kind, notes, units))
-    return 1 if v.passes is False else 0
+        lines = [_text(v, args.path, kind, notes, units, args.all_edges)]
+        if args.margin is not None:
+            status = "PASS" if margin_ok else (
+                f"FAIL ({max(args.margin - v.margin, 0.0):.6g} m short)")
+            lines.append(f"design check, stability margin at least {args.margin:g} m: {status}")
+        if solution is not None:
+            lines.append(_solution_text(solution))
+        print("\n".join(lines))
+    return 1 if v.passes is False or margin_ok is False else 0

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -32,7 +33,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["load_spec", "build_spec", "load_simulation", "parse_simulation", "spec_kind", "KINDS"]
+__all__ = ["load_spec", "build_spec", "spec_parameters", "load_simulation", "parse_simulation",
+           "spec_kind", "KINDS"]
 
 MAX_SPEC_BYTES = 4 << 20
 #: the values of a spec's top-level ``kind``
@@ -69,20 +71,21 @@ def spec_kind(data: dict, default: str) -> Any:
     return default
 
 
-def build_spec(data: dict, path: str = "<spec>") -> Reading:
+def build_spec(data: dict, path: str = "<spec>",
+               parameters: Mapping[str, float] | None = None) -> Reading:
     """The body a parsed spec describes: a shape's body, or a simulation's particles
-    at t = 0."""
+    at t = 0; ``parameters`` replace named ``[parameters]`` entries."""
     _check_table(data, path)
     kind = spec_kind(data, "shape")
     if kind == "simulation":
-        return Reading(_simulation(data, path).model.system, (), path)
+        return Reading(_simulation(data, path, parameters).model.system, (), path)
     if kind != "shape":
         raise SpecError(
             f'kind: a spec is a "shape" or a "simulation", not {kind!r} (the kind of body '
             "a shape makes, such as lamina or solid, goes in [shape] kind)",
             path=path,
         )
-    return Reading(_shape(data, path), (), path)
+    return Reading(_shape(data, path, parameters), (), path)
 
 
 def parse_simulation(data: dict, path: str | None = None) -> SimulationSpec:
@@ -98,10 +101,18 @@ def parse_simulation(data: dict, path: str | None = None) -> SimulationSpec:
     return _simulation(data, path)
 
 
-def load_spec(path: str) -> Reading:
-    """Read and build the TOML spec at ``path``."""
+def load_spec(path: str, parameters: Mapping[str, float] | None = None) -> Reading:
+    """Read and build the TOML spec at ``path`` (``parameters`` replace named
+    ``[parameters]`` entries)."""
     path = os.fspath(path)
-    return read_checked(path, lambda: build_spec(_read_toml(path), path))
+    return read_checked(path, lambda: build_spec(_read_toml(path), path, parameters))
+
+
+def spec_parameters(path: str) -> dict[str, float]:
+    """The values of the spec's ``[parameters]``, in order (empty when it has none)."""
+    path = os.fspath(path)
+    return read_checked(path, lambda: read_parameters(
+        path, _read_toml(path).get("parameters", {})))
 
 
 def load_simulation(path: str | Path) -> SimulationSpec:
@@ -119,12 +130,13 @@ def _check_table(data: Any, path: str | None) -> None:
         raise SpecError("a spec must be a TOML table", path=path)
 
 
-def _simulation(data: dict, path: str | None) -> SimulationSpec:
-    names = read_parameters(path, data.get("parameters", {}))
+def _simulation(data: dict, path: str | None,
+                parameters: Mapping[str, float] | None = None) -> SimulationSpec:
+    names = read_parameters(path, data.get("parameters", {}), parameters)
     return build_simulation(SpecContext(path, names), data)
 
 
-def _shape(data: dict, path: str) -> Body:
+def _shape(data: dict, path: str, parameters: Mapping[str, float] | None = None) -> Body:
     """The body of a shape spec: ``[shape]``, ``[parameters]``, then ``[[part]]`` or
     ``[[particle]]`` tables."""
     spec = SpecContext(path, {})
@@ -139,7 +151,8 @@ def _shape(data: dict, path: str) -> Body:
         raise spec.error(
             "shape.units", f"unknown unit {unit!r}; use one of {', '.join(LENGTH_UNITS)}"
         )
-    spec = SpecContext(path, read_parameters(path, data.get("parameters", {})), length_scale(unit))
+    spec = SpecContext(path, read_parameters(path, data.get("parameters", {}), parameters),
+                       length_scale(unit))
     if has_parts == has_particles:
         raise spec.error(
             None, "a spec needs [[part]] tables or [[particle]] tables (one kind, not both)"

@@ -119,15 +119,28 @@ def suggest(key: str, allowed: set[str]) -> str:
     return f"; did you mean {close[0]!r}?" if close else f"; allowed: {', '.join(sorted(allowed))}"
 
 
-def read_parameters(path: str | None, table: Any) -> dict[str, float]:
+def read_parameters(path: str | None, table: Any,
+                    overrides: Mapping[str, float] | None = None) -> dict[str, float]:
     """``[parameters]``: numbers or expressions evaluated in order, each over those
-    before it (never in the spec's length unit: a parameter is a plain number)."""
+    before it (never in the spec's length unit: a parameter is a plain number).
+
+    overrides: values that replace named entries (a what-if from the command line);
+        the entries after one see its new value. A name the spec does not define is an
+        error listing the names it does.
+    """
     if not isinstance(table, dict):
         raise SpecError("[parameters] must be a table of name = value", path=path)
+    overrides = dict(overrides or {})
+    unknown = sorted(set(overrides) - set(table))
+    if unknown:
+        known = ", ".join(table) if table else "none (the spec has no [parameters])"
+        raise SpecError(f"unknown parameter {unknown[0]!r}; the spec's parameters: {known}",
+                        path=path)
     names: dict[str, float] = {}
     context = SpecContext(path, names)
     for key, value in table.items():
         if key in RESERVED_NAMES:
             raise context.error(f"parameters.{key}", f"{key!r} is reserved; choose another name")
-        names[key] = context.number(value, f"parameters.{key}")
+        names[key] = (context.number(overrides[key], f"parameters.{key}") if key in overrides
+                      else context.number(value, f"parameters.{key}"))
     return names

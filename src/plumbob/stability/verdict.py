@@ -44,6 +44,7 @@ from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
 
 __all__ = [
+    "EdgeGroup",
     "TippingEdge",
     "SlopeCheck",
     "Verdict",
@@ -70,6 +71,59 @@ class TippingEdge(Result):
     distance: float
     tipping_angle_deg: float
     energy: float
+
+
+#: an edge shorter than this share of the support's perimeter may be part of an arc
+_ARC_EDGE_SHARE = 1 / 16
+#: consecutive short edges turning by less than this (degrees) run along one arc
+_ARC_TURN_DEG = 30.0
+#: an arc has at least this many edges
+_ARC_MIN_EDGES = 3
+
+
+@dataclass(frozen=True, repr=False)
+class EdgeGroup(Result):
+    """Support edges as a report lists them: one edge, or an ``"arc"`` — a run of short
+    edges of a round base turning a little each (a tessellated circle's 64 edges are
+    one thing to tip over, not 64).
+
+    kind: ``"edge"`` or ``"arc"``.
+    start, end: (dim,) m, body frame: the first edge's start and the last edge's end.
+    count: the number of edges in the group.
+    normal: (dim,) the outward normal of its weakest edge.
+    distance, tipping_angle_deg, energy: its weakest edge's (m, degrees, J).
+    """
+
+    kind: str
+    start: np.ndarray
+    end: np.ndarray
+    count: int
+    normal: np.ndarray
+    distance: float
+    tipping_angle_deg: float
+    energy: float
+
+
+def _arc_runs(starts: np.ndarray, ends: np.ndarray, normals: np.ndarray) -> list[np.ndarray]:
+    """Indices of the edges of a closed polygon in runs: each arc's edges, in order, and
+    every other edge alone."""
+    n = len(starts)
+    lengths = np.linalg.norm(ends - starts, axis=1)
+    short = lengths < _ARC_EDGE_SHARE * lengths.sum()
+    cos = np.einsum("ij,ij->i", normals, np.roll(normals, -1, axis=0))
+    link = short & np.roll(short, -1) & (cos > np.cos(np.radians(_ARC_TURN_DEG)))
+    if link.all():  # a whole circle
+        return [np.arange(n)]
+    first = int(np.argmin(link)) + 1  # start just after a break
+    order = (np.arange(n) + first) % n
+    # edge order[k] begins a new run unless the edge before it links to it
+    begins = ~link[np.roll(order, 1)]
+    labels = np.cumsum(begins)
+    runs = [order[labels == label] for label in np.unique(labels)]
+    split: list[np.ndarray] = []
+    for run in runs:
+        split += [run] if len(run) >= _ARC_MIN_EDGES else [np.array([i]) for i in run]
+    return split
 
 
 @dataclass(frozen=True, repr=False)
@@ -173,6 +227,44 @@ class Verdict(Result):
         """The direction of gravity in the body's frame, unit vector (dim,)."""
         return self.support.frame.down
 
+    @property
+    def overhang(self) -> float | None:
+        """For a body that topples: how far its centre's foot lies beyond the support, m."""
+        return -self.margin if self.verdict == "topples" else None
+
+    @property
+    def over_by_deg(self) -> float | None:
+        """For a body that topples: the tilt by which it is over, ``atan(overhang / h)``,
+        degrees (the plane would have to tilt this much the other way to hold it)."""
+        return -self.critical_tilt_deg if self.verdict == "topples" else None
+
+    @property
+    def shortfall_deg(self) -> float | None:
+        """For a failed design check: how many degrees the critical tilt falls short of the
+        required one (for a body that topples, the required tilt plus how far it is over)."""
+        if self.passes is not False:
+            return None
+        return float(self.required_tilt_deg - self.critical_tilt_deg)
+
+    def edge_groups(self) -> list[EdgeGroup]:
+        """The support's edges grouped for a report (runs of short edges of a round base as
+        one arc), weakest first."""
+        sup = self.support
+        if not self.edges:
+            return []
+        if sup.kind == "polygon" and sup.dim == 3:
+            runs = _arc_runs(sup.edge_starts, sup.edge_ends, sup.edge_normals)
+        else:
+            runs = [np.array([i]) for i in range(len(self.edges))]
+        groups = []
+        for run in sorted(runs, key=lambda r: int(r[0])):
+            weakest = self.edges[run[np.argmin([self.edges[i].distance for i in run])]]
+            groups.append(EdgeGroup("arc" if len(run) > 1 else "edge", self.edges[run[0]].start,
+                                    self.edges[run[-1]].end, len(run), weakest.normal,
+                                    weakest.distance, weakest.tipping_angle_deg,
+                                    weakest.energy))
+        return sorted(groups, key=lambda g: g.distance)
+
     def as_dict(self) -> dict[str, Any]:
         """The verdict keyed as ``plumbob check --json`` prints it (SI units, degrees).
 
@@ -185,7 +277,8 @@ class Verdict(Result):
             ``support_polygon``, ``tolerance``, ``edges`` (each ``start``, ``end``,
             ``normal``, ``distance``, ``tipping_angle_deg``, ``energy``); with a tilted
             plane ``slope``; with friction ``friction`` and ``slides_first``; with a
-            design check ``required_tilt_deg`` and ``passes``.
+            design check ``required_tilt_deg`` and ``passes`` (and ``shortfall_deg`` when
+            it fails); for a body that topples ``overhang`` (m) and ``over_by_deg``.
         """
         out = {
             "verdict": self.verdict, "stands": self.stands, "margin": self.margin,
@@ -201,8 +294,12 @@ class Verdict(Result):
             out["slope"] = self.slope.as_dict()
         if self.friction is not None:
             out.update(friction=self.friction, slides_first=self.slides_first)
+        if self.verdict == "topples":
+            out.update(overhang=self.overhang, over_by_deg=self.over_by_deg)
         if self.required_tilt_deg is not None:
             out.update(required_tilt_deg=self.required_tilt_deg, passes=self.passes)
+            if self.passes is False:
+                out["shortfall_deg"] = self.shortfall_deg
         return out
 
     def plot(self, ax=None, *, body=None, **options):

@@ -1,0 +1,169 @@
+"""``plumbob balance PATH``: what to add so it stands — the least ballast that meets a
+stability target, where it goes, and the check of the body with it.
+
+Exit status 0 when the balanced body meets the target (by plumbob's own check of the
+body plus the ballast), 1 when it does not, 2 on bad input (handled by the CLI). The
+balance code loads when the command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import (
+    add_orientation_arguments,
+    add_stability_arguments,
+    clean,
+    header,
+    length,
+    non_negative,
+    open_body,
+    pose_down,
+    print_json,
+)
+
+__all__ = ["register", "run"]
+
+DESCRIPTION = """\
+Make it stand. Given a target -- a static stability margin (--margin), a critical tilt
+in every direction (--require-tilt) or on a plane tilted one way (--require-tilt with
+--toward), in the orientation given by --down or by a resting pose (--target-pose) --
+finds the least added mass that meets it and where it goes: a point inside the body
+(or inside --ballast-region), or with --ballast-material a box or cylinder of that
+material that fits inside. The margin and tilt reported after are plumbob's check of
+the body with the ballast added, not the plan's."""
+
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "balance", help="make it stand: the least ballast that meets a margin or tilt",
+        description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_stability_arguments(parser)
+    add_orientation_arguments(parser, "--target-pose",
+                              tilt_help="it must stand on a plane tilted DEG degrees (toward "
+                                        "--toward, else in every direction)")
+    parser.add_argument("--margin", type=length, metavar="M",
+                        help="static stability margin to reach, m (or with a unit: 3mm)")
+    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+                        help="critical tilt to reach in every direction, degrees (IEC 62368-1: "
+                             "10)")
+    parser.add_argument("--ballast-region", metavar="FILE",
+                        help="a body (mesh or spec) the ballast must lie in (default: the body)")
+    parser.add_argument("--ballast-material", metavar="NAME",
+                        help="the ballast's material ('plumbob materials'): report its volume "
+                             "and a shape for it that fits")
+    parser.add_argument("--ballast-shape", choices=("box", "cylinder"), default="box",
+                        help="the ballast's shape with --ballast-material (default box; a "
+                             "lamina's is a square through its thickness)")
+    # Hollowing (--wall, --out, --void, --lightest; plumbob.balance.hollow) registers its
+    # options here and is called from run() before the ballast; see _hollow below.
+    parser.set_defaults(func=run)
+
+
+def _target(args, body, props):
+    """(down, margin, tilt in degrees, toward vector or None) from the options."""
+    from ..errors import StabilityError
+    from ..stability.support import default_down, ground_frame, unit_vector
+
+    if args.tilt is not None and args.require_tilt is not None:
+        raise StabilityError("give --require-tilt DEG or --tilt DEG (with --toward), not both")
+    if args.toward is not None and args.tilt is None:
+        raise StabilityError("--toward needs --tilt DEG")
+    tilt = args.require_tilt if args.require_tilt is not None else args.tilt
+    if args.margin is None and tilt is None:
+        raise StabilityError("give a target: --margin M, --require-tilt DEG or --tilt DEG")
+    dim = getattr(body, "dim", 3)
+    down = args.down
+    if args.target_pose is not None:
+        down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
+    down = default_down(dim) if down is None else unit_vector(down, dim)
+    toward = None if args.toward is None else ground_frame(down).direction(args.toward)
+    return down, args.margin, tilt, toward
+
+
+def _hollow(args, reading, props):  # noqa: ARG001 — the place hollowing is wired in
+    """Hollowing (plumbob.balance.hollow) runs here when its options are given; until it
+    is wired, the body is balanced as it is."""
+    return reading.body, props
+
+
+def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
+    from ..report import format_number, format_vector, table
+
+    def num(value: float, digits: int = 6) -> str:
+        return format_number(float(clean(value, scale)), digits)
+
+    def vec(values, digits: int = 6) -> str:
+        return format_vector(clean(values, scale), digits)
+
+    wanted = []
+    if r.margin_target is not None:
+        wanted.append(f"margin ≥ {num(r.margin_target)} m")
+    if r.require_tilt_deg is not None:
+        way = "in every direction" if r.toward is None else f"toward {vec(r.toward, 4)}"
+        wanted.append(f"no toppling at {num(r.require_tilt_deg, 4)}° {way}")
+
+    def state(v) -> str:
+        way = ("" if r.toward is None or v.verdict != "stands" else
+               f", tips at {num(v.tipping_angle_deg(r.toward), 4)}° that way")
+        return (f"{v.verdict}, margin {num(v.margin)} m, critical tilt "
+                f"{num(v.critical_tilt_deg, 4)}°{way}, centre of mass "
+                f"{vec(v.center_of_mass)} m")
+
+    rows = [("target", ", ".join(wanted)), ("down", vec(r.down)), ("before", state(r.before))]
+    if r.ballast_mass == 0:
+        rows.append(("ballast", "none needed: it meets the target as it is"))
+    else:
+        rows.append(("ballast", f"{num(r.ballast_mass)} kg centred at {vec(r.ballast_point)} m"))
+        if r.ballast_density is not None:
+            dims = r.ballast_dimensions
+            if r.ballast_shape == "cylinder":
+                shape = f"a cylinder of radius {num(dims[0], 4)} m and height {num(dims[1], 4)} m"
+            elif r.ballast_shape == "square":
+                shape = (f"a square of side {num(dims[0], 4)} m through the lamina's "
+                         f"{num(r.ballast_depth, 4)} m")
+            else:
+                shape = f"a cube of side {num(dims[0], 4)} m"
+            rows.append(("ballast shape", f"{r.ballast_material} ({num(r.ballast_density)} "
+                                          f"kg/m³), {num(r.ballast_volume, 4)} m³: {shape}, "
+                                          "fits inside"))
+            if r.pocket:
+                rows.append(("pocket", f"it fills a pocket cut for it: the body gains "
+                                       f"{num(r.added_mass)} kg"))
+        rows.append(("after", state(r.after) + f", mass {num(r.after.mass)} kg"))
+    rows.append(("result", "meets the target (checked with the ballast added)" if r.passes
+                 else "does NOT meet the target"))
+    lines = [table(rows, title=f"plumbob balance {path} ({kind})")]
+    lines += [f"note: {note}" for note in notes]
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    import numpy as np
+
+    from ..balance.result import balance
+    from ._common import load_body
+
+    reading, props, notes = open_body(args)
+    body, props = _hollow(args, reading, props)
+    down, margin, tilt, toward = _target(args, body, props)
+    region = None
+    if args.ballast_region:
+        region_args = argparse.Namespace(**{**vars(args), "path": args.ballast_region})
+        region = load_body(region_args).body
+    density = None
+    if args.ballast_material:
+        from ..materials import material
+
+        density = material(args.ballast_material).density
+    result = balance(body, down, margin=margin, require_tilt_deg=tilt, toward=toward,
+                     region=region, material=args.ballast_material, density=density,
+                     shape=args.ballast_shape, g=args.g, props=props)
+    kind = getattr(body, "kind", "solid")
+    if args.json:
+        print_json({**header(reading, kind), **result.as_dict()}, reading, notes)
+    else:
+        scale = float(np.linalg.norm(np.ptp(body.hull_points(), axis=0)))
+        print(_text(result, args.path, kind, notes, scale))
+    return 0 if result.passes else 1
