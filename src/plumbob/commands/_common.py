@@ -13,7 +13,7 @@ import math
 import sys
 from typing import Any
 
-from ..errors import DynamicsError
+from ..errors import DynamicsError, SpecError
 from ..loading import read
 from ..materials import check_density
 from ..reading import Reading
@@ -109,7 +109,7 @@ def number_option(text: str, label: str, *, infinite: bool = False) -> float:
 
 # ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
-    """PATH, --density/--material, --units, --repair, --json."""
+    """PATH, --density/--material, --units, --repair, --set, --json."""
     parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
     group = parser.add_mutually_exclusive_group()
     group.add_argument(
@@ -133,7 +133,37 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="repair small defects in meshes (holes, winding) and report them",
     )
+    parser.add_argument(
+        "--set",
+        action="append",
+        type=assignment,
+        dest="parameters",
+        metavar="NAME=VALUE",
+        help="override a spec's [parameters] entry (repeatable): a number, an expression, "
+        "or a number with a length unit such as 30cm",
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+
+
+def assignment(text: str) -> tuple[str, str]:
+    """An argparse type: ``NAME=VALUE`` (``--set``) as (name, value)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip() or not value.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, not {text!r}")
+    return name.strip(), value.strip()
+
+
+def parameter_overrides(pairs: list[tuple[str, str]] | None) -> dict[str, str] | None:
+    """The ``--set`` pairs as a mapping; a name set twice is an error, not a silent choice."""
+    if not pairs:
+        return None
+    out: dict[str, str] = {}
+    for name, value in pairs:
+        if name in out:
+            raise SpecError(f"--set {name} is given twice ({out[name]!r} and {value!r}); "
+                            "give it once")
+        out[name] = value
+    return out
 
 
 def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
@@ -147,7 +177,8 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
 def load_body(args: argparse.Namespace) -> Reading:
     """Read ``args.path`` and apply ``--density`` / ``--material``."""
     reading = read(
-        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False)
+        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
+        parameters=parameter_overrides(getattr(args, "parameters", None)),
     )
     density = None
     if getattr(args, "material", None):

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -69,24 +70,28 @@ def spec_kind(data: dict, default: str) -> Any:
     return default
 
 
-def build_spec(data: dict, path: str = "<spec>") -> Reading:
+def build_spec(data: dict, path: str = "<spec>", *,
+               parameters: Mapping[str, float | str] | None = None) -> Reading:
     """The body a parsed spec describes: a shape's body, or a simulation's particles
-    at t = 0."""
+    at t = 0. ``parameters`` override ``[parameters]`` entries by name
+    (:func:`~.values.read_parameters`)."""
     _check_table(data, path)
     kind = spec_kind(data, "shape")
     if kind == "simulation":
-        return Reading(_simulation(data, path).model.system, (), path)
+        return Reading(_simulation(data, path, parameters).model.system, (), path)
     if kind != "shape":
         raise SpecError(
             f'kind: a spec is a "shape" or a "simulation", not {kind!r} (the kind of body '
             "a shape makes, such as lamina or solid, goes in [shape] kind)",
             path=path,
         )
-    return Reading(_shape(data, path), (), path)
+    return Reading(_shape(data, path, parameters), (), path)
 
 
-def parse_simulation(data: dict, path: str | None = None) -> SimulationSpec:
-    """The :class:`SimulationSpec` of parsed TOML ``data`` (``path`` for messages)."""
+def parse_simulation(data: dict, path: str | None = None, *,
+                     parameters: Mapping[str, float | str] | None = None) -> SimulationSpec:
+    """The :class:`SimulationSpec` of parsed TOML ``data`` (``path`` for messages;
+    ``parameters`` override ``[parameters]`` entries by name)."""
     _check_table(data, path)
     kind = spec_kind(data, "simulation")
     if kind != "simulation":
@@ -95,23 +100,27 @@ def parse_simulation(data: dict, path: str | None = None) -> SimulationSpec:
             'simulation spec (kind = "simulation", see docs/simulate.md)',
             path=path,
         )
-    return _simulation(data, path)
+    return _simulation(data, path, parameters)
 
 
-def load_spec(path: str) -> Reading:
-    """Read and build the TOML spec at ``path``."""
+def load_spec(path: str, *, parameters: Mapping[str, float | str] | None = None) -> Reading:
+    """Read and build the TOML spec at ``path``; ``parameters`` override its
+    ``[parameters]`` entries by name (a number, an expression, or a number with a
+    length unit such as ``"30 cm"``)."""
     path = os.fspath(path)
-    return read_checked(path, lambda: build_spec(_read_toml(path), path))
+    return read_checked(path, lambda: build_spec(_read_toml(path), path, parameters=parameters))
 
 
-def load_simulation(path: str | Path) -> SimulationSpec:
-    """Read the simulation spec at ``path``.
+def load_simulation(path: str | Path, *,
+                    parameters: Mapping[str, float | str] | None = None) -> SimulationSpec:
+    """Read the simulation spec at ``path`` (``parameters`` as for :func:`load_spec`).
 
     Raises :class:`InputFileError` when the file is missing or unreadable, and
     :class:`SpecError` / :class:`DynamicsError` for bad contents.
     """
     path = os.fspath(path)
-    return read_checked(path, lambda: parse_simulation(_read_toml(path), path))
+    return read_checked(
+        path, lambda: parse_simulation(_read_toml(path), path, parameters=parameters))
 
 
 def _check_table(data: Any, path: str | None) -> None:
@@ -119,12 +128,13 @@ def _check_table(data: Any, path: str | None) -> None:
         raise SpecError("a spec must be a TOML table", path=path)
 
 
-def _simulation(data: dict, path: str | None) -> SimulationSpec:
-    names = read_parameters(path, data.get("parameters", {}))
+def _simulation(data: dict, path: str | None,
+                parameters: Mapping[str, float | str] | None) -> SimulationSpec:
+    names = read_parameters(path, data.get("parameters", {}), parameters)
     return build_simulation(SpecContext(path, names), data)
 
 
-def _shape(data: dict, path: str) -> Body:
+def _shape(data: dict, path: str, parameters: Mapping[str, float | str] | None) -> Body:
     """The body of a shape spec: ``[shape]``, ``[parameters]``, then ``[[part]]`` or
     ``[[particle]]`` tables."""
     spec = SpecContext(path, {})
@@ -139,7 +149,9 @@ def _shape(data: dict, path: str) -> Body:
         raise spec.error(
             "shape.units", f"unknown unit {unit!r}; use one of {', '.join(LENGTH_UNITS)}"
         )
-    spec = SpecContext(path, read_parameters(path, data.get("parameters", {})), length_scale(unit))
+    scale = length_scale(unit)
+    spec = SpecContext(path, read_parameters(path, data.get("parameters", {}), parameters, scale),
+                       scale)
     if has_parts == has_particles:
         raise spec.error(
             None, "a spec needs [[part]] tables or [[particle]] tables (one kind, not both)"

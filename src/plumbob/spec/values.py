@@ -8,6 +8,7 @@ place (``part 2.radius``), so a user can find and fix it.
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -16,7 +17,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import PlumbobError, SpecError
-from ..expr import parse
+from ..expr import CONSTANTS, parse
+from ..units import LENGTH_UNITS
 
 __all__ = ["SpecContext", "suggest", "read_parameters", "RESERVED_NAMES"]
 
@@ -119,15 +121,66 @@ def suggest(key: str, allowed: set[str]) -> str:
     return f"; did you mean {close[0]!r}?" if close else f"; allowed: {', '.join(sorted(allowed))}"
 
 
-def read_parameters(path: str | None, table: Any) -> dict[str, float]:
+def read_parameters(
+    path: str | None,
+    table: Any,
+    overrides: Mapping[str, float | str] | None = None,
+    scale: float = 1.0,
+) -> dict[str, float]:
     """``[parameters]``: numbers or expressions evaluated in order, each over those
-    before it (never in the spec's length unit: a parameter is a plain number)."""
+    before it (never in the spec's length unit: a parameter is a plain number).
+
+    ``overrides`` replace entries by name before evaluation (``--set name=value``), so
+    the parameters after an overridden one follow it. An override is a number, an
+    expression over the parameters before it, or a number with a length unit
+    (``"30 cm"``), converted into the spec's unit (``scale``: metres per spec unit).
+    An override naming no parameter is an error listing the known ones.
+
+    >>> read_parameters(None, {"a": 1, "b": "2*a"}, {"a": "3"})
+    {'a': 3.0, 'b': 6.0}
+    >>> read_parameters(None, {"w": 100}, {"w": "0.3 m"}, scale=1e-3)
+    {'w': 300.0}
+    >>> read_parameters("s.toml", {"a": 1}, {"b": 2})
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.SpecError: s.toml: parameters: no parameter 'b' to set; known: a
+    """
     if not isinstance(table, dict):
         raise SpecError("[parameters] must be a table of name = value", path=path)
+    overrides = dict(overrides or {})
+    unknown = sorted(set(overrides) - set(table))
+    if unknown:
+        known = ", ".join(table) if table else "none (the spec has no [parameters])"
+        names_ = ", ".join(map(repr, unknown))
+        raise SpecError(f"parameters: no parameter {names_} to set; known: {known}", path=path)
     names: dict[str, float] = {}
     context = SpecContext(path, names)
     for key, value in table.items():
         if key in RESERVED_NAMES:
             raise context.error(f"parameters.{key}", f"{key!r} is reserved; choose another name")
-        names[key] = context.number(value, f"parameters.{key}")
+        if key in overrides:
+            names[key] = _override(context, overrides[key], f"parameters.{key} (as set)", scale)
+        else:
+            names[key] = context.number(value, f"parameters.{key}")
     return names
+
+
+#: a number followed by a length unit: ``30cm``, ``0.3 m``, ``-2.5e-3 in``
+_QUANTITY = re.compile(
+    r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>[A-Za-z]+)\s*$"
+)
+
+
+def _override(context: SpecContext, value: Any, where: str, scale: float) -> float:
+    """An override's value: a number, an expression, or a number with a length unit
+    in the spec's unit."""
+    if isinstance(value, str):
+        match = _QUANTITY.match(value)
+        if match and match["unit"] not in CONSTANTS:
+            unit = match["unit"]
+            if unit not in LENGTH_UNITS:
+                raise context.error(
+                    where, f"unknown length unit {unit!r} in {value!r}; use one of "
+                    f"{', '.join(LENGTH_UNITS)}")
+            return context.number(float(match["number"]) * LENGTH_UNITS[unit] / scale, where)
+    return context.number(value, where)
