@@ -12,17 +12,18 @@ import os
 from collections.abc import Mapping
 
 from . import io
-from .errors import SpecError
+from .errors import DensityError, SpecError
 from .reading import Reading
 
-__all__ = ["read", "SUFFIXES"]
+__all__ = ["read", "with_default_density", "SUFFIXES"]
 
 #: file extension → reader family: specs, and every format :mod:`plumbob.io` reads
 SUFFIXES = {".toml": "spec", **io.SUFFIXES}
 
 
 def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
-         units: str | None = None, repair: bool = False) -> Reading:
+         units: str | None = None, repair: bool = False,
+         allow_outside_files: bool = False) -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -33,15 +34,20 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     units : str, optional
         The length unit of a mesh's or outline's coordinates (``mm``, ``cm``, ``m``,
         ``in``, ``ft``); None uses the unit the file declares, else metres (with a
-        notice). A spec gives its own units.
+        notice). For a spec that sets no ``units``, its unit; for one that sets
+        the same, a notice; for one that sets another, an error (``docs/shapes.md``).
     repair : bool
-        Close small holes in open meshes (reported in the notices).
+        Close small holes in open meshes, a spec's mesh files included (reported in
+        the notices; a notice when there is nothing to repair).
     parameters : mapping of str to float or str, optional
         Values for a spec's ``[parameters]`` entries, by name, replacing the spec's
         own (``--set name=value``): a number, an expression over the parameters
         before it, or a number with a length unit (``"30 cm"``, converted into the
         spec's unit). A name the spec does not define is an error listing the known
         ones; parameters given for a file that is not a spec are an error.
+    allow_outside_files : bool
+        Let a spec read files outside its own folder (an absolute path, ``..``);
+        refused by default, so a spec from elsewhere cannot read any file you can.
 
     Returns
     -------
@@ -69,8 +75,42 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     if io.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
-        return load_spec(path, parameters=parameters)
+        return load_spec(path, parameters=parameters, units=units, repair=repair,
+                         allow_outside_files=allow_outside_files)
     if parameters:
         raise SpecError(f"parameters ({', '.join(parameters)}) apply only to a TOML spec; "
                         "this file is not one", path=path)
     return io.read(path, units=units, repair=repair)
+
+
+def with_default_density(reading: Reading, density: float, option: str) -> Reading:
+    """``reading`` with ``density`` for every part that gives none (``--density``,
+    ``--material``; ``option`` names it in messages).
+
+    An option that cannot apply is never ignored: when every part gives its own
+    density (or the body is particles, whose masses are given) it is an error —
+    unless every part already has that very density, which is only a notice.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> with_default_density(Reading(box(1, 1, 1)), 2.0, "--density").body.mass_properties().mass
+    2.0
+    >>> with_default_density(Reading(box(1, 1, 1, density=5.0), (), "a.toml"), 2.0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: a.toml: --density does not apply: every part gives its own \
+density (5 kg/m³); remove the option, or a density from the file
+    """
+    own = reading.body.densities()
+    if None in own:
+        return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+    if not own:
+        raise DensityError(f"{option} does not apply: a body of particles has its masses "
+                           "given; remove the option", path=reading.path)
+    if own == {density}:
+        note = f"{option}: every part already has this density; the option changes nothing"
+        return Reading(reading.body, reading.notices + (note,), reading.path)
+    given = ", ".join(sorted(f"{d:g}" if isinstance(d, float) else str(d) for d in own))
+    unit = "kg/m²" if reading.body.kind == "lamina" else "kg/m³"
+    raise DensityError(f"{option} does not apply: every part gives its own density "
+                       f"({given} {unit}); remove the option, or a density from the file",
+                       path=reading.path)

@@ -14,7 +14,7 @@ import sys
 from typing import Any
 
 from ..errors import DynamicsError, SpecError
-from ..loading import read
+from ..loading import read, with_default_density
 from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
@@ -142,6 +142,11 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         help="override a spec's [parameters] entry (repeatable): a number, an expression, "
         "or a number with a length unit such as 30cm",
     )
+    parser.add_argument(
+        "--allow-outside-files",
+        action="store_true",
+        help="let a spec read mesh files outside its own folder (refused by default)",
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
 
@@ -179,17 +184,17 @@ def load_body(args: argparse.Namespace) -> Reading:
     reading = read(
         args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
         parameters=parameter_overrides(getattr(args, "parameters", None)),
+        allow_outside_files=getattr(args, "allow_outside_files", False),
     )
-    density = None
-    if getattr(args, "material", None):
+    if getattr(args, "material", None) is not None:
         from ..materials import material
 
-        density = material(args.material).density
-    elif getattr(args, "density", None) is not None:
-        density = check_density(args.density, "--density")
-    if density is None:
-        return reading
-    return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+        return with_default_density(reading, material(args.material).density,
+                                    f"--material {args.material}")
+    if getattr(args, "density", None) is not None:
+        return with_default_density(reading, check_density(args.density, "--density"),
+                                    "--density")
+    return reading
 
 
 def print_notices(reading: Reading, stream=None) -> None:

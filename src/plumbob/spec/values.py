@@ -9,31 +9,74 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..errors import PlumbobError, SpecError
+from ..errors import LimitError, PlumbobError, SpecError
 from ..expr import CONSTANTS, parse
 from ..units import LENGTH_UNITS
 
-__all__ = ["SpecContext", "suggest", "read_parameters", "RESERVED_NAMES"]
+__all__ = ["SpecContext", "LoadOptions", "suggest", "shown", "read_parameters", "RESERVED_NAMES"]
 
 #: names a parameter may not take: the coordinates of a density field and the constants
 RESERVED_NAMES = ("x", "y", "z", "pi", "e")
 
 
+#: how a message names the type of a TOML value
+_TOML_TYPES = {bool: "a boolean", int: "an integer", float: "a number", str: "text",
+               list: "an array", dict: "a table"}
+
+
+def shown(value: Any) -> str:
+    """``value`` and its TOML type for a message, kept short: ``'no' (text)``.
+
+    >>> shown(["m"]), shown(True), shown(list(range(100)))[:20]
+    ("['m'] (an array)", 'True (a boolean)', '[0, 1, 2, 3, 4, 5, 6')
+    """
+    kind = _TOML_TYPES.get(type(value), f"a {type(value).__name__}")
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 10**30:
+        return f"an integer of {len(str(abs(value)))} digits"
+    text = repr(value)
+    if len(text) > 60:
+        text = text[:57] + "…"
+    return f"{text} ({kind})"
+
+
+@dataclass(frozen=True)
+class LoadOptions:
+    """How a spec is read, beyond its own text: the caller's choices.
+
+    parameters: values replacing ``[parameters]`` entries by name (``--set``).
+    units: the length unit the caller gives (``--units``): the spec's unit when it
+        sets none; an error when it sets another.
+    repair: close small holes in the spec's mesh files.
+    allow_outside_files: let a ``file`` name a path outside the spec's folder
+        (absolute, or climbing out with ``..``); refused by default.
+    """
+
+    parameters: Mapping[str, float | str] | None = None
+    units: str | None = None
+    repair: bool = False
+    allow_outside_files: bool = False
+
+
 @dataclass(frozen=True)
 class SpecContext:
     """What reading one spec needs at every value: the file (for messages), the
-    parameters an expression may use, and metres per length unit of the spec."""
+    parameters an expression may use, metres per length unit of the spec, the unit's
+    name when the spec (or the caller) states one, the caller's load options, and the
+    notices gathered while building (a mesh file's, say)."""
 
     path: str | None
     names: Mapping[str, float]
     scale: float = 1.0
+    unit: str | None = None
+    options: LoadOptions = LoadOptions()
+    notices: list[str] = field(default_factory=list, compare=False)
 
     def error(
         self, where: str | None, message: str, cls: type[PlumbobError] = SpecError
@@ -51,13 +94,15 @@ class SpecContext:
         except PlumbobError as error:
             if error.path is not None:
                 raise
-            raise error.within(where, path=self.path, cls=SpecError) from None
+            # a limit stays a LimitError (its own kind of refusal); all else is the spec's
+            family = None if isinstance(error, LimitError) else SpecError
+            raise error.within(where, path=self.path, cls=family) from None
 
     def number(self, value: Any, where: str, length: bool = False) -> float:
         """A TOML number or an expression over the parameters; ``length``: scaled to
         metres by the spec's unit."""
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-            raise self.error(where, f"expected a number or an expression, not {value!r}")
+            raise self.error(where, f"expected a number or an expression, not {shown(value)}")
         if isinstance(value, str):
             with self.at(where):
                 result = parse(value).evaluate(self.names)
@@ -65,17 +110,48 @@ class SpecContext:
                 raise self.error(where, f"{value!r} must give a single number")
         else:
             result = value
-        result = float(result)
+        try:
+            result = float(result)
+        except OverflowError:
+            raise self.error(where, f"{shown(value)} is beyond the range of a number "
+                             "(about ±1.8e308)") from None
         if not np.isfinite(result):
-            raise self.error(where, f"{value!r} is not a finite number")
+            raise self.error(where, f"{shown(value)} is not a finite number")
         return result * (self.scale if length else 1.0)
+
+    def text(self, value: Any, where: str, choices: Iterable[str] | None = None,
+             what: str = "text") -> str:
+        """A non-empty string (one of ``choices`` when given)."""
+        if not isinstance(value, str):
+            raise self.error(where, f"expected {what}, not {shown(value)}")
+        if not value.strip():
+            raise self.error(where, f"expected {what}, not an empty string")
+        if choices is not None and value not in choices:
+            raise self.error(where, f"unknown {what} {value!r}{suggest(value, set(choices))}")
+        return value
+
+    def flag(self, value: Any, where: str) -> bool:
+        """A TOML boolean: ``true`` or ``false``, never a string (``"no"`` is not false)."""
+        if not isinstance(value, bool):
+            raise self.error(where, f"expected true or false (a boolean), not {shown(value)}")
+        return value
+
+    def unit_name(self, value: Any, where: str) -> str:
+        """A length unit a spec may name (``units = "mm"``)."""
+        if not isinstance(value, str):
+            raise self.error(where, f"expected a length unit as text ({', '.join(LENGTH_UNITS)}),"
+                             f" not {shown(value)}")
+        if value not in LENGTH_UNITS:
+            raise self.error(where, f"unknown unit {value!r}; use one of {', '.join(LENGTH_UNITS)}")
+        return value
 
     def points(
         self, value: Any, where: str, dims: tuple[int, ...] = (2,), length: bool = True
     ) -> np.ndarray:
         """A list of points, each of one of ``dims`` coordinates, all alike."""
         if not isinstance(value, list) or not value:
-            raise self.error(where, "expected a list of points like [[0, 0], [1, 0], [0, 1]]")
+            raise self.error(where, "expected a list of points like [[0, 0], [1, 0], [0, 1]], "
+                             f"not {shown(value)}")
         rows = []
         for i, row in enumerate(value):
             if not isinstance(row, list) or len(row) not in dims:
@@ -99,7 +175,7 @@ class SpecContext:
         (``the positions``) for the message when it is wrong."""
         count = " or ".join(map(str, dims))
         if not isinstance(value, list):
-            raise self.error(where, f"expected a list of {count} numbers, not {value!r}")
+            raise self.error(where, f"expected a list of {count} numbers, not {shown(value)}")
         if len(value) not in dims:
             reason = f" like {like}" if like else ""
             raise self.error(where, f"expected {count} components{reason}, not {len(value)}")
@@ -108,7 +184,7 @@ class SpecContext:
     def table(self, value: Any, allowed: set[str], where: str, what: str = "key") -> dict:
         """``value`` as a table of ``allowed`` keys (``what`` names them in the message)."""
         if not isinstance(value, dict):
-            raise self.error(where, "expected a table")
+            raise self.error(where, f"expected a table, not {shown(value)}")
         for key in value:
             if key not in allowed:
                 raise self.error(where, f"unknown {what} {key!r}{suggest(key, allowed)}")

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import GeometryError
+from ...limits import MAX_SIDES, check_count
 from ..lamina import Lamina
 from ..region import Region, Ring
 
@@ -237,9 +238,17 @@ def regular_polygon(sides: int, circumradius: float, **kw) -> Lamina:
     Traceback (most recent call last):
     ...
     plumbob.errors.GeometryError: a regular polygon needs a whole number of sides, at least 3
+    >>> regular_polygon(1e8, 1)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.LimitError: a regular polygon's sides 100000000 is over plumbob's limit of \
+1000000; use a disc for a circle (plumbob.limits.MAX_SIDES)
     """
-    if int(sides) != sides or sides < 3:
+    if isinstance(sides, bool) or not isinstance(sides, (int, float, np.integer, np.floating)) \
+            or not np.isfinite(sides) or int(sides) != sides or sides < 3:
         raise GeometryError("a regular polygon needs a whole number of sides, at least 3")
+    sides = check_count("a regular polygon's sides", sides, MAX_SIDES,
+                        hint="use a disc for a circle (plumbob.limits.MAX_SIDES)")
     r = positive_number(circumradius, "circumradius")
     t = 2 * np.pi * np.arange(int(sides)) / sides
     return polygon(r * np.stack((np.cos(t), np.sin(t)), axis=1), **kw)
