@@ -391,3 +391,19 @@ def test_a_run_of_holes_is_cut_in_one_pass(tmp_path):
     path = write(tmp_path, '[[part]]\ntype = "rectangle"\nwidth = 20\nheight = 1\n' + holes)
     props = load_spec(path).body.mass_properties()
     assert props.exact and props.area == pytest.approx(20 - 20 * np.pi * 0.01, rel=1e-14)
+
+
+def test_shape_segments_sets_the_faceting_of_booleans(tmp_path):
+    def lens(extra):
+        return load_spec(write(tmp_path, f"[shape]\n{extra}\n[[part]]\ntype = \"disc\"\n"
+                               "radius = 1\n[[part]]\ntype = \"disc\"\nradius = 1\n"
+                               "at = [1, 0]\n")).body.mass_properties()
+    exact = 2 * np.pi - (2 * np.pi / 3 - np.sqrt(3) / 2)
+    coarse, fine = lens("segments = 32"), lens("")
+    assert "32 and 16 segments" in " ".join(coarse.notes)
+    assert "256 and 128 segments" in " ".join(fine.notes)
+    assert abs(coarse.area - exact) <= coarse.relative_error * exact
+    with pytest.raises(SpecError, match="shape.segments"):
+        lens('segments = "many"')
+    with pytest.raises(SpecError, match="at least 8"):
+        lens("segments = 4")

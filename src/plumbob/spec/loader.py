@@ -19,10 +19,11 @@ from pathlib import Path
 from typing import Any
 
 from ..bodies.base import Body
+from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import InputFileError, LimitError, SpecError
 from ..files import read_bytes
 from ..io import read_checked
-from ..limits import MAX_NESTING, MAX_PARTS, check_count
+from ..limits import MAX_NESTING, MAX_PARTS, MAX_SIDES, check_count
 from ..reading import Reading
 from ..units import length_scale
 from .particles import MOTION_KEYS, read_particles
@@ -45,7 +46,7 @@ KINDS = ("shape", "simulation")
 TOP_KEYS = {"kind", "shape", "parameters", "part", "particle"}
 #: the keys of [shape] in a spec of particles
 SHAPE_KEYS = {"name", "description", "kind", "units", "source", "figure"}
-#: the keys of [shape] in a spec of parts ("segments" is accepted and, today, unused)
+#: the keys of [shape] in a spec of parts ("segments": per turn, for faceted booleans)
 PARTS_SHAPE_KEYS = SHAPE_KEYS | MATERIAL_KEYS | {"segments"}
 _SIMULATION_ONLY = SIMULATION_KEYS - TOP_KEYS
 
@@ -188,7 +189,14 @@ def _shape_context(data: dict, path: str, options: LoadOptions) -> SpecContext:
                              "or change the spec")
     scale = length_scale(unit)
     names = read_parameters(path, data.get("parameters", {}), options.parameters, scale)
-    return SpecContext(path, names, scale, unit, options, notices)
+    segments = DEFAULT_SEGMENTS
+    if "segments" in shape:
+        segments = spec.number(shape["segments"], "shape.segments")
+        if not segments >= 8:
+            raise spec.error("shape.segments", f"at least 8 segments per turn, not {segments:g}")
+        segments = check_count("shape.segments", segments, MAX_SIDES, path=path,
+                               hint="plumbob.limits.MAX_SIDES")
+    return SpecContext(path, names, scale, unit, options, notices, segments)
 
 
 def _shape(data: dict, spec: SpecContext) -> Body:

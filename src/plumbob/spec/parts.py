@@ -80,6 +80,14 @@ def _outline(spec: SpecContext, t: dict, where: str) -> Lamina:
     return Lamina(region)
 
 
+def _list(spec: SpecContext, t: dict, key: str, where: str) -> list:
+    """``t[key]`` (default empty) as an array, or an error naming it."""
+    value = t.get(key, [])
+    if not isinstance(value, list):
+        raise spec.error(f"{where}.{key}", f"expected an array, not {shown(value)}")
+    return value
+
+
 def _simple(build: Callable[..., Body], *keys: str, angles: tuple[str, ...] = ()):
     """A builder passing the named values, in order, to ``build``: lengths scaled by the
     spec's units, ``angles`` (degrees in the spec) in radians."""
@@ -99,7 +107,7 @@ PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[SpecContext, dict
                  lambda s, t, w: prim.polygon(s.points(t["vertices"], f"{w}.vertices"))),
     "polygon": (2, {"vertices"}, {"holes"}, lambda s, t, w: prim.polygon(
         s.points(t["vertices"], f"{w}.vertices"),
-        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(t.get("holes", []))])),
+        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(_list(s, t, "holes", w))])),
     "outline": (2, {"vertices"}, {"bulges"}, _outline),
     "regular_polygon": (2, {"sides", "radius"}, set(), lambda s, t, w: prim.regular_polygon(
         s.number(t["sides"], f"{w}.sides"), _n(s, t, "radius", w))),
@@ -362,7 +370,7 @@ def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
         return built[0][1]
     with spec.at("parts"):
         if all(op == "add" for op, _, _ in built):
-            result = union(*(b for _, b, _ in built))
+            result = union(*(b for _, b, _ in built), segments=spec.segments)
             if len(leaf_densities(result)) > 1 and isinstance(result, Composite):
                 return Assembly(result.parts)
             return result
@@ -376,12 +384,13 @@ def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
                 end += 1
             run = built[start:end]
             if op == "add":
-                result = union(result, *(body for _, body, _ in run))
+                result = union(result, *(body for _, body, _ in run), segments=spec.segments)
             elif op == "subtract":
                 result = difference(result, *(_hole_material(spec, result, body, label)
-                                              for _, body, label in run))
+                                              for _, body, label in run), segments=spec.segments)
             else:
-                result = intersection(result, *(body for _, body, _ in run))
+                result = intersection(result, *(body for _, body, _ in run),
+                                      segments=spec.segments)
             start = end
         return result
 

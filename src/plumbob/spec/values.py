@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import LimitError, PlumbobError, SpecError
 from ..expr import CONSTANTS, parse
 from ..units import LENGTH_UNITS
@@ -68,8 +69,9 @@ class LoadOptions:
 class SpecContext:
     """What reading one spec needs at every value: the file (for messages), the
     parameters an expression may use, metres per length unit of the spec, the unit's
-    name when the spec (or the caller) states one, the caller's load options, and the
-    notices gathered while building (a mesh file's, say)."""
+    name when the spec (or the caller) states one, the caller's load options, the
+    notices gathered while building (a mesh file's, say), and the segments per turn
+    of its faceted booleans."""
 
     path: str | None
     names: Mapping[str, float]
@@ -77,6 +79,8 @@ class SpecContext:
     unit: str | None = None
     options: LoadOptions = LoadOptions()
     notices: list[str] = field(default_factory=list, compare=False)
+    #: circular segments per turn for a boolean of overlapping curved parts
+    segments: int = DEFAULT_SEGMENTS
 
     def error(
         self, where: str | None, message: str, cls: type[PlumbobError] = SpecError
