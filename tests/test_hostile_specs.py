@@ -89,6 +89,10 @@ REFUSED = {
                                "position = [0, 0]\n", [], ["solver.method", "(an array)"]),
     "shape_kind_unknown": ('[shape]\nkind = "liquid"\n' + DISC + "radius = 1\n", [],
                            ["shape.kind", "'liquid'"]),
+    "holes_a_number": ('[[part]]\ntype = "polygon"\nvertices = [[0, 0], [1, 0], [0, 1]]\n'
+                       "holes = 5\n", [], ["part 1.holes", "5 (an integer)"]),
+    "segments_text": ('[shape]\nsegments = "x"\n' + DISC + "radius = 1\n", [],
+                      ["shape.segments"]),
     # options that cannot apply
     "units_against_the_spec": ('[shape]\nunits = "mm"\n' + DISC + "radius = 1\n",
                                ["--units", "in"], ["shape.units", '"mm"', "--units", "in"]),
@@ -233,3 +237,11 @@ def test_10000_cubes_compose_exactly(tmp_path):
     assert out["exact"] is True and out["parts"] == 10_000
     assert out["volume"] == pytest.approx(10_000 * 0.125, rel=1e-13)
     assert out["center_of_mass"] == pytest.approx([49.75, 49.75, 0.25], rel=1e-13)
+
+
+def test_repair_on_a_simulation_spec_is_a_notice(tmp_path):
+    path = _spec(tmp_path, 'title = "t"\n[[particle]]\nmass = 2\nposition = [0, 0]\n')
+    outcome = run_limited("mass", path, "--repair", "--json", cwd=tmp_path)
+    out = _mass_json(outcome)
+    assert out["mass"] == 2.0
+    assert any("no mesh files to repair" in n for n in out["notices"])

@@ -109,8 +109,9 @@ density (5 kg/m³); remove the option, or a density from the file
     if own == {density}:
         note = f"{option}: every part already has this density; the option changes nothing"
         return Reading(reading.body, reading.notices + (note,), reading.path)
-    given = ", ".join(sorted(f"{d:g}" if isinstance(d, float) else str(d) for d in own))
     unit = "kg/m²" if reading.body.kind == "lamina" else "kg/m³"
+    given = ", ".join(sorted(f"{d:g} {unit}" if isinstance(d, float) else "a density field"
+                             for d in own))
     raise DensityError(f"{option} does not apply: every part gives its own density "
-                       f"({given} {unit}); remove the option, or a density from the file",
+                       f"({given}); remove the option, or a density from the file",
                        path=reading.path)
