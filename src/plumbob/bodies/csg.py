@@ -373,8 +373,12 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     Returns
     -------
     Body
-        A :class:`Composite` (exact) when no two parts overlap, else a
-        :class:`Faceted`; a single body is returned as it is.
+        A :class:`Composite` (exact) when no two parts overlap; a :class:`Faceted`
+        when they all join into one overlapping group; else a :class:`Composite` of
+        the parts that overlap nothing and one :class:`Faceted` per overlapping
+        group. A single body is returned as it is. Only parts whose bounding boxes
+        meet are ever faceted (:mod:`plumbob.bodies.overlaps`), and a boolean far
+        from the origin is computed about a local origin.
 
     Raises
     ------

@@ -29,6 +29,8 @@ __all__ = [
     "parse_vector",
     "number_option",
     "add_body_arguments",
+    "assignment",
+    "parameter_overrides",
     "add_stability_arguments",
     "load_body",
     "open_body",
