@@ -13,6 +13,7 @@ read alike, are what the caller asks for. Both kinds share ``[parameters]`` and 
 from __future__ import annotations
 
 import os
+import re
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -269,6 +270,10 @@ def _read_toml(path: str) -> dict:
         raise LimitError(f"the spec has {tables} tables, far over plumbob's limit of "
                          f"{MAX_PARTS} parts; split the spec, or raise plumbob.limits.MAX_PARTS",
                          path=path)
+    # a table header naming a path deeper than the limit ([[part.part.part…]]) is
+    # refused before parsing, as the parsed nesting would be
+    if any(header.count(".") >= MAX_NESTING for header in _HEADER.findall(text)):
+        raise _too_deep(path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -278,6 +283,10 @@ def _read_toml(path: str) -> dict:
     except ValueError as exc:  # an integer of over 4,300 digits (Python's int-string limit)
         raise SpecError(f"not a usable TOML value: {str(exc).split(';')[0]}", path=path) from None
     return data
+
+
+#: a table header's dotted path: ``[a.b]`` or ``[[part.part]]`` at the start of a line
+_HEADER = re.compile(r"^[ \t]*\[\[?([^\]\n]*)", re.MULTILINE)
 
 
 def _too_deep(path: str | None) -> LimitError:
