@@ -174,3 +174,14 @@ def test_many_disjoint_parts_need_no_facets(monkeypatch):
 def test_holes_whose_boxes_miss_the_body_are_skipped():
     plate = P.rectangle(1, 1)
     assert difference(plate, *[P.disc(0.1).translated([5 + i, 5]) for i in range(50)]) is plate
+
+
+@pytest.mark.parametrize("far", [1e6, 1e8])
+def test_a_lamina_boolean_far_away_is_as_good_as_at_the_origin(far):
+    """Two unit discs 1 apart: area 2π less the lens 2π/3 − √3/2."""
+    offset = np.array([far, far / 3])
+    props = union(P.disc(1).translated(offset),
+                  P.disc(1).translated(offset + [1, 0])).mass_properties()
+    exact = 2 * np.pi - (2 * np.pi / 3 - np.sqrt(3) / 2)
+    assert abs(props.area - exact) / exact <= props.relative_error
+    assert props.center_of_mass - offset == pytest.approx([0.5, 0], abs=1e-7)
