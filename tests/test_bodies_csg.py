@@ -185,3 +185,13 @@ def test_a_lamina_boolean_far_away_is_as_good_as_at_the_origin(far):
     exact = 2 * np.pi - (2 * np.pi / 3 - np.sqrt(3) / 2)
     assert abs(props.area - exact) / exact <= props.relative_error
     assert props.center_of_mass - offset == pytest.approx([0.5, 0], abs=1e-7)
+
+
+def test_a_boolean_near_the_largest_float_keeps_its_volume():
+    """At 1e308 a plain norm of the coordinates overflows: the boxes and the local
+    origin must not, so the lens is still found and measured."""
+    a = P.sphere(1).translated([1e308, 0, 0])
+    b = P.sphere(1).translated([1e308, 0.5, 0])
+    props = union(a, b).mass_properties()
+    exact = _lens_union_volume(1.0, 0.5)
+    assert abs(props.measure - exact) / exact <= props.relative_error

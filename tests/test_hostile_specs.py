@@ -94,6 +94,8 @@ REFUSED = {
                        "holes = 5\n", [], ["part 1.holes", "5 (an integer)"]),
     "segments_text": ('[shape]\nsegments = "x"\n' + DISC + "radius = 1\n", [],
                       ["shape.segments"]),
+    "file_with_a_nul": ('[[part]]\ntype = "mesh"\nfile = "a\\u0000b.stl"\n', [],
+                        ["part 1.file", "control character"]),
     # options that cannot apply
     "units_against_the_spec": ('[shape]\nunits = "mm"\n' + DISC + "radius = 1\n",
                                ["--units", "in"], ["shape.units", '"mm"', "--units", "in"]),

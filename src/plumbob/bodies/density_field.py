@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import DensityError, ExpressionError
-from ..limits import MAX_DENSITY_DEGREE, check_count
+from ..errors import DensityError, ExpressionError, LimitError
+from ..limits import MAX_DENSITY_DEGREE
 
 __all__ = ["DensityField", "FIELD_DENSITY", "COORDINATES"]
 
@@ -68,9 +68,12 @@ class DensityField:
                 raise DensityError(f"a polynomial degree is a whole number ≥ 0, not {self.degree!r}")
             object.__setattr__(self, "degree", int(self.degree))
             # A rule of degree d has O(d³) points per cell: check before anything is built.
-            check_count("the density field's polynomial degree", self.degree,
-                        MAX_DENSITY_DEGREE, hint=f"lower the degree of {self.text!r} "
-                        "(plumbob.limits.MAX_DENSITY_DEGREE)")
+            if self.degree > MAX_DENSITY_DEGREE:
+                shown = f"{self.degree}" if self.degree < 10**9 else f"{float(self.degree):.3g}"
+                raise LimitError(
+                    f"the density field {self.text!r} is a polynomial of degree {shown}, over "
+                    f"plumbob's limit of {MAX_DENSITY_DEGREE} (plumbob.limits.MAX_DENSITY_DEGREE)"
+                    "; lower its degree")
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
         """Values (n,) at ``points`` (n, d), d = 2 or 3 (m)."""

@@ -41,7 +41,7 @@ def bounding_boxes(bodies: Sequence[Body]) -> np.ndarray:
     for body in bodies:
         points = np.asarray(body.hull_points(), dtype=float)
         low, high = points.min(axis=0), points.max(axis=0)
-        margin = BOX_MARGIN * float(np.linalg.norm(high - low)) + np.finfo(float).eps * float(
+        margin = BOX_MARGIN * _length(high - low) + np.finfo(float).eps * float(
             np.max(np.abs(points)))
         out.append((low - margin, high + margin))
     return np.array(out, dtype=float)
@@ -118,10 +118,19 @@ def local_origin(boxes: np.ndarray) -> np.ndarray | None:
     True
     """
     low, high = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
-    centre = (low + high) / 2
-    if np.linalg.norm(centre) > np.linalg.norm(high - low):
+    centre = low / 2 + high / 2  # not (low + high) / 2, which overflows near 1.8e308
+    if _length(centre) > _length(high - low):
         return centre
     return None
+
+
+def _length(vector: np.ndarray) -> float:
+    """The Euclidean length of ``vector``, without overflow for coordinates past 1e154
+    (whose squares a plain norm would turn into inf)."""
+    largest = float(np.max(np.abs(vector)))
+    if largest == 0 or not np.isfinite(largest):
+        return largest
+    return largest * float(np.linalg.norm(vector / largest))
 
 
 class Facets:

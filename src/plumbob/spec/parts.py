@@ -181,6 +181,8 @@ def spec_file(spec: SpecContext, name: str, where: str) -> str:
     is absolute or climbs out (``..``, or a link leading out) is refused unless the
     caller allows it (``allow_outside_files``, ``--allow-outside-files``): a spec from
     elsewhere must not read any file the user can."""
+    if any(ord(c) < 32 or ord(c) == 127 for c in name):
+        raise spec.error(where, f"{name!r} holds a control character; name a file plainly")
     folder = os.path.dirname(os.path.abspath(spec.path or "."))
     path = os.path.join(folder, name)
     if spec.options.allow_outside_files:
