@@ -92,6 +92,8 @@ REFUSED = {
                            ["shape.kind", "'liquid'"]),
     "holes_a_number": ('[[part]]\ntype = "polygon"\nvertices = [[0, 0], [1, 0], [0, 1]]\n'
                        "holes = 5\n", [], ["part 1.holes", "5 (an integer)"]),
+    "segments_1e6": ('[shape]\nsegments = 1e6\n' + DISC + "radius = 1\n", [],
+                     ["shape.segments", "MAX_SEGMENTS"]),
     "segments_text": ('[shape]\nsegments = "x"\n' + DISC + "radius = 1\n", [],
                       ["shape.segments"]),
     "file_with_a_nul": ('[[part]]\ntype = "mesh"\nfile = "a\\u0000b.stl"\n', [],

@@ -23,6 +23,7 @@ __all__ = [
     "MAX_OUTLINES",
     "MAX_PARTS",
     "MAX_SAMPLES",
+    "MAX_SEGMENTS",
     "MAX_SIDES",
     "MAX_TRIANGLES",
     "check_count",
@@ -46,6 +47,8 @@ MAX_PARTS = 10_000
 MAX_OUTLINES = 100_000
 #: Sides of a regular polygon or segments of a tessellated curve.
 MAX_SIDES = 1_000_000
+#: Circular segments per turn of a faceted boolean (a sphere costs about n²/2 triangles).
+MAX_SEGMENTS = 2048
 #: Polynomial degree of a density field (a quadrature rule of this degree per cell).
 MAX_DENSITY_DEGREE = 64
 #: Samples one command may ask for (simulate --samples, sampled surfaces, drops).

@@ -20,6 +20,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..errors import GeometryError
+from ..limits import MAX_SEGMENTS, check_count
 from .base import Body
 
 __all__ = ["Facets", "bounding_boxes", "boxes_meet", "candidate_pairs", "connected_groups", "local_origin"]
@@ -139,6 +141,12 @@ class Facets:
     to ``origin`` (None: where it is)."""
 
     def __init__(self, bodies: Sequence[Body], segments: int, origin: np.ndarray | None):
+        # a sphere faceted at n segments per turn has about n²/2 triangles
+        segments = check_count("segments per turn", segments, MAX_SEGMENTS,
+                               hint="plumbob.limits.MAX_SEGMENTS")
+        if segments < 8:
+            raise GeometryError(f"a faceted boolean needs at least 8 segments per turn, not "
+                                f"{segments}")
         self.bodies, self.segments, self.origin = bodies, segments, origin
         self.made: dict[int, object] = {}
 

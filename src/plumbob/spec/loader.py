@@ -24,7 +24,7 @@ from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import InputFileError, LimitError, SpecError
 from ..files import read_bytes
 from ..io import read_checked
-from ..limits import MAX_NESTING, MAX_PARTS, MAX_SIDES, check_count
+from ..limits import MAX_NESTING, MAX_PARTS, MAX_SEGMENTS, check_count
 from ..reading import Reading
 from ..units import length_scale
 from .particles import MOTION_KEYS, read_particles
@@ -195,8 +195,8 @@ def _shape_context(data: dict, path: str, options: LoadOptions) -> SpecContext:
         segments = spec.number(shape["segments"], "shape.segments")
         if not segments >= 8:
             raise spec.error("shape.segments", f"at least 8 segments per turn, not {segments:g}")
-        segments = check_count("shape.segments", segments, MAX_SIDES, path=path,
-                               hint="plumbob.limits.MAX_SIDES")
+        segments = check_count("shape.segments", segments, MAX_SEGMENTS, path=path,
+                               hint="plumbob.limits.MAX_SEGMENTS")
     return SpecContext(path, names, scale, unit, options, notices, segments)
 
 
