@@ -45,7 +45,8 @@ def make_corpus(folder: str, meshes: int = 8) -> dict[str, str]:
         write_stl(os.path.join(folder, name),
                   torus(40 + 90 * k, 10 + k, 2 + 0.3 * k, shift=(k, -k, 0.5 * k)))
         expect[name] = "ok"
-    for name in ("block.toml", "l_shape.toml"):
+    # specs that set no units and no density, so --units and --material apply to them
+    for name in ("stepped_cylinder.toml", "triangle.toml"):
         shutil.copy(os.path.join(SHAPES, name), os.path.join(folder, name))
         expect[name] = "ok"
     write_stl(os.path.join(folder, "truncated.stl"), torus(200, 10, 3)[:50], count=200)

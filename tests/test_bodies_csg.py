@@ -110,3 +110,88 @@ def test_mirrored_lamina_keeps_positive_area():
     mirrored = tri.transformed(np.diag([-1.0, 1.0]))
     assert isinstance(mirrored, Lamina)
     assert mirrored.mass_properties().area == pytest.approx(1.0)
+
+
+# --------------------------------------------------- far from the origin (issue 10)
+def _lens_union_volume(r: float, d: float) -> float:
+    """Two spheres of radius r, centres d apart: 2 × (4/3)πr³ less their lens,
+    π (4r + d)(2r − d)² / 12."""
+    return 2 * 4 / 3 * np.pi * r**3 - np.pi * (4 * r + d) * (2 * r - d) ** 2 / 12
+
+
+@pytest.mark.parametrize("far", [1e6, 1e8])
+def test_a_boolean_far_away_is_as_good_as_at_the_origin(far):
+    """Shifted to a local origin for the boolean: the error and its stated bound are
+    those at the origin, and the true error stays within the bound."""
+    at_origin = union(P.sphere(1), P.sphere(1).translated([1, 0, 0])).mass_properties()
+    offset = np.array([far, -far / 3, far / 7])
+    moved = union(P.sphere(1).translated(offset),
+                  P.sphere(1).translated(offset + [1, 0, 0])).mass_properties()
+    exact = _lens_union_volume(1.0, 1.0)
+    assert not moved.exact
+    assert abs(moved.measure - exact) / exact <= moved.relative_error
+    assert moved.relative_error == pytest.approx(at_origin.relative_error, rel=1e-3)
+    assert moved.measure == pytest.approx(at_origin.measure, rel=1e-9)
+    assert moved.center_of_mass - offset == pytest.approx([0.5, 0, 0], abs=1e-7)
+    assert moved.inertia == pytest.approx(at_origin.inertia, rel=1e-8)
+
+
+def test_a_difference_far_away_keeps_its_accuracy():
+    offset = np.array([3e7, 0, 0])
+    near = difference(P.box(2, 2, 2), P.sphere(1).translated([2, 1, 1])).mass_properties()
+    far = difference(P.box(2, 2, 2).translated(offset),
+                     P.sphere(1).translated(offset + [2, 1, 1])).mass_properties()
+    assert far.measure == pytest.approx(8 - 2 / 3 * np.pi, rel=far.relative_error)
+    assert far.measure == pytest.approx(near.measure, rel=1e-6)
+    assert far.relative_error == pytest.approx(near.relative_error, rel=1e-2)
+
+
+# ------------------------------------------------------------ many parts
+def test_only_the_overlapping_parts_go_faceted():
+    """Three spheres, two of which overlap: the lone one stays an exact part."""
+    body = union(P.sphere(1), P.sphere(1).translated([1, 0, 0]), P.sphere(1).translated([9, 0, 0]))
+    assert isinstance(body, Composite) and len(body.parts) == 2
+    assert isinstance(body.parts[0], Faceted) and not isinstance(body.parts[1], Faceted)
+    props = body.mass_properties()
+    exact = _lens_union_volume(1.0, 1.0) + 4 / 3 * np.pi
+    assert abs(props.measure - exact) / exact <= props.relative_error
+    assert not props.exact
+
+
+def test_many_disjoint_parts_need_no_facets(monkeypatch):
+    """A grid of 400 spheres touches no boolean: to_geometry is never called."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("a disjoint part was faceted")
+
+    spheres = [P.sphere(0.4).translated([i % 20, i // 20, 0]) for i in range(400)]
+    monkeypatch.setattr(type(spheres[0]), "to_geometry", refuse)
+    body = union(*spheres)
+    assert isinstance(body, Composite) and len(body.parts) == 400
+    assert body.mass_properties().measure == pytest.approx(400 * 4 / 3 * np.pi * 0.064,
+                                                          rel=1e-14)
+
+
+def test_holes_whose_boxes_miss_the_body_are_skipped():
+    plate = P.rectangle(1, 1)
+    assert difference(plate, *[P.disc(0.1).translated([5 + i, 5]) for i in range(50)]) is plate
+
+
+@pytest.mark.parametrize("far", [1e6, 1e8])
+def test_a_lamina_boolean_far_away_is_as_good_as_at_the_origin(far):
+    """Two unit discs 1 apart: area 2π less the lens 2π/3 − √3/2."""
+    offset = np.array([far, far / 3])
+    props = union(P.disc(1).translated(offset),
+                  P.disc(1).translated(offset + [1, 0])).mass_properties()
+    exact = 2 * np.pi - (2 * np.pi / 3 - np.sqrt(3) / 2)
+    assert abs(props.area - exact) / exact <= props.relative_error
+    assert props.center_of_mass - offset == pytest.approx([0.5, 0], abs=1e-7)
+
+
+def test_a_boolean_near_the_largest_float_keeps_its_volume():
+    """At 1e308 a plain norm of the coordinates overflows: the boxes and the local
+    origin must not, so the lens is still found and measured."""
+    a = P.sphere(1).translated([1e308, 0, 0])
+    b = P.sphere(1).translated([1e308, 0.5, 0])
+    props = union(a, b).mass_properties()
+    exact = _lens_union_volume(1.0, 0.5)
+    assert abs(props.measure - exact) / exact <= props.relative_error

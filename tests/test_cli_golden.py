@@ -43,7 +43,8 @@ def _cases() -> dict[str, tuple[int, list[str]]]:
         cases[f"lift.{body}"] = (0, ["lift", spec])
         if body in CHECKABLE:
             cases[f"check.{body}"] = (0, ["check", spec])
-    cases["mass.block.material"] = (0, ["mass", "shapes/block.toml", "--material", "oak"])
+    cases["mass.stepped_cylinder.material"] = (0, ["mass", "shapes/stepped_cylinder.toml",
+                                                  "--material", "oak"])
     cases["check.block.design"] = (0, ["check", "shapes/block.toml", "--require-tilt", "10",
                                        "--friction", "0.2"])
     cases["check.block.fails"] = (1, ["check", "shapes/block.toml", "--require-tilt", "15"])

@@ -1,3 +1,5 @@
+import os
+
 import numpy as np
 import pytest
 
@@ -288,3 +290,120 @@ def test_io_reads_files_and_leaves_specs_to_loading(tmp_path):
 
     with pytest.raises(InputFileError, match="plumbob.read"):
         read_file(write(tmp_path, '[[part]]\ntype = "disc"\nradius = 1\n'))
+
+
+# ------------------------------------------------ issue 10: units, types, limits
+def _write_3mf(path, side, unit):
+    """A closed cube of ``side`` in a 3MF that declares ``unit``."""
+    import zipfile
+
+    v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1],
+                  [0, 1, 1]], float) * side
+    f = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5],
+         [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]]
+    verts = "".join(f'<vertex x="{x}" y="{y}" z="{z}"/>' for x, y, z in v)
+    tris = "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in f)
+    model = (f'<?xml version="1.0" encoding="UTF-8"?><model unit="{unit}" '
+             'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>'
+             f'<object id="1" type="model"><mesh><vertices>{verts}</vertices><triangles>{tris}'
+             '</triangles></mesh></object></resources><build><item objectid="1"/></build></model>')
+    rels = ('<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.'
+            'openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/'
+            '3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/'
+            '01/3dmodel"/></Relationships>')
+    types = ('<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats'
+             '.org/package/2006/content-types"><Default Extension="rels" ContentType="application'
+             '/vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" '
+             'ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>')
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("[Content_Types].xml", types)
+        z.writestr("_rels/.rels", rels)
+        z.writestr("3D/3dmodel.model", model)
+
+
+def test_a_mesh_file_that_declares_its_unit_keeps_it(tmp_path):
+    """3MF in cm inside a spec in mm: the file's own unit wins (and is said)."""
+    _write_3mf(tmp_path / "cube.3mf", 10, "centimeter")
+    path = write(tmp_path, '[shape]\nunits = "mm"\n[[part]]\ntype = "mesh"\nfile = "cube.3mf"\n')
+    reading = load_spec(path)
+    assert reading.body.mass_properties().measure == pytest.approx(1e-3, rel=1e-14)
+    assert reading.notices == ("mesh cube.3mf: units: centimeter (from the file)",)
+
+
+def test_units_option_on_particles_scales_positions(tmp_path):
+    path = write(tmp_path, "[[particle]]\nmass = 1\nposition = [0, 0]\n"
+                           "[[particle]]\nmass = 1\nposition = [1000, 0]\n")
+    props = read(path, units="mm").body.mass_properties()
+    assert props.center_of_mass.tolist() == pytest.approx([0.5, 0.0], rel=1e-15)
+
+
+@pytest.mark.parametrize("text, phrases", [
+    ('[shape]\nunits = ["m"]\n[[part]]\ntype = "disc"\nradius = 1\n',
+     ["shape.units", "['m'] (an array)"]),
+    ('[[part]]\ntype = "box"\nlength = 1\nwidth = 1\nheight = 1\ncentered = "no"\n',
+     ["part 1.centered", "'no' (text)", "true or false"]),
+    ('[[part]]\ntype = "box"\nlength = 1\nwidth = 1\nheight = 1\ncentered = 0\n',
+     ["part 1.centered", "0 (an integer)"]),
+    ('[[part]]\ntype = "disc"\nradius = [1]\n', ["part 1.radius", "[1] (an array)"]),
+    ('[[part]]\ntype = "mesh"\nfile = 5\n', ["part 1.file", "5 (an integer)", "a file name"]),
+    ('[[part]]\ntype = "disc"\nradius = 1\n[[part]]\ntype = "disc"\nradius = 0.5\nop = 1\n',
+     ["part 2.op", "1 (an integer)"]),
+    ('title = 5\n[[particle]]\nmass = 1\nposition = [0, 0]\n', ["title", "5 (an integer)"]),
+    ('[shape]\nfigure = 3\n[[part]]\ntype = "disc"\nradius = 1\n', ["shape.figure", "3"]),
+])
+def test_wrong_typed_values_name_key_value_and_type(tmp_path, text, phrases):
+    with pytest.raises(SpecError) as error:
+        load_spec(write(tmp_path, text))
+    message = str(error.value)
+    assert "\n" not in message
+    for phrase in phrases:
+        assert phrase in message
+
+
+def test_centered_true_and_false_both_mean_what_they_say(tmp_path):
+    def centre(flag):
+        return load_spec(write(tmp_path, '[[part]]\ntype = "box"\nlength = 2\nwidth = 2\n'
+                               f'height = 2\ncentered = {flag}\n')).body.mass_properties()
+    assert centre("true").center_of_mass.tolist() == [0, 0, 0]
+    assert centre("false").center_of_mass.tolist() == [1, 1, 1]
+
+
+def test_a_caller_built_table_is_held_to_the_nesting_limit():
+    from plumbob.errors import LimitError
+
+    data: dict = {"type": "disc", "radius": 1}
+    for _ in range(100):
+        data = {"part": [data]}
+    with pytest.raises(LimitError, match="MAX_NESTING"):
+        build_spec(data)
+
+
+def test_a_fifo_is_refused_as_a_spec(tmp_path):
+    fifo = tmp_path / "pipe.toml"
+    os.mkfifo(fifo)
+    with pytest.raises(InputFileError, match="FIFO"):
+        load_spec(str(fifo))
+
+
+def test_a_run_of_holes_is_cut_in_one_pass(tmp_path):
+    holes = "".join(f'[[part]]\ntype = "disc"\nradius = 0.1\nat = [{0.5 + i}, 0.5]\n'
+                    'op = "subtract"\n' for i in range(20))
+    path = write(tmp_path, '[[part]]\ntype = "rectangle"\nwidth = 20\nheight = 1\n' + holes)
+    props = load_spec(path).body.mass_properties()
+    assert props.exact and props.area == pytest.approx(20 - 20 * np.pi * 0.01, rel=1e-14)
+
+
+def test_shape_segments_sets_the_faceting_of_booleans(tmp_path):
+    def lens(extra):
+        return load_spec(write(tmp_path, f"[shape]\n{extra}\n[[part]]\ntype = \"disc\"\n"
+                               "radius = 1\n[[part]]\ntype = \"disc\"\nradius = 1\n"
+                               "at = [1, 0]\n")).body.mass_properties()
+    exact = 2 * np.pi - (2 * np.pi / 3 - np.sqrt(3) / 2)
+    coarse, fine = lens("segments = 32"), lens("")
+    assert "32 and 16 segments" in " ".join(coarse.notes)
+    assert "256 and 128 segments" in " ".join(fine.notes)
+    assert abs(coarse.area - exact) <= coarse.relative_error * exact
+    with pytest.raises(SpecError, match="shape.segments"):
+        lens('segments = "many"')
+    with pytest.raises(SpecError, match="at least 8"):
+        lens("segments = 4")

@@ -21,15 +21,17 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import ExpressionError
+from .errors import ExpressionError, LimitError
+from .limits import MAX_EXPRESSION_NODES
 
 __all__ = ["Expression", "parse", "evaluate", "FUNCTIONS", "CONSTANTS"]
 
-MAX_LENGTH = 2000
+#: characters in one expression (the node count, not this, is the real bound)
+MAX_LENGTH = 20_000
 MAX_DEPTH = 60
 
 FUNCTIONS = {
@@ -64,11 +66,38 @@ _TOKEN = re.compile(
 _UNICODE = str.maketrans({"×": "*", "·": "*", "÷": "/", "−": "-", "–": "-", "π": " pi "})
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class _Node:
     op: str  # "num", "name", "neg", "+", "-", "*", "/", "^", "call"
     args: tuple = ()
     value: float | str | None = None
+
+
+def _quoted(text: str) -> str:
+    """``text`` quoted for a message, shortened past 60 characters (a message is one
+    readable line even for a 20,000-character expression)."""
+    return repr(text) if len(text) <= 60 else repr(text[:57]) + "…"
+
+
+def _postorder(root: _Node) -> list[_Node]:
+    """The nodes under ``root``, each after its arguments: walked with a list, not by
+    recursion, so a long chain (``1+1+…+1``) never meets Python's recursion limit."""
+    order: list[_Node] = []
+    stack = [root]
+    while stack:
+        node = stack.pop()
+        order.append(node)
+        stack.extend(node.args)
+    order.reverse()
+    return order
+
+
+def _fold(root: _Node, visit):
+    """``visit(node, argument_results)`` over the tree, arguments first; the root's result."""
+    results: dict[int, object] = {}
+    for node in _postorder(root):
+        results[id(node)] = visit(node, [results.pop(id(a)) for a in node.args])
+    return results[id(root)]
 
 
 class _Parser:
@@ -81,12 +110,13 @@ class _Parser:
             match = _TOKEN.match(stripped, pos)
             if not match or match.end() == pos:
                 bad = stripped[pos:].lstrip()[:1]
-                raise ExpressionError(f"in {text!r}: unexpected character {bad!r}")
+                raise ExpressionError(f"in {_quoted(text)}: unexpected character {bad!r}")
             kind = match.lastgroup
             self.tokens.append((kind, match.group(kind), match.start(kind)))
             pos = match.end()
         self.index = 0
         self.depth = 0
+        self.nodes = 0
 
     def peek(self) -> tuple[str, str, int] | None:
         return self.tokens[self.index] if self.index < len(self.tokens) else None
@@ -94,36 +124,46 @@ class _Parser:
     def take(self, value: str | None = None) -> tuple[str, str, int]:
         token = self.peek()
         if token is None:
-            raise ExpressionError(f"in {self.text!r}: the expression ends too soon")
+            raise ExpressionError(f"in {_quoted(self.text)}: the expression ends too soon")
         if value is not None and token[1] != value:
-            raise ExpressionError(f"in {self.text!r}: expected {value!r} at {token[1]!r}")
+            raise ExpressionError(f"in {_quoted(self.text)}: expected {value!r} at {token[1]!r}")
         self.index += 1
         return token
+
+    def node(self, op: str, args: tuple = (), value: float | str | None = None) -> _Node:
+        """A new node, counted against :data:`~plumbob.limits.MAX_EXPRESSION_NODES`."""
+        self.nodes += 1
+        if self.nodes > MAX_EXPRESSION_NODES:
+            raise LimitError(
+                f"in {_quoted(self.text)}: the expression has over {MAX_EXPRESSION_NODES} "
+                "numbers, names and operators (plumbob.limits.MAX_EXPRESSION_NODES); "
+                "split it into [parameters]")
+        return _Node(op, args, value)
 
     def nest(self) -> None:
         self.depth += 1
         if self.depth > MAX_DEPTH:
-            raise ExpressionError(f"in {self.text[:40]!r}…: the expression nests too deeply")
+            raise ExpressionError(f"in {_quoted(self.text)}: the expression nests too deeply")
 
     def parse(self) -> _Node:
         node = self.expr()
         token = self.peek()
         if token is not None:
-            raise ExpressionError(f"in {self.text!r}: unexpected {token[1]!r}")
+            raise ExpressionError(f"in {_quoted(self.text)}: unexpected {token[1]!r}")
         return node
 
     def expr(self) -> _Node:
         node = self.term()
         while (t := self.peek()) and t[1] in "+-" and t[0] == "op":
             self.take()
-            node = _Node(t[1], (node, self.term()))
+            node = self.node(t[1], (node, self.term()))
         return node
 
     def term(self) -> _Node:
         node = self.unary()
         while (t := self.peek()) and t[1] in ("*", "/"):
             self.take()
-            node = _Node(t[1], (node, self.unary()))
+            node = self.node(t[1], (node, self.unary()))
         return node
 
     def unary(self) -> _Node:
@@ -132,7 +172,7 @@ class _Parser:
         if t and t[1] in ("+", "-"):
             self.take()
             operand = self.unary()
-            node = _Node("neg", (operand,)) if t[1] == "-" else operand
+            node = self.node("neg", (operand,)) if t[1] == "-" else operand
         else:
             node = self.power()
         self.depth -= 1
@@ -143,20 +183,20 @@ class _Parser:
         t = self.peek()
         if t and t[1] in ("^", "**"):
             self.take()
-            return _Node("^", (base, self.unary()))
+            return self.node("^", (base, self.unary()))
         return base
 
     def atom(self) -> _Node:
         kind, value, _ = self.take()
         if kind == "number":
-            return _Node("num", value=float(value))
+            return self.node("num", value=float(value))
         if kind == "name":
             nxt = self.peek()
             if nxt and nxt[1] == "(":
                 if value not in FUNCTIONS:
                     known = ", ".join(sorted(FUNCTIONS))
                     raise ExpressionError(
-                        f"in {self.text!r}: unknown function {value!r}; known: {known}"
+                        f"in {_quoted(self.text)}: unknown function {value!r}; known: {known}"
                     )
                 self.take("(")
                 args = [self.expr()]
@@ -166,44 +206,42 @@ class _Parser:
                 self.take(")")
                 arity = FUNCTIONS[value][1]
                 if len(args) != arity:
-                    raise ExpressionError(f"in {self.text!r}: {value}() takes {arity} argument(s)")
-                return _Node("call", tuple(args), value)
-            return _Node("name", value=value)
+                    raise ExpressionError(f"in {_quoted(self.text)}: {value}() takes {arity} argument(s)")
+                return self.node("call", tuple(args), value)
+            return self.node("name", value=value)
         if value == "(":
             self.nest()
             node = self.expr()
             self.take(")")
             self.depth -= 1
             return node
-        raise ExpressionError(f"in {self.text!r}: unexpected {value!r}")
+        raise ExpressionError(f"in {_quoted(self.text)}: unexpected {value!r}")
 
 
 @dataclass(frozen=True)
 class Expression:
-    """A parsed expression: evaluate it with :meth:`evaluate`."""
+    """A parsed expression: evaluate it with :meth:`evaluate`.
+
+    Every walk over the tree (names, value, degree) is iterative (:func:`_fold`): the
+    parser bounds the nodes (:data:`~plumbob.limits.MAX_EXPRESSION_NODES`) and the
+    nesting, and a long flat chain costs no recursion. Two expressions are equal when
+    their texts are.
+    """
 
     text: str
-    tree: _Node
+    tree: _Node = field(compare=False)
 
     @property
     def names(self) -> frozenset[str]:
         """The free names the expression uses (constants excluded)."""
-        found: set[str] = set()
-
-        def walk(node: _Node) -> None:
-            if node.op == "name" and node.value not in CONSTANTS:
-                found.add(str(node.value))
-            for child in node.args:
-                walk(child)
-
-        walk(self.tree)
-        return frozenset(found)
+        return frozenset(str(node.value) for node in _postorder(self.tree)
+                         if node.op == "name" and node.value not in CONSTANTS)
 
     def evaluate(self, names: Mapping[str, float | np.ndarray] | None = None):
         """The value, a float or an array broadcast over array-valued names."""
         names = names or {}
 
-        def value(node: _Node):
+        def value(node: _Node, args: list):
             op = node.op
             if op == "num":
                 return node.value
@@ -214,13 +252,13 @@ class Expression:
                     return CONSTANTS[node.value]
                 known = ", ".join(sorted(set(names) | set(CONSTANTS)))
                 raise ExpressionError(
-                    f"in {self.text!r}: unknown name {node.value!r}; known: {known}"
+                    f"in {_quoted(self.text)}: unknown name {node.value!r}; known: {known}"
                 )
             if op == "neg":
-                return -value(node.args[0])
+                return -args[0]
             if op == "call":
-                return FUNCTIONS[node.value][0](*(value(a) for a in node.args))
-            left, right = value(node.args[0]), value(node.args[1])
+                return FUNCTIONS[node.value][0](*args)
+            left, right = args
             if op == "+":
                 return left + right
             if op == "-":
@@ -232,29 +270,35 @@ class Expression:
             return np.power(np.asarray(left, dtype=float), right)
 
         with np.errstate(all="ignore"):
-            result = value(self.tree)
+            result = _fold(self.tree, value)
         if np.ndim(result) == 0:
             result = float(result)
             if not math.isfinite(result):
-                raise ExpressionError(f"{self.text!r} is not a finite number (it gives {result})")
+                raise ExpressionError(f"{_quoted(self.text)} is not a finite number (it gives {result})")
         return result
 
-    def degree(self, variables: frozenset[str] | set[str] = frozenset("xyz")) -> int | None:
-        """Polynomial degree in ``variables``, or None if the expression is not a polynomial.
+    def degree(self, variables: frozenset[str] | set[str] = frozenset("xyz"),
+               names: Mapping[str, float] | None = None) -> int | None:
+        """Polynomial degree in ``variables``, or None if the expression is not a polynomial
+        (``names``: the values of other names, for exponents such as ``x^n``).
+
+        The degree is the true one however high (``(x^64)^64`` is 4096): the caller
+        checks it against its limit before building anything for it.
 
         >>> parse("2400 * (1 + 0.1*z)").degree()
         1
         >>> parse("exp(x)").degree() is None
         True
+        >>> parse("1 + (x^64)^64").degree()
+        4096
         """
 
-        def deg(node: _Node) -> int | None:
+        def deg(node: _Node, parts: list) -> int | None:
             op = node.op
             if op == "num":
                 return 0
             if op == "name":
                 return 1 if node.value in variables else 0
-            parts = [deg(a) for a in node.args]
             if op == "call":
                 return 0 if all(p == 0 for p in parts) else None
             if any(p is None for p in parts):
@@ -271,12 +315,15 @@ class Expression:
                 return None
             if parts[0] == 0:
                 return 0
-            exponent = Expression(self.text, node.args[1]).evaluate()
-            if float(exponent).is_integer() and 0 <= exponent <= 64:
+            try:
+                exponent = Expression(self.text, node.args[1]).evaluate(names)
+            except ExpressionError:
+                return None
+            if float(exponent).is_integer() and exponent >= 0:
                 return parts[0] * int(exponent)
             return None
 
-        return deg(self.tree)
+        return _fold(self.tree, deg)
 
 
 def parse(text: str) -> Expression:
@@ -317,5 +364,5 @@ def evaluate(text: str | float | int, names: Mapping[str, float] | None = None) 
         return value
     result = parse(text).evaluate(names)
     if np.ndim(result) != 0:
-        raise ExpressionError(f"{text!r} must be a single number")
+        raise ExpressionError(f"{_quoted(text)} must be a single number")
     return float(result)

@@ -25,6 +25,7 @@ __all__ = [
     "MAX_PARTS",
     "MAX_PERIODS",
     "MAX_SAMPLES",
+    "MAX_SEGMENTS",
     "MAX_SIDES",
     "MAX_TRIANGLES",
     "check_count",
@@ -51,6 +52,8 @@ MAX_OUTLINES = 100_000
 MAX_OUTLINE_PAIRS = 4_000_000
 #: Sides of a regular polygon or segments of a tessellated curve.
 MAX_SIDES = 1_000_000
+#: Circular segments per turn of a faceted boolean (a sphere costs about n²/2 triangles).
+MAX_SEGMENTS = 2048
 #: Polynomial degree of a density field (a quadrature rule of this degree per cell).
 MAX_DENSITY_DEGREE = 64
 #: Samples one command may ask for (simulate --samples, sampled surfaces, drops).

@@ -12,16 +12,18 @@ from collections.abc import Mapping
 
 from . import io
 from .arguments import file_path
+from .errors import DensityError, SpecError
 from .reading import Reading
 
-__all__ = ["read", "SUFFIXES"]
+__all__ = ["read", "with_default_density", "SUFFIXES"]
 
 #: file extension → reader family: specs, and every format :mod:`plumbob.io` reads
 SUFFIXES = {".toml": "spec", **io.SUFFIXES}
 
 
-def read(path: str, *, units: str | None = None, repair: bool = False,
-         parameters: Mapping[str, float] | None = None) -> Reading:
+def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
+         units: str | None = None, repair: bool = False,
+         allow_outside_files: bool = False) -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -32,12 +34,20 @@ def read(path: str, *, units: str | None = None, repair: bool = False,
     units : str, optional
         The length unit of a mesh's or outline's coordinates (``mm``, ``cm``, ``m``,
         ``in``, ``ft``); None uses the unit the file declares, else metres (with a
-        notice). A spec gives its own units.
+        notice). For a spec that sets no ``units``, its unit; for one that sets
+        the same, a notice; for one that sets another, an error (``docs/shapes.md``).
     repair : bool
-        Close small holes in open meshes (reported in the notices).
-    parameters : mapping of str to float, optional
-        A spec's what-ifs: values replacing its named ``[parameters]`` entries (those
-        after one are evaluated with its new value). Only specs have parameters.
+        Close small holes in open meshes, a spec's mesh files included (reported in
+        the notices; a notice when there is nothing to repair).
+    parameters : mapping of str to float or str, optional
+        Values for a spec's ``[parameters]`` entries, by name, replacing the spec's
+        own (``--set name=value``): a number, an expression over the parameters
+        before it, or a number with a length unit (``"30 cm"``, converted into the
+        spec's unit). A name the spec does not define is an error listing the known
+        ones; parameters given for a file that is not a spec are an error.
+    allow_outside_files : bool
+        Let a spec read files outside its own folder (an absolute path, ``..``);
+        refused by default, so a spec from elsewhere cannot read any file you can.
 
     Returns
     -------
@@ -54,6 +64,8 @@ def read(path: str, *, units: str | None = None, repair: bool = False,
     >>> reading = read("shapes/l_shape.toml")
     >>> reading.body.kind, reading.body.mass_properties().center_of_mass.round(4).tolist()
     ('lamina', [0.8333, 0.8333])
+    >>> read("shapes/l_shape.toml", parameters={"a": 2}).body.mass_properties().area
+    12.0
     >>> read("missing.stl")
     Traceback (most recent call last):
     ...
@@ -63,9 +75,43 @@ def read(path: str, *, units: str | None = None, repair: bool = False,
     if io.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
-        return load_spec(path, parameters)
+        return load_spec(path, parameters=parameters, units=units, repair=repair,
+                         allow_outside_files=allow_outside_files)
     if parameters:
-        from .errors import SpecError
-
-        raise SpecError("only a spec (.toml) has parameters to set", path=path)
+        raise SpecError(f"parameters ({', '.join(parameters)}) apply only to a TOML spec; "
+                        "this file is not one", path=path)
     return io.read(path, units=units, repair=repair)
+
+
+def with_default_density(reading: Reading, density: float, option: str) -> Reading:
+    """``reading`` with ``density`` for every part that gives none (``--density``,
+    ``--material``; ``option`` names it in messages).
+
+    An option that cannot apply is never ignored: when every part gives its own
+    density (or the body is particles, whose masses are given) it is an error —
+    unless every part already has that very density, which is only a notice.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> with_default_density(Reading(box(1, 1, 1)), 2.0, "--density").body.mass_properties().mass
+    2.0
+    >>> with_default_density(Reading(box(1, 1, 1, density=5.0), (), "a.toml"), 2.0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: a.toml: --density does not apply: every part gives its own \
+density (5 kg/m³); remove the option, or a density from the file
+    """
+    own = reading.body.densities()
+    if None in own:
+        return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+    if not own:
+        raise DensityError(f"{option} does not apply: a body of particles has its masses "
+                           "given; remove the option", path=reading.path)
+    if own == {density}:
+        note = f"{option}: every part already has this density; the option changes nothing"
+        return Reading(reading.body, reading.notices + (note,), reading.path)
+    unit = "kg/m²" if reading.body.kind == "lamina" else "kg/m³"
+    given = ", ".join(sorted(f"{d:g} {unit}" if isinstance(d, float) else "a density field"
+                             for d in own))
+    raise DensityError(f"{option} does not apply: every part gives its own density "
+                       f"({given}); remove the option, or a density from the file",
+                       path=reading.path)

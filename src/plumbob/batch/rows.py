@@ -36,21 +36,19 @@ class FileResult:
 def read_body(path: str, options: Options):
     """The file's :class:`~plumbob.io.Reading`, with ``--density``/``--material`` applied to
     parts that give none (as the single-file commands do)."""
-    from ..loading import read
+    from ..loading import read, with_default_density
     from ..materials import check_density
-    from ..reading import Reading
 
     reading = read(path, units=options.units, repair=options.repair)
-    density = None
-    if options.material:
+    if options.material is not None:
         from ..materials import material
 
-        density = material(options.material).density
-    elif options.density is not None:
-        density = check_density(options.density, "--density")
-    if density is None:
-        return reading
-    return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+        return with_default_density(reading, material(options.material).density,
+                                    f"--material {options.material}")
+    if options.density is not None:
+        return with_default_density(reading, check_density(options.density, "--density"),
+                                    "--density")
+    return reading
 
 
 def _plain(values: dict[str, Any]) -> dict[str, Any]:

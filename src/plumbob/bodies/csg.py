@@ -24,6 +24,7 @@ from ..errors import DensityError, GeometryError
 from ..limits import MAX_SIDES
 from ..massprops import MassProperties, combine
 from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
+from .overlaps import Facets, bounding_boxes, boxes_meet, candidate_pairs, connected_groups, local_origin
 
 __all__ = [
     "Composite",
@@ -323,9 +324,12 @@ class Faceted(Body):
 
 
 def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
-                  geometries: list | None = None) -> Body:
+                  geometries: list | None = None, origin: np.ndarray | None = None) -> Body:
     """Integrate a faceted boolean of ``bodies``, extrapolated over two facetings
-    (``geometries``: the bodies' shapes at ``segments``, when already made)."""
+    (``geometries``: the bodies' shapes at ``segments``, when already made, placed
+    relative to ``origin``). With an ``origin`` the facets are built and integrated
+    about it and the result moved back, so the boolean costs no digits to the
+    coordinates' size."""
     from .lamina import Lamina
     from .region import Region
     from .solid import MeshSolid
@@ -341,9 +345,10 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
         raise DensityError(f"a density field cannot be carried through a {what} of overlapping "
                            "parts: combine the parts first, then give the combined body the field")
     dim = bodies[0].dim
+    local = bodies if origin is None else tuple(b.translated(-origin) for b in bodies)
 
     def integrated(count: int) -> tuple[Body, MassProperties]:
-        parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in bodies]
+        parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in local]
         geometry = build(parts)
         if not _measure(geometry, dim) > 0:
             raise GeometryError(f"the {what} is empty: the parts do not overlap")
@@ -366,7 +371,10 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
         f"{max(8, segments // 2)} segments per turn, extrapolated); estimated relative error "
         f"{error:.1e}"
     )
-    return Faceted(shape, replace(extrapolated, notes=(), parts=1), density, error, note)
+    unit = replace(extrapolated, notes=(), parts=1)
+    if origin is not None:
+        shape, unit = shape.translated(origin), unit.transformed(np.eye(dim), origin)
+    return Faceted(shape, unit, density, error, note)
 
 
 def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
@@ -384,8 +392,12 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     Returns
     -------
     Body
-        A :class:`Composite` (exact) when no two parts overlap, else a
-        :class:`Faceted`; a single body is returned as it is.
+        A :class:`Composite` (exact) when no two parts overlap; a :class:`Faceted`
+        when they all join into one overlapping group; else a :class:`Composite` of
+        the parts that overlap nothing and one :class:`Faceted` per overlapping
+        group. A single body is returned as it is. Only parts whose bounding boxes
+        meet are ever faceted (:mod:`plumbob.bodies.overlaps`), and a boolean far
+        from the origin is computed about a local origin.
 
     Raises
     ------
@@ -411,20 +423,31 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     dim = _same_dim(bodies, segments)
     if len(bodies) == 1:
         return bodies[0]
-    geoms = [b.to_geometry(segments) for b in bodies]
-    slack = _slack(bodies, geoms, dim, segments)
-    overlap = sum(
-        _measure(_overlap(geoms[i], geoms[j], dim), dim)
-        for i in range(len(geoms))
-        for j in range(i + 1, len(geoms))
-    )
-    if overlap <= slack:
+    boxes = bounding_boxes(bodies)
+    origin = local_origin(boxes)
+    shapes = Facets(bodies, segments, origin)
+    overlapping = [
+        (i, j) for i, j in candidate_pairs(boxes)
+        if _measure(_overlap(shapes[i], shapes[j], dim), dim)
+        > _slack((bodies[i], bodies[j]), [shapes[i], shapes[j]], dim, segments)
+    ]
+    if not overlapping:
         return Composite(bodies, (1.0,) * len(bodies))
-    if dim == 2:
-        import shapely
+    joined = _manifold_union if dim == 3 else _shapely_union
+    parts = [
+        bodies[group[0]] if len(group) == 1 else _faceted_body(
+            tuple(bodies[k] for k in group), joined, segments, "union",
+            [shapes[k] for k in group], origin)
+        for group in connected_groups(len(bodies), overlapping)
+    ]
+    # parts that overlap nothing stay exact beside the faceted unions of those that do
+    return parts[0] if len(parts) == 1 else Composite(tuple(parts), (1.0,) * len(parts))
 
-        return _faceted_body(bodies, shapely.union_all, segments, "union", geoms)
-    return _faceted_body(bodies, _manifold_union, segments, "union", geoms)
+
+def _shapely_union(geometries: list):
+    import shapely
+
+    return shapely.union_all(geometries)
 
 
 def leaf_densities(body: Body) -> set:
@@ -489,26 +512,32 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
         holes = tuple(
             h.with_default_density(density) if leaf_densities(h) == {None} else h for h in holes
         )
-    outer = body.to_geometry(segments)
-    kept: list[Body] = []
-    for hole in holes:
-        g = hole.to_geometry(segments)
+    boxes = bounding_boxes((body,) + holes)
+    origin = local_origin(boxes)
+    shapes = Facets((body,) + holes, segments, origin)
+    kept: list[int] = []
+    for k in range(1, len(holes) + 1):
+        if not boxes_meet(boxes[0], boxes[k]):
+            continue  # the hole's box misses the body: nothing to remove
+        g = shapes[k]
         size = _measure(g, dim)
-        inside = _measure(_overlap(outer, g, dim), dim)
-        slack = _slack((hole,), [g], dim, segments)
+        inside = _measure(_overlap(shapes[0], g, dim), dim)
+        slack = _slack((holes[k - 1],), [g], dim, segments)
         if inside <= slack:
             continue  # disjoint: nothing to remove
         if size - inside > slack or any(
-            _measure(_overlap(g, k.to_geometry(segments), dim), dim) > slack for k in kept
+            boxes_meet(boxes[k], boxes[j]) and _measure(_overlap(g, shapes[j], dim), dim) > slack
+            for j in kept
         ):
-            return _faceted_difference(body, holes, segments)
-        kept.append(hole)
+            return _faceted_difference(body, holes, segments, origin)
+        kept.append(k)
     if not kept:
         return body
-    return Composite((body,) + tuple(kept), (1.0,) + (-1.0,) * len(kept))
+    return Composite((body,) + tuple(holes[k - 1] for k in kept), (1.0,) + (-1.0,) * len(kept))
 
 
-def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int) -> Body:
+def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int,
+                        origin: np.ndarray | None) -> Body:
     def build(geoms):
         if body.dim == 2:
             import shapely
@@ -516,7 +545,7 @@ def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int) -> B
             return shapely.difference(geoms[0], shapely.union_all(geoms[1:]))
         return geoms[0] - _manifold_union(geoms[1:])
 
-    return _faceted_body((body,) + holes, build, segments, "difference")
+    return _faceted_body((body,) + holes, build, segments, "difference", origin=origin)
 
 
 def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
@@ -549,7 +578,12 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     dim = _same_dim(bodies, segments)
     if len(bodies) == 1:
         return bodies[0]
-    geoms = [b.to_geometry(segments) for b in bodies]
+    boxes = bounding_boxes(bodies)
+    if len(candidate_pairs(boxes)) < len(bodies) * (len(bodies) - 1) // 2:
+        raise GeometryError("the intersection is empty: the parts do not overlap")
+    origin = local_origin(boxes)
+    facets = Facets(bodies, segments, origin)
+    geoms = [facets[i] for i in range(len(bodies))]
     for i, (b, g) in enumerate(zip(bodies, geoms)):
         slack = _slack((b,), [g], dim, segments)
         if all(
@@ -565,4 +599,4 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
             result = _overlap(result, g, dim)
         return result
 
-    return _faceted_body(bodies, build, segments, "intersection", geoms)
+    return _faceted_body(bodies, build, segments, "intersection", geoms, origin)

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import DensityError, ExpressionError
+from ..errors import DensityError, ExpressionError, LimitError
+from ..limits import MAX_DENSITY_DEGREE
 
 __all__ = ["DensityField", "FIELD_DENSITY", "COORDINATES"]
 
@@ -66,6 +67,13 @@ class DensityField:
             if int(self.degree) != self.degree or self.degree < 0:
                 raise DensityError(f"a polynomial degree is a whole number ≥ 0, not {self.degree!r}")
             object.__setattr__(self, "degree", int(self.degree))
+            # A rule of degree d has O(d³) points per cell: check before anything is built.
+            if self.degree > MAX_DENSITY_DEGREE:
+                shown = f"{self.degree}" if self.degree < 10**9 else f"{float(self.degree):.3g}"
+                raise LimitError(
+                    f"the density field {self.text!r} is a polynomial of degree {shown}, over "
+                    f"plumbob's limit of {MAX_DENSITY_DEGREE} (plumbob.limits.MAX_DENSITY_DEGREE)"
+                    "; lower its degree")
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
         """Values (n,) at ``points`` (n, d), d = 2 or 3 (m)."""
@@ -121,7 +129,7 @@ class DensityField:
         if not (np.isfinite(scale) and scale > 0):
             raise DensityError(f"a density scale must be a positive number, not {scale:g}")
         coordinates = {n for n in expression.names if n in COORDINATES}
-        degree = expression.degree(set(COORDINATES)) if coordinates else 0
+        degree = expression.degree(set(COORDINATES), constants) if coordinates else 0
 
         def function(points: np.ndarray) -> np.ndarray:
             env: dict[str, float | np.ndarray] = dict(constants)

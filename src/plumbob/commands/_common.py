@@ -11,10 +11,11 @@ import argparse
 import json
 import math
 import sys
+from collections.abc import Mapping
 from typing import Any
 
-from ..errors import ArgumentError, DynamicsError, printable
-from ..loading import read
+from ..errors import ArgumentError, DynamicsError, SpecError, printable
+from ..loading import read, with_default_density
 from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
@@ -36,6 +37,8 @@ __all__ = [
     "report_units",
     "number_option",
     "add_body_arguments",
+    "assignment",
+    "parameter_overrides",
     "add_stability_arguments",
     "add_orientation_arguments",
     "pose_down",
@@ -160,7 +163,7 @@ def number_option(text: str, label: str, *, infinite: bool = False) -> float:
 
 # ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
-    """PATH, --density/--material, --units, --repair, --json."""
+    """PATH, --density/--material, --units, --repair, --set, --json."""
     parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
     group = parser.add_mutually_exclusive_group()
     group.add_argument(
@@ -184,6 +187,20 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         "--repair",
         action="store_true",
         help="repair small defects in meshes (holes, winding) and report them",
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        type=assignment,
+        dest="parameters",
+        metavar="NAME=VALUE",
+        help="override a spec's [parameters] entry (repeatable): a number, an expression, "
+        "or a number with a length unit such as 30cm",
+    )
+    parser.add_argument(
+        "--allow-outside-files",
+        action="store_true",
+        help="let a spec read mesh files outside its own folder (refused by default)",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
@@ -215,6 +232,29 @@ def report_units(args: argparse.Namespace):
         raise ArgumentError("--report-units changes the text report only; the JSON is always "
                             "in SI units (leave out one of them)")
     return units or ReportUnits()
+def assignment(text: str) -> tuple[str, str]:
+    """An argparse type: ``NAME=VALUE`` (``--set``) as (name, value)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip() or not value.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, not {text!r}")
+    return name.strip(), value.strip()
+
+
+def parameter_overrides(pairs: list[tuple[str, str]] | Mapping[str, Any] | None
+                        ) -> dict[str, Any] | None:
+    """The ``--set`` pairs as a mapping; a name set twice is an error, not a silent choice
+    (a mapping, already checked, is taken as it is)."""
+    if not pairs:
+        return None
+    if isinstance(pairs, Mapping):
+        return dict(pairs)
+    out: dict[str, str] = {}
+    for name, value in pairs:
+        if name in out:
+            raise SpecError(f"--set {name} is given twice ({out[name]!r} and {value!r}); "
+                            "give it once")
+        out[name] = value
+    return out
 
 
 def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
@@ -260,18 +300,18 @@ def load_body(args: argparse.Namespace) -> Reading:
     """Read ``args.path`` and apply ``--density`` / ``--material``."""
     reading = read(
         args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
-        parameters=getattr(args, "parameters", None),
+        parameters=parameter_overrides(getattr(args, "parameters", None)),
+        allow_outside_files=getattr(args, "allow_outside_files", False),
     )
-    density = None
-    if getattr(args, "material", None):
+    if getattr(args, "material", None) is not None:
         from ..materials import material
 
-        density = material(args.material).density
-    elif getattr(args, "density", None) is not None:
-        density = check_density(args.density, "--density")
-    if density is None:
-        return reading
-    return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+        return with_default_density(reading, material(args.material).density,
+                                    f"--material {args.material}")
+    if getattr(args, "density", None) is not None:
+        return with_default_density(reading, check_density(args.density, "--density"),
+                                    "--density")
+    return reading
 
 
 def print_notices(reading: Reading, stream=None) -> None:

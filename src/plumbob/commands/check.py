@@ -227,7 +227,7 @@ def _solve(args):
 
     from ..balance.solve import solve_parameter
     from ..errors import SpecError, StabilityError
-    from ._common import load_body
+    from ._common import load_body, parameter_overrides
 
     if (args.require_tilt is None) == (args.margin is None):
         raise StabilityError("--solve-for needs one requirement: --require-tilt DEG or "
@@ -241,7 +241,7 @@ def _solve(args):
     tilt = args.require_tilt is not None
 
     def evaluate(value: float) -> float:
-        given = {**(getattr(args, "parameters", None) or {}), name: value}
+        given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}), name: value}
         body = load_body(_argparse.Namespace(**{**vars(args), "parameters": given})).body
         v = _verdict(args, body, body.mass_properties())
         if v.verdict == "neutral":

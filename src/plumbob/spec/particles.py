@@ -50,9 +50,8 @@ def read_particles(spec: SpecContext, tables: Any, simulation: bool) -> Particle
     for k, raw in enumerate(tables, 1):
         where = f"particle {k}"
         table = spec.table(raw, PARTICLE_KEYS, where)
-        name = table.get("name", where)
-        if not isinstance(name, str) or not name:
-            raise spec.error(f"{where}.name", "a name must be a non-empty string")
+        name = spec.text(table["name"], f"{where}.name", what="a name") if "name" in table \
+            else where
         if name in names:
             raise spec.error(f"{where}.name", f"two particles are named {name!r}; names must "
                              "be unique")

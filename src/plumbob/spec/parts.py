@@ -24,9 +24,11 @@ from ..io import read as read_file
 from ..massprops import rotation_matrix
 from ..materials import check_density
 from ..materials import material as lookup_material
-from .values import SpecContext, suggest
+from ..units import UNITS_ASSUMED
+from .values import SpecContext, shown
 
-__all__ = ["build_parts", "named", "PRIMITIVES", "PART_KEYS", "MATERIAL_KEYS"]
+__all__ = ["build_parts", "named", "spec_file", "PRIMITIVES", "PART_KEYS", "MATERIAL_KEYS",
+           "MESH_NOTICE"]
 
 PLACEMENT_KEYS = {"at", "rotate", "mirror"}
 #: what a part, or the [shape] table for all its parts, may say of their material
@@ -80,6 +82,14 @@ def _outline(spec: SpecContext, t: dict, where: str) -> Lamina:
     return Lamina(region)
 
 
+def _list(spec: SpecContext, t: dict, key: str, where: str) -> list:
+    """``t[key]`` (default empty) as an array, or an error naming it."""
+    value = t.get(key, [])
+    if not isinstance(value, list):
+        raise spec.error(f"{where}.{key}", f"expected an array, not {shown(value)}")
+    return value
+
+
 def _simple(build: Callable[..., Body], *keys: str, angles: tuple[str, ...] = ()):
     """A builder passing the named values, in order, to ``build``: lengths scaled by the
     spec's units, ``angles`` (degrees in the spec) in radians."""
@@ -99,7 +109,7 @@ PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[SpecContext, dict
                  lambda s, t, w: prim.polygon(s.points(t["vertices"], f"{w}.vertices"))),
     "polygon": (2, {"vertices"}, {"holes"}, lambda s, t, w: prim.polygon(
         s.points(t["vertices"], f"{w}.vertices"),
-        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(t.get("holes", []))])),
+        [s.points(h, f"{w}.holes[{i + 1}]") for i, h in enumerate(_list(s, t, "holes", w))])),
     "outline": (2, {"vertices"}, {"bulges"}, _outline),
     "regular_polygon": (2, {"sides", "radius"}, set(), lambda s, t, w: prim.regular_polygon(
         s.number(t["sides"], f"{w}.sides"), _n(s, t, "radius", w))),
@@ -133,15 +143,59 @@ PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[SpecContext, dict
 }
 
 
+#: how the notices of a mesh file read for a spec begin
+MESH_NOTICE = "mesh "
+
+
 def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
-    """A mesh file beside the spec, read by :mod:`plumbob.io` (its errors name it)."""
-    name = t["file"]
-    if not isinstance(name, str):
-        raise spec.error(f"{where}.file", "expected a file name")
-    path = os.path.join(os.path.dirname(os.path.abspath(spec.path)), name)
+    """A mesh file in the spec's folder, read by :mod:`plumbob.io` (its errors name it).
+
+    Its unit, first found first: the part's ``units``; the unit the file declares
+    (3MF); the spec's unit (``[shape] units``, or the caller's); else metres, said in
+    a notice."""
+    name = spec.text(t["file"], f"{where}.file", what="a file name")
+    path = spec_file(spec, name, f"{where}.file")
     if os.path.splitext(path)[1].lower() == ".toml":
         raise spec.error(f"{where}.file", "a mesh part must name a mesh file, not another spec")
-    return read_file(path, units=t.get("units")).body
+    repair = spec.options.repair
+    if "units" in t:
+        reading = read_file(path, units=spec.unit_name(t["units"], f"{where}.units"),
+                            repair=repair)
+    else:
+        reading = read_file(path, repair=repair)
+        if UNITS_ASSUMED in reading.notices and spec.unit is not None:
+            # the file declares no unit: the spec's unit applies to it as to every length
+            reading = read_file(path, units=spec.unit, repair=repair)
+            reading = replace(reading, notices=(f"units: {spec.unit} (the spec's)",)
+                              + reading.notices)
+        elif UNITS_ASSUMED in reading.notices:
+            reading = replace(reading, notices=tuple(
+                "units: none in the file or the spec; metres assumed (give units in [shape] "
+                "or on the part)" if n == UNITS_ASSUMED else n for n in reading.notices))
+    spec.notices.extend(f"{MESH_NOTICE}{name}: {notice}" for notice in reading.notices)
+    if repair and not reading.notices:
+        spec.notices.append(f"{MESH_NOTICE}{name}: nothing to repair")
+    return reading.body
+
+
+def spec_file(spec: SpecContext, name: str, where: str) -> str:
+    """The path of a file a spec names: in the spec's folder or below it. A name that
+    is absolute or climbs out (``..``, or a link leading out) is refused unless the
+    caller allows it (``allow_outside_files``, ``--allow-outside-files``): a spec from
+    elsewhere must not read any file the user can."""
+    if any(ord(c) < 32 or ord(c) == 127 for c in name):
+        raise spec.error(where, f"{name!r} holds a control character; name a file plainly")
+    folder = os.path.dirname(os.path.abspath(spec.path or "."))
+    path = os.path.join(folder, name)
+    if spec.options.allow_outside_files:
+        return path
+    inside = os.path.realpath(folder)
+    target = os.path.realpath(path)
+    if os.path.isabs(name) or os.path.commonpath([inside, target]) != inside:
+        raise spec.error(where, f"{name!r} is outside the spec's folder; a spec reads files "
+                         "only in its folder or below it (allow others with --allow-outside-"
+                         "files, or allow_outside_files=True)")
+    return path
 
 
 def _placement(spec: SpecContext, body: Body, table: dict, where: str) -> Body:
@@ -197,9 +251,7 @@ def _material(spec: SpecContext, table: dict, where: str, inherited: _Material) 
     if "density" in table and "material" in table:
         raise spec.error(where, "give a density or a material, not both")
     if "material" in table:
-        name = table["material"]
-        if not isinstance(name, str):
-            raise spec.error(f"{where}.material", "expected a material name")
+        name = spec.text(table["material"], f"{where}.material", what="a material name")
         with spec.at(f"{where}.material"):
             density, label = lookup_material(name).density, name
     elif "density" in table:
@@ -261,11 +313,9 @@ def _build_part(
     want_dim: int | None = None,
     inherited: _Material = _Material(),
 ) -> Body:
-    kind = table.get("type")
-    if not isinstance(kind, str):
+    if "type" not in table:
         raise spec.error(where, 'every part needs a type, e.g. type = "rectangle"')
-    if kind not in PRIMITIVES:
-        raise spec.error(f"{where}.type", f"unknown type {kind!r}{suggest(kind, set(PRIMITIVES))}")
+    kind = spec.text(table["type"], f"{where}.type", PRIMITIVES, what="type")
     dim, required, optional, build = PRIMITIVES[kind]
     if want_dim is not None and dim != want_dim:
         raise spec.error(where, f"a {kind} is {dim}D; a {want_dim}D shape is needed here")
@@ -275,7 +325,7 @@ def _build_part(
         raise spec.error(where, f"a {kind} needs {', '.join(missing)}")
     with spec.at(where):
         body = build(spec, table, where)
-    if table.get("centered"):
+    if "centered" in table and spec.flag(table["centered"], f"{where}.centered"):
         box = body.mass_properties().center_of_mass
         body = body.translated(-box)
     mat = _material(spec, table, where, inherited)
@@ -292,18 +342,17 @@ def _build_group(
 ) -> Body:
     parts = table["part"]
     if not isinstance(parts, list) or not parts:
-        raise spec.error(where, "[[part]] must be a list of tables")
+        raise spec.error(where, f"[[part]] must be a list of tables, not {shown(parts)}")
     mat = _material(spec, table, where, inherited)
     built: list[tuple[str, Body, str]] = []
     for i, part in enumerate(parts):
-        label = f"part {i + 1}" + (
-            f" ({part['name']})" if isinstance(part, dict) and "name" in part else ""
-        )
+        label = f"part {i + 1}"
         if not isinstance(part, dict):
-            raise spec.error(label, "expected a table")
-        op = part.get("op", "add")
-        if op not in ("add", "subtract", "intersect"):
-            raise spec.error(f"{label}.op", f"unknown op {op!r}; use add, subtract or intersect")
+            raise spec.error(label, f"expected a table, not {shown(part)}")
+        if "name" in part:
+            label += f" ({spec.text(part['name'], f'{label}.name', what='a name')})"
+        op = spec.text(part.get("op", "add"), f"{label}.op", ("add", "subtract", "intersect"),
+                       what="op")
         if i == 0 and op != "add":
             raise spec.error(label, 'the first part must be added (op = "add")')
         if "part" in part:
@@ -325,18 +374,28 @@ def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
         return built[0][1]
     with spec.at("parts"):
         if all(op == "add" for op, _, _ in built):
-            result = union(*(b for _, b, _ in built))
+            result = union(*(b for _, b, _ in built), segments=spec.segments)
             if len(leaf_densities(result)) > 1 and isinstance(result, Composite):
                 return Assembly(result.parts)
             return result
+        # each run of one op is one boolean: a run of holes is cut in one pass
         result = built[0][1]
-        for op, body, label in built[1:]:
+        start = 1
+        while start < len(built):
+            op = built[start][0]
+            end = start
+            while end < len(built) and built[end][0] == op:
+                end += 1
+            run = built[start:end]
             if op == "add":
-                result = union(result, body)
+                result = union(result, *(body for _, body, _ in run), segments=spec.segments)
             elif op == "subtract":
-                result = difference(result, _hole_material(spec, result, body, label))
+                result = difference(result, *(_hole_material(spec, result, body, label)
+                                              for _, body, label in run), segments=spec.segments)
             else:
-                result = intersection(result, body)
+                result = intersection(result, *(body for _, body, _ in run),
+                                      segments=spec.segments)
+            start = end
         return result
 
 

@@ -63,9 +63,7 @@ def build_simulation(spec: SpecContext, data: dict) -> SimulationSpec:
     """The simulation the parsed TOML ``data`` describes (its ``[parameters]`` already
     in ``spec``)."""
     spec.table(data, SIMULATION_KEYS, None)
-    title = data.get("title")
-    if title is not None and not isinstance(title, str):
-        raise spec.error("title", "expected a string")
+    title = spec.text(data["title"], "title") if "title" in data else None
     particles = read_particles(spec, data.get("particle"), simulation=True)
     system = particles.system
     names = list(system.names or ())
@@ -138,9 +136,8 @@ def _solver_options(spec: SpecContext, data: dict) -> dict[str, Any]:
             if key in solver:
                 options[key] = spec.number(solver[key], f"solver.{key}")
         if "method" in solver:
-            if solver["method"] not in _METHODS:
-                raise spec.error("solver.method", f"use one of {', '.join(sorted(_METHODS))}")
-            options["method"] = solver["method"]
+            options["method"] = spec.text(solver["method"], "solver.method", sorted(_METHODS),
+                                          what="method")
     return options
 
 

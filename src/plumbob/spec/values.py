@@ -8,30 +8,79 @@ place (``part 2.radius``), so a user can find and fix it.
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterator, Mapping
+import re
+from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..errors import PlumbobError, SpecError
-from ..expr import parse
+from ..bodies.csg import DEFAULT_SEGMENTS
+from ..errors import LimitError, PlumbobError, SpecError
+from ..expr import CONSTANTS, parse
+from ..units import LENGTH_UNITS
 
-__all__ = ["SpecContext", "suggest", "read_parameters", "RESERVED_NAMES"]
+__all__ = ["SpecContext", "LoadOptions", "suggest", "shown", "read_parameters", "RESERVED_NAMES"]
 
 #: names a parameter may not take: the coordinates of a density field and the constants
 RESERVED_NAMES = ("x", "y", "z", "pi", "e")
 
 
+#: how a message names the type of a TOML value
+_TOML_TYPES = {bool: "a boolean", int: "an integer", float: "a number", str: "text",
+               list: "an array", dict: "a table"}
+
+
+def shown(value: Any) -> str:
+    """``value`` and its TOML type for a message, kept short: ``'no' (text)``.
+
+    >>> shown(["m"]), shown(True), shown(list(range(100)))[:20]
+    ("['m'] (an array)", 'True (a boolean)', '[0, 1, 2, 3, 4, 5, 6')
+    """
+    kind = _TOML_TYPES.get(type(value), f"a {type(value).__name__}")
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > 10**30:
+        return f"an integer of {len(str(abs(value)))} digits"
+    text = repr(value)
+    if len(text) > 60:
+        text = text[:57] + "…"
+    return f"{text} ({kind})"
+
+
+@dataclass(frozen=True)
+class LoadOptions:
+    """How a spec is read, beyond its own text: the caller's choices.
+
+    parameters: values replacing ``[parameters]`` entries by name (``--set``).
+    units: the length unit the caller gives (``--units``): the spec's unit when it
+        sets none; an error when it sets another.
+    repair: close small holes in the spec's mesh files.
+    allow_outside_files: let a ``file`` name a path outside the spec's folder
+        (absolute, or climbing out with ``..``); refused by default.
+    """
+
+    parameters: Mapping[str, float | str] | None = None
+    units: str | None = None
+    repair: bool = False
+    allow_outside_files: bool = False
+
+
 @dataclass(frozen=True)
 class SpecContext:
     """What reading one spec needs at every value: the file (for messages), the
-    parameters an expression may use, and metres per length unit of the spec."""
+    parameters an expression may use, metres per length unit of the spec, the unit's
+    name when the spec (or the caller) states one, the caller's load options, the
+    notices gathered while building (a mesh file's, say), and the segments per turn
+    of its faceted booleans."""
 
     path: str | None
     names: Mapping[str, float]
     scale: float = 1.0
+    unit: str | None = None
+    options: LoadOptions = LoadOptions()
+    notices: list[str] = field(default_factory=list, compare=False)
+    #: circular segments per turn for a boolean of overlapping curved parts
+    segments: int = DEFAULT_SEGMENTS
 
     def error(
         self, where: str | None, message: str, cls: type[PlumbobError] = SpecError
@@ -49,13 +98,15 @@ class SpecContext:
         except PlumbobError as error:
             if error.path is not None:
                 raise
-            raise error.within(where, path=self.path, cls=SpecError) from None
+            # a limit stays a LimitError (its own kind of refusal); all else is the spec's
+            family = None if isinstance(error, LimitError) else SpecError
+            raise error.within(where, path=self.path, cls=family) from None
 
     def number(self, value: Any, where: str, length: bool = False) -> float:
         """A TOML number or an expression over the parameters; ``length``: scaled to
         metres by the spec's unit."""
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-            raise self.error(where, f"expected a number or an expression, not {value!r}")
+            raise self.error(where, f"expected a number or an expression, not {shown(value)}")
         if isinstance(value, str):
             with self.at(where):
                 result = parse(value).evaluate(self.names)
@@ -63,17 +114,48 @@ class SpecContext:
                 raise self.error(where, f"{value!r} must give a single number")
         else:
             result = value
-        result = float(result)
+        try:
+            result = float(result)
+        except OverflowError:
+            raise self.error(where, f"{shown(value)} is beyond the range of a number "
+                             "(about ±1.8e308)") from None
         if not np.isfinite(result):
-            raise self.error(where, f"{value!r} is not a finite number")
+            raise self.error(where, f"{shown(value)} is not a finite number")
         return result * (self.scale if length else 1.0)
+
+    def text(self, value: Any, where: str, choices: Iterable[str] | None = None,
+             what: str = "text") -> str:
+        """A non-empty string (one of ``choices`` when given)."""
+        if not isinstance(value, str):
+            raise self.error(where, f"expected {what}, not {shown(value)}")
+        if not value.strip():
+            raise self.error(where, f"expected {what}, not an empty string")
+        if choices is not None and value not in choices:
+            raise self.error(where, f"unknown {what} {value!r}{suggest(value, set(choices))}")
+        return value
+
+    def flag(self, value: Any, where: str) -> bool:
+        """A TOML boolean: ``true`` or ``false``, never a string (``"no"`` is not false)."""
+        if not isinstance(value, bool):
+            raise self.error(where, f"expected true or false (a boolean), not {shown(value)}")
+        return value
+
+    def unit_name(self, value: Any, where: str) -> str:
+        """A length unit a spec may name (``units = "mm"``)."""
+        if not isinstance(value, str):
+            raise self.error(where, f"expected a length unit as text ({', '.join(LENGTH_UNITS)}),"
+                             f" not {shown(value)}")
+        if value not in LENGTH_UNITS:
+            raise self.error(where, f"unknown unit {value!r}; use one of {', '.join(LENGTH_UNITS)}")
+        return value
 
     def points(
         self, value: Any, where: str, dims: tuple[int, ...] = (2,), length: bool = True
     ) -> np.ndarray:
         """A list of points, each of one of ``dims`` coordinates, all alike."""
         if not isinstance(value, list) or not value:
-            raise self.error(where, "expected a list of points like [[0, 0], [1, 0], [0, 1]]")
+            raise self.error(where, "expected a list of points like [[0, 0], [1, 0], [0, 1]], "
+                             f"not {shown(value)}")
         rows = []
         for i, row in enumerate(value):
             if not isinstance(row, list) or len(row) not in dims:
@@ -97,7 +179,7 @@ class SpecContext:
         (``the positions``) for the message when it is wrong."""
         count = " or ".join(map(str, dims))
         if not isinstance(value, list):
-            raise self.error(where, f"expected a list of {count} numbers, not {value!r}")
+            raise self.error(where, f"expected a list of {count} numbers, not {shown(value)}")
         if len(value) not in dims:
             reason = f" like {like}" if like else ""
             raise self.error(where, f"expected {count} components{reason}, not {len(value)}")
@@ -106,7 +188,7 @@ class SpecContext:
     def table(self, value: Any, allowed: set[str], where: str, what: str = "key") -> dict:
         """``value`` as a table of ``allowed`` keys (``what`` names them in the message)."""
         if not isinstance(value, dict):
-            raise self.error(where, "expected a table")
+            raise self.error(where, f"expected a table, not {shown(value)}")
         for key in value:
             if key not in allowed:
                 raise self.error(where, f"unknown {what} {key!r}{suggest(key, allowed)}")
@@ -119,14 +201,29 @@ def suggest(key: str, allowed: set[str]) -> str:
     return f"; did you mean {close[0]!r}?" if close else f"; allowed: {', '.join(sorted(allowed))}"
 
 
-def read_parameters(path: str | None, table: Any,
-                    overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+def read_parameters(
+    path: str | None,
+    table: Any,
+    overrides: Mapping[str, float | str] | None = None,
+    scale: float = 1.0,
+) -> dict[str, float]:
     """``[parameters]``: numbers or expressions evaluated in order, each over those
     before it (never in the spec's length unit: a parameter is a plain number).
 
-    overrides: values that replace named entries (a what-if from the command line);
-        the entries after one see its new value. A name the spec does not define is an
-        error listing the names it does.
+    ``overrides`` replace entries by name before evaluation (``--set name=value``), so
+    the parameters after an overridden one follow it. An override is a number, an
+    expression over the parameters before it, or a number with a length unit
+    (``"30 cm"``), converted into the spec's unit (``scale``: metres per spec unit).
+    An override naming no parameter is an error listing the known ones.
+
+    >>> read_parameters(None, {"a": 1, "b": "2*a"}, {"a": "3"})
+    {'a': 3.0, 'b': 6.0}
+    >>> read_parameters(None, {"w": 100}, {"w": "0.3 m"}, scale=1e-3)
+    {'w': 300.0}
+    >>> read_parameters("s.toml", {"a": 1}, {"b": 2})
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.SpecError: s.toml: parameters: no parameter 'b' to set; known: a
     """
     if not isinstance(table, dict):
         raise SpecError("[parameters] must be a table of name = value", path=path)
@@ -134,13 +231,36 @@ def read_parameters(path: str | None, table: Any,
     unknown = sorted(set(overrides) - set(table))
     if unknown:
         known = ", ".join(table) if table else "none (the spec has no [parameters])"
-        raise SpecError(f"unknown parameter {unknown[0]!r}; the spec's parameters: {known}",
-                        path=path)
+        names_ = ", ".join(map(repr, unknown))
+        raise SpecError(f"parameters: no parameter {names_} to set; known: {known}", path=path)
     names: dict[str, float] = {}
     context = SpecContext(path, names)
     for key, value in table.items():
         if key in RESERVED_NAMES:
             raise context.error(f"parameters.{key}", f"{key!r} is reserved; choose another name")
-        names[key] = (context.number(overrides[key], f"parameters.{key}") if key in overrides
-                      else context.number(value, f"parameters.{key}"))
+        if key in overrides:
+            names[key] = _override(context, overrides[key], f"parameters.{key} (as set)", scale)
+        else:
+            names[key] = context.number(value, f"parameters.{key}")
     return names
+
+
+#: a number followed by a length unit: ``30cm``, ``0.3 m``, ``-2.5e-3 in``
+_QUANTITY = re.compile(
+    r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>[A-Za-z]+)\s*$"
+)
+
+
+def _override(context: SpecContext, value: Any, where: str, scale: float) -> float:
+    """An override's value: a number, an expression, or a number with a length unit
+    in the spec's unit."""
+    if isinstance(value, str):
+        match = _QUANTITY.match(value)
+        if match and match["unit"] not in CONSTANTS:
+            unit = match["unit"]
+            if unit not in LENGTH_UNITS:
+                raise context.error(
+                    where, f"unknown length unit {unit!r} in {value!r}; use one of "
+                    f"{', '.join(LENGTH_UNITS)}")
+            return context.number(float(match["number"]) * LENGTH_UNITS[unit] / scale, where)
+    return context.number(value, where)

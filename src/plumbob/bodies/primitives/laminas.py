@@ -246,8 +246,14 @@ def regular_polygon(sides: int, circumradius: float, **kw) -> Lamina:
     Traceback (most recent call last):
     ...
     plumbob.errors.GeometryError: sides must be a whole number of at least 3, not 2
+    >>> regular_polygon(1e8, 1)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.LimitError: sides 100000000 is over plumbob's limit of 1000000; use a disc \
+for a circle (plumbob.limits.MAX_SIDES)
     """
-    sides = count(sides, "sides", MAX_SIDES, minimum=3, error=GeometryError)
+    sides = count(sides, "sides", MAX_SIDES, minimum=3, error=GeometryError,
+                  hint="use a disc for a circle (plumbob.limits.MAX_SIDES)")
     r = positive_number(circumradius, "circumradius")
     t = 2 * np.pi * np.arange(sides) / sides
     return polygon(r * np.stack((np.cos(t), np.sin(t)), axis=1), **kw)
