@@ -33,7 +33,7 @@ from ..mesh.topology import connected_components
 from ..reading import Reading
 from ..units import units_scale
 from .checks import ABSURD_COORDINATE
-from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics, periodic_knots
+from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics
 from .laminas import Outline, body_from_outlines
 from .parts import stem
 
@@ -57,6 +57,8 @@ _NAN = np.full((2, 2), np.nan)
 #: segments a span needs at most when flattened within FLATTEN_TOLERANCE (√(1/8t))
 _SEGMENTS_PER_SPAN = int(np.ceil(np.sqrt(1 / (8 * FLATTEN_TOLERANCE))))
 _HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
+#: the entity kinds that draw outlines (read, or expanded), as ezdxf's messages name them
+_DRAWN = re.compile(r"\b(LWPOLYLINE|POLYLINE|CIRCLE|ARC|LINE|ELLIPSE|SPLINE|INSERT)\b")
 
 
 @dataclass(eq=False)
@@ -141,6 +143,11 @@ def _open(path: str):
     except Exception as error:  # noqa: BLE001 - the recovering parser may raise anything
         raise FormatError(f"is not a readable DXF file: {type(error).__name__}: "
                           f"{str(error)[:200]}", path=path) from None
+    for fix in auditor.fixes:  # per repair: an outline ezdxf dropped is no silent loss
+        message = str(fix.message)
+        if message.startswith("Removed") and "unused" not in message and _DRAWN.search(message):
+            raise FormatError(f"has an entity ezdxf had to remove ({message[:200]}); fix the "
+                              "file", path=path)
     guessed = (AuditError.INVALID_INTEGER_VALUE, AuditError.INVALID_FLOATING_POINT_VALUE)
     for problem in auditor.errors:  # per repair ezdxf made: few
         if problem.code in guessed:
@@ -357,9 +364,7 @@ def _ellipse(entity, label, name):
 def _spline(entity, label, name):
     """A SPLINE on its own domain: non-rational ones of degree ≤ 3 as exact Bézier pieces,
     others flattened within :data:`FLATTEN_TOLERANCE` of their size (a stated error).
-    Unclamped (periodic, closed) splines are first clamped exactly by knot insertion; a
-    periodic spline stored the Autodesk way (one knot more than control points) is
-    unrolled first."""
+    Unclamped (periodic, closed) splines are first clamped exactly by knot insertion."""
     from ezdxf.math import BSpline, open_uniform_knot_vector
 
     control = _xy(entity.control_points)
@@ -376,10 +381,6 @@ def _spline(entity, label, name):
         return None
     if knots.size == 0:
         knots = np.asarray(open_uniform_knot_vector(len(control), degree + 1), dtype=float)
-    if knots.size == len(control) + 1 and entity.closed:  # periodic, Autodesk's way
-        knots = periodic_knots(knots, len(control), degree)
-        control = np.vstack((control, control[:degree]))
-        weights = None if weights is None else np.concatenate((weights, weights[:degree]))
     if weights is not None and not (np.isfinite(weights).all() and (weights > 0).all()):
         raise ValueError("a spline's weights must be positive numbers")
     if weights is not None and np.ptp(weights) == 0:
