@@ -272,3 +272,13 @@ def _deep_chain(doc, msp):  # 100 blocks, each placing the next once
 
 def test_dxf_blocks_nested_past_the_depth_limit(tmp_path):
     assert_bad_input(run_limited("mass", _dxf(tmp_path, _deep_chain)), "block nesting depth")
+
+
+def _missing_block(doc, msp):
+    msp.add_blockref("NOPE", (0, 0))
+    msp.add_circle((0, 0), 1)
+
+
+def test_dxf_reference_to_a_missing_block_is_not_dropped_silently(tmp_path):
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, _missing_block)), "INSERT",
+                     "without required BLOCK")

@@ -145,7 +145,8 @@ def _open(path: str):
                           f"{str(error)[:200]}", path=path) from None
     for fix in auditor.fixes:  # per repair: an outline ezdxf dropped is no silent loss
         message = str(fix.message)
-        if message.startswith("Removed") and "unused" not in message and _DRAWN.search(message):
+        if message.startswith(("Removed", "Deleted")) and "unused" not in message \
+                and _DRAWN.search(message):
             raise FormatError(f"has an entity ezdxf had to remove ({message[:200]}); fix the "
                               "file", path=path)
     guessed = (AuditError.INVALID_INTEGER_VALUE, AuditError.INVALID_FLOATING_POINT_VALUE)
