@@ -226,6 +226,10 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
 
     if not named:
         raise FormatError("has no Polygon or MultiPolygon", path=path)
+    check_count("polygons", len(named), MAX_PARTS, path=path, hint="split the file")
+    parts_of = shapely.get_parts([g for _, g in named])
+    rings = len(parts_of) + int(shapely.get_num_interior_rings(parts_of).sum())
+    check_count("rings", rings, MAX_OUTLINES, path=path, hint="split the file")
     with np.errstate(over="ignore", invalid="ignore"):
         geometries = [shapely.transform(g, lambda c: c * scale) if scale != 1.0 else g
                       for _, g in named]
