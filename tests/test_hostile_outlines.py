@@ -282,3 +282,9 @@ def _missing_block(doc, msp):
 def test_dxf_reference_to_a_missing_block_is_not_dropped_silently(tmp_path):
     assert_bad_input(run_limited("mass", _dxf(tmp_path, _missing_block)), "INSERT",
                      "without required BLOCK")
+
+
+@pytest.mark.parametrize("shape", ['<circle r="-1"/>', '<ellipse rx="1" ry="-2"/>',
+                                   '<rect width="-2" height="1"/>'])
+def test_svg_negative_sizes_are_errors_not_their_magnitudes(tmp_path, shape):
+    assert_bad_input(run_limited("mass", _svg(tmp_path, shape)), "is negative")

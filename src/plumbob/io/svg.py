@@ -113,6 +113,8 @@ def _check_xml(data: bytes, path: str) -> None:
     _check_expansion(root, path)
 
 
+#: the sizes of shapes that SVG forbids to be negative
+_SIZES = {"circle": ("r",), "ellipse": ("rx", "ry"), "rect": ("width", "height")}
 #: the SVG elements that draw a shape
 _SHAPES = {"path", "rect", "circle", "ellipse", "polygon", "polyline", "line"}
 _HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
@@ -223,6 +225,11 @@ def _outlines(svg, path: str, scale: float) -> tuple[list[Outline], int]:
         ident = element.id
         kind = type(element).__name__.lower()
         name = f"{kind} {ident!r}" if ident else f"{kind} {count}"
+        for key in _SIZES.get(kind, ()):  # svgelements would draw -1 as 1
+            value = str(element.values.get(key, "")).strip()
+            if value.startswith("-") and re.search(r"[1-9]", value):
+                raise GeometryError(f"{name}: {key} = {value} is negative, which SVG calls an "
+                                    "error (nothing is drawn); fix the file", path=path)
         try:
             segments = list(abs(se.Path(element)))
         except Exception as error:  # noqa: BLE001
