@@ -470,3 +470,15 @@ def test_duplicates_are_dropped_whatever_their_start_and_direction(tmp_path_fact
     reading = read(str(path))
     assert reading.body.mass_properties().area == pytest.approx(area + 0.5, rel=1e-13)
     assert any(f"dropped {copies - 1} duplicate" in n for n in reading.notices)
+
+
+def test_dxf_entities_out_of_plane_or_unread_are_named(tmp_path):
+    def build(doc, msp):
+        msp.add_polyline3d([(5, 0, 0), (6, 0, 1), (6, 1, 0)], close=True)  # z varies: no outline
+        msp.add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+        msp.add_text("label")
+
+    reading = read(dxf_file(tmp_path, build))
+    assert reading.body.mass_properties().area == 2.0  # the tilted triangle not projected
+    assert "dxf: ignored 1 entities not drawn in the XY plane" in reading.notices
+    assert any("ignored 1 TEXT" in n for n in reading.notices)
