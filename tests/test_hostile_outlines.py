@@ -288,3 +288,41 @@ def test_dxf_reference_to_a_missing_block_is_not_dropped_silently(tmp_path):
                                    '<rect width="-2" height="1"/>'])
 def test_svg_negative_sizes_are_errors_not_their_magnitudes(tmp_path, shape):
     assert_bad_input(run_limited("mass", _svg(tmp_path, shape)), "is negative")
+
+
+# ------------------------------------------------------------------ WKT, WKB
+TRIANGLE_WKT = "POLYGON ((0 0, 1 0, 1 1, 0 0))"
+
+
+def _nested_wkb(levels: int) -> bytes:
+    import struct
+
+    import shapely
+
+    return struct.pack("<BII", 1, 7, 1) * levels + shapely.from_wkt(TRIANGLE_WKT).wkb
+
+
+NESTED = {  # GEOS parses collections recursively in C: these once killed the process
+    "deep.wkt": ("GEOMETRYCOLLECTION (" * 100_000 + TRIANGLE_WKT + ")" * 100_000).encode(),
+    "deep.wkb": _nested_wkb(100_000),
+    "deep_hex.wkb": _nested_wkb(100_000).hex().encode(),
+}
+
+
+@pytest.mark.parametrize("name", list(NESTED))
+def test_geometry_collections_nested_deep_are_refused_not_a_crash(tmp_path, name):
+    path = tmp_path / name
+    path.write_bytes(NESTED[name])
+    assert_bad_input(run_limited("mass", path), "geometry nesting depth", "limit")
+
+
+@pytest.mark.parametrize("name, data", [
+    ("ok.wkt", f"GEOMETRYCOLLECTION (GEOMETRYCOLLECTION ({TRIANGLE_WKT}))".encode()),
+    ("ok.wkb", _nested_wkb(3)),
+])
+def test_geometry_collections_nested_a_little_are_read(tmp_path, name, data):
+    path = tmp_path / name
+    path.write_bytes(data)
+    outcome = run_limited("mass", path, "--json")
+    assert outcome.status == 0, outcome.stderr
+    assert json.loads(outcome.stdout)["area"] == 0.5
