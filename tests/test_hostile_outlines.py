@@ -326,3 +326,28 @@ def test_geometry_collections_nested_a_little_are_read(tmp_path, name, data):
     outcome = run_limited("mass", path, "--json")
     assert outcome.status == 0, outcome.stderr
     assert json.loads(outcome.stdout)["area"] == 0.5
+
+
+def _curve_wkb() -> bytes:
+    import struct
+
+    points = [(0, 0), (1, 1), (2, 0), (1, -1), (0, 0)]
+    ring = struct.pack("<BII", 1, 8, len(points)) + b"".join(struct.pack("<dd", *p)
+                                                           for p in points)
+    return struct.pack("<BII", 1, 10, 1) + ring  # CURVEPOLYGON (CIRCULARSTRING …)
+
+
+WKT_WKB = {
+    "curve.wkt": (b"CURVEPOLYGON (CIRCULARSTRING (0 0, 1 1, 2 0, 1 -1, 0 0))", ("curved",)),
+    "curve.wkb": (_curve_wkb(), ("curved",)),
+    "overflow.wkt": (b"POLYGON ((0 0, 1e400 0, 1 1, 0 0))", ("not a finite number",)),
+    "truncated.wkb": (_nested_wkb(0)[:30], ("not valid WKB",)),
+}
+
+
+@pytest.mark.parametrize("name", list(WKT_WKB))
+def test_wkt_wkb_that_shapely_cannot_take(tmp_path, name):
+    data, phrases = WKT_WKB[name]
+    path = tmp_path / name
+    path.write_bytes(data)
+    assert_bad_input(run_limited("mass", path), *phrases)

@@ -104,7 +104,12 @@ def _from_wkt(data: bytes, path: str):
         raise FormatError("holds no WKT geometry", path=path)
     check_wkt_nesting(text, path)  # GEOS would overflow its C stack
     try:
-        geometry = shapely.from_wkt(text)
+        with np.errstate(all="ignore"):  # 1e400 reads as inf: refused below, not warned
+            geometry = shapely.from_wkt(text)
+    except NotImplementedError:
+        raise FormatError("holds curved geometry (CIRCULARSTRING, CURVEPOLYGON, …), which "
+                          "plumbob does not read from WKT: linearise it, or draw it as DXF or "
+                          "SVG arcs", path=path) from None
     except (shapely.errors.ShapelyError, ValueError, TypeError) as error:
         raise FormatError(f"is not valid WKT: {str(error).splitlines()[0]}", path=path) from None
     return _polygonal(geometry, path, "WKT")
@@ -121,7 +126,11 @@ def _from_wkb(data: bytes, path: str):
     else:
         check_wkb_nesting(data, path)  # GEOS would overflow its C stack
     try:
-        geometry = shapely.from_wkb(payload)
+        with np.errstate(all="ignore"):
+            geometry = shapely.from_wkb(payload)
+    except NotImplementedError:
+        raise FormatError("holds curved geometry (CIRCULARSTRING, CURVEPOLYGON, …), which "
+                          "plumbob does not read from WKB: linearise it", path=path) from None
     except (shapely.errors.ShapelyError, ValueError, TypeError) as error:
         raise FormatError(f"is not valid WKB: {str(error).splitlines()[0]}", path=path) from None
     return _polygonal(geometry, path, "WKB")
