@@ -170,7 +170,7 @@ def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray
 
     floor = 1e-14 * size * size
     good = shapely.is_valid(polygons) & (shapely.area(shapely.convex_hull(polygons)) > floor)
-    for k in np.flatnonzero(~good)[:1]:
+    for k in np.flatnonzero(~good):  # the first that has an error (error path only)
         error = validity_error(polygons[k], outlines[k].label, path, scale)
         if error is not None:
             raise error
