@@ -5,9 +5,10 @@ refuses entity declarations (entity-expansion bombs) and external references;
 what its ``<use>`` references expand to — shapes and copies, through every
 level — is counted against :mod:`plumbob.limits` before anything is expanded;
 then svgelements resolves styles, ``<use>`` and transforms. Segments become
-ring edges: lines as they are, circular arcs as bulges (exact), quadratic Béziers raised exactly to
-cubics, cubic Béziers as they are, elliptical arcs as cubic Béziers within
-about 1e-11 of their size (the lamina is then marked not exact, with a bound).
+ring edges: lines as they are, circular arcs as bulges (exact), quadratic
+Béziers raised exactly to cubics, cubic Béziers as they are, elliptical arcs as
+cubic Béziers within about 1e-11 of their size (the lamina is then marked not
+exact, with a bound).
 
 Coordinates are read in user units (the numbers in the path data). Their size
 comes from the ``<svg>`` element: with a viewBox and a physical width or
