@@ -351,3 +351,26 @@ def test_wkt_wkb_that_shapely_cannot_take(tmp_path, name):
     path = tmp_path / name
     path.write_bytes(data)
     assert_bad_input(run_limited("mass", path), *phrases)
+
+
+def _same_circles(doc, msp):
+    for _ in range(3000):
+        msp.add_circle((0, 0), 1)
+
+
+def _nested_circles(doc, msp):
+    for radius in range(1, 3001):
+        msp.add_circle((0, 0), radius)
+
+
+def test_3000_identical_circles_are_one_disc_promptly(tmp_path):
+    import math
+
+    outcome = run_limited("mass", _dxf(tmp_path, _same_circles), "--json")
+    assert outcome.status == 0, outcome.stderr
+    assert json.loads(outcome.stdout)["area"] == pytest.approx(math.pi, rel=1e-15)
+    assert "dropped 2999 duplicate outline(s)" in outcome.stderr
+
+
+def test_3000_nested_circles_are_refused_before_they_are_flattened(tmp_path):
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, _nested_circles)), "pairs of outlines")
