@@ -482,3 +482,17 @@ def test_dxf_entities_out_of_plane_or_unread_are_named(tmp_path):
     assert reading.body.mass_properties().area == 2.0  # the tilted triangle not projected
     assert "dxf: ignored 1 entities not drawn in the XY plane" in reading.notices
     assert any("ignored 1 TEXT" in n for n in reading.notices)
+
+
+@pytest.mark.parametrize("vertices, holes, message", [
+    ([[0, 0], [1, 0], [1, 1]], 5, "holes must be a list"),
+    ("abc", (), "list of \\[x, y\\] points"),
+    ([[0, 0], [1, 0]], (), "fewer than three distinct points"),
+    ([[0, 0], [1, 0], [np.nan, 1]], (), "not a finite number"),
+    ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], (), "shape \\(3, 3\\)"),
+])
+def test_plumbob_polygon_bad_arguments_are_geometry_errors(vertices, holes, message):
+    from plumbob.bodies.primitives import polygon
+
+    with pytest.raises(GeometryError, match=message):
+        polygon(vertices, holes)

@@ -129,6 +129,10 @@ def check_polygon(vertices, holes=(), label: str = "the polygon") -> None:
     import shapely
 
     shell = _xy(vertices, label)
+    try:
+        holes = list(holes)
+    except TypeError:
+        raise GeometryError(f"{label}'s holes must be a list of point lists") from None
     inner = [_xy(h, f"{label}'s hole {i + 1}") for i, h in enumerate(holes)]
     error = validity_error(shapely.Polygon(shell, inner), label, unit=" m")
     if error is not None:
