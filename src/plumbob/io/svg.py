@@ -259,13 +259,12 @@ def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
     nan = np.full((2, 2), np.nan)
     axes = np.array([scale, -scale])  # SVG's y runs down the page: flipped to up
 
-    def xy(point) -> np.ndarray:  # metres, y up
-        with np.errstate(over="ignore", invalid="ignore"):
-            p = np.array([float(point.x), float(point.y)]) * axes
-        if not (np.isfinite(p).all() and np.abs(p).max() <= ABSURD_COORDINATE):
-            raise GeometryError(f"{name}: the coordinate {fmt_point(p / axes)} is not a finite "
-                                "number of plausible size", path=path)
-        return p
+    def xy(point) -> np.ndarray:  # metres, y up; plain floats: called for every point
+        x, y = float(point.x) * scale, -float(point.y) * scale
+        if not (abs(x) <= ABSURD_COORDINATE and abs(y) <= ABSURD_COORDINATE):  # NaN fails
+            raise GeometryError(f"{name}: the coordinate {fmt_point((point.x, point.y))} is "
+                                "not a finite number of plausible size", path=path)
+        return np.array((x, y))
 
     def finish(closed: bool, end) -> None:
         nonlocal points, bulges, controls, error, approx, skipped
