@@ -272,3 +272,105 @@ def _deep_chain(doc, msp):  # 100 blocks, each placing the next once
 
 def test_dxf_blocks_nested_past_the_depth_limit(tmp_path):
     assert_bad_input(run_limited("mass", _dxf(tmp_path, _deep_chain)), "block nesting depth")
+
+
+def _missing_block(doc, msp):
+    msp.add_blockref("NOPE", (0, 0))
+    msp.add_circle((0, 0), 1)
+
+
+def test_dxf_reference_to_a_missing_block_is_not_dropped_silently(tmp_path):
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, _missing_block)), "INSERT",
+                     "without required BLOCK")
+
+
+@pytest.mark.parametrize("shape", ['<circle r="-1"/>', '<ellipse rx="1" ry="-2"/>',
+                                   '<rect width="-2" height="1"/>'])
+def test_svg_negative_sizes_are_errors_not_their_magnitudes(tmp_path, shape):
+    assert_bad_input(run_limited("mass", _svg(tmp_path, shape)), "is negative")
+
+
+# ------------------------------------------------------------------ WKT, WKB
+TRIANGLE_WKT = "POLYGON ((0 0, 1 0, 1 1, 0 0))"
+
+
+def _nested_wkb(levels: int) -> bytes:
+    import struct
+
+    import shapely
+
+    return struct.pack("<BII", 1, 7, 1) * levels + shapely.from_wkt(TRIANGLE_WKT).wkb
+
+
+NESTED = {  # GEOS parses collections recursively in C: these once killed the process
+    "deep.wkt": ("GEOMETRYCOLLECTION (" * 100_000 + TRIANGLE_WKT + ")" * 100_000).encode(),
+    "deep.wkb": _nested_wkb(100_000),
+    "deep_hex.wkb": _nested_wkb(100_000).hex().encode(),
+}
+
+
+@pytest.mark.parametrize("name", list(NESTED))
+def test_geometry_collections_nested_deep_are_refused_not_a_crash(tmp_path, name):
+    path = tmp_path / name
+    path.write_bytes(NESTED[name])
+    assert_bad_input(run_limited("mass", path), "geometry nesting depth", "limit")
+
+
+@pytest.mark.parametrize("name, data", [
+    ("ok.wkt", f"GEOMETRYCOLLECTION (GEOMETRYCOLLECTION ({TRIANGLE_WKT}))".encode()),
+    ("ok.wkb", _nested_wkb(3)),
+])
+def test_geometry_collections_nested_a_little_are_read(tmp_path, name, data):
+    path = tmp_path / name
+    path.write_bytes(data)
+    outcome = run_limited("mass", path, "--json")
+    assert outcome.status == 0, outcome.stderr
+    assert json.loads(outcome.stdout)["area"] == 0.5
+
+
+def _curve_wkb() -> bytes:
+    import struct
+
+    points = [(0, 0), (1, 1), (2, 0), (1, -1), (0, 0)]
+    ring = struct.pack("<BII", 1, 8, len(points)) + b"".join(struct.pack("<dd", *p)
+                                                           for p in points)
+    return struct.pack("<BII", 1, 10, 1) + ring  # CURVEPOLYGON (CIRCULARSTRING …)
+
+
+WKT_WKB = {
+    "curve.wkt": (b"CURVEPOLYGON (CIRCULARSTRING (0 0, 1 1, 2 0, 1 -1, 0 0))", ("curved",)),
+    "curve.wkb": (_curve_wkb(), ("curved",)),
+    "overflow.wkt": (b"POLYGON ((0 0, 1e400 0, 1 1, 0 0))", ("not a finite number",)),
+    "truncated.wkb": (_nested_wkb(0)[:30], ("not valid WKB",)),
+}
+
+
+@pytest.mark.parametrize("name", list(WKT_WKB))
+def test_wkt_wkb_that_shapely_cannot_take(tmp_path, name):
+    data, phrases = WKT_WKB[name]
+    path = tmp_path / name
+    path.write_bytes(data)
+    assert_bad_input(run_limited("mass", path), *phrases)
+
+
+def _same_circles(doc, msp):
+    for _ in range(3000):
+        msp.add_circle((0, 0), 1)
+
+
+def _nested_circles(doc, msp):
+    for radius in range(1, 3001):
+        msp.add_circle((0, 0), radius)
+
+
+def test_3000_identical_circles_are_one_disc_promptly(tmp_path):
+    import math
+
+    outcome = run_limited("mass", _dxf(tmp_path, _same_circles), "--json")
+    assert outcome.status == 0, outcome.stderr
+    assert json.loads(outcome.stdout)["area"] == pytest.approx(math.pi, rel=1e-15)
+    assert "dropped 2999 duplicate outline(s)" in outcome.stderr
+
+
+def test_3000_nested_circles_are_refused_before_they_are_flattened(tmp_path):
+    assert_bad_input(run_limited("mass", _dxf(tmp_path, _nested_circles)), "pairs of outlines")

@@ -7,6 +7,8 @@ import numpy as np
 import pytest
 import shapely
 from conftest import rel
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from plumbob.bodies.csg import Assembly
 from plumbob.bodies.lamina import Lamina
@@ -314,3 +316,183 @@ def test_dxf_polyline_bulges_and_a_half_ellipse_chain(tmp_path):
     assert not half.exact
     assert half.area == pytest.approx(np.pi, rel=1e-10)
     assert half.center_of_mass[1] == pytest.approx(4 * 1 / (3 * np.pi), rel=1e-9)
+
+
+# ------------------------------------------------------------------ round 3: what was dropped
+def test_dxf_minsert_places_every_copy(tmp_path):
+    def build(doc, msp):
+        doc.blocks.new("SQ").add_lwpolyline([(0, 0), (1, 0), (1, 1), (0, 1)], close=True)
+        msp.add_blockref("SQ", (0, 0)).grid(size=(3, 4), spacing=(2, 3))  # 3 rows × 4 columns
+
+    body = read(dxf_file(tmp_path, build)).body
+    assert len(body.parts) == 12
+    props = body.mass_properties()
+    assert props.area == 12.0
+    # columns at x = 0, 3, 6, 9 and rows at y = 0, 2, 4, each square's centre ½ in
+    assert props.center_of_mass == pytest.approx([4.5 + 0.5, 2.0 + 0.5], rel=1e-15)
+
+
+def test_dxf_full_ellipse_alone_is_read(tmp_path):
+    a, b = 2.0, 0.5
+    path = dxf_file(tmp_path, lambda doc, msp: msp.add_ellipse((1, 1), major_axis=(a, 0),
+                                                              ratio=b / a))
+    props = read(path).body.mass_properties()
+    area = np.pi * a * b
+    assert abs(props.area - area) <= props.relative_error * area
+    assert props.relative_error < 1e-9
+    assert props.center_of_mass == pytest.approx([1.0, 1.0], rel=1e-12)
+    expected = np.diag([area * b * b / 4, area * a * a / 4, area * (a * a + b * b) / 4])
+    assert rel(props.inertia, expected) < 1e-9
+
+
+def _green(curve, lo: float, hi: float, breaks) -> tuple[float, np.ndarray]:
+    """Area and centroid of the region a closed parametric curve bounds, by Green's theorem
+    with Gauss-Legendre per knot span (exact for polynomial pieces)."""
+    nodes, weights = np.polynomial.legendre.leggauss(12)
+    spans = np.unique(np.clip(breaks, lo, hi))
+    area, first = 0.0, np.zeros(2)
+    for t0, t1 in zip(spans[:-1], spans[1:]):
+        t = (t1 - t0) / 2 * nodes + (t0 + t1) / 2
+        (x, y), (dx, dy) = curve(t).T, curve.derivative()(t).T
+        w = weights * (t1 - t0) / 2
+        area += w @ (x * dy - y * dx) / 2
+        first += [w @ (x * x * dy) / 2, -(w @ (y * y * dx)) / 2]
+    return area, first / area
+
+
+def test_dxf_closed_periodic_spline_is_exact_against_scipy(tmp_path):
+    from scipy.interpolate import BSpline
+
+    corners = [(0, 0), (3, -0.5), (4, 1), (3, 2.5), (1, 3), (-1, 1.5)]
+
+    def build(doc, msp):
+        msp.add_spline().set_closed([(x, y, 0) for x, y in corners], degree=3)
+
+    props = read(dxf_file(tmp_path, build)).body.mass_properties()
+    control = np.array(corners + corners[:3], dtype=float)
+    knots = np.arange(len(control) + 4, dtype=float)  # ezdxf's uniform knots, scaled
+    n = len(control)
+    doc = ezdxf.readfile(dxf_file(tmp_path, build, name="again.dxf"))
+    stored = np.asarray(next(iter(doc.modelspace())).knots, dtype=float)
+    assert np.allclose(np.diff(stored), np.diff(stored)[0])  # uniform, as assumed
+    curve = BSpline(knots, control, 3)
+    area, centre = _green(curve, knots[3], knots[n], knots)
+    assert props.exact
+    assert props.area == pytest.approx(abs(area), rel=1e-13)
+    assert props.center_of_mass == pytest.approx(centre, rel=1e-12)
+
+
+def test_dxf_removed_spline_is_an_error(tmp_path):
+    def build(doc, msp):  # periodic with n + 1 knots: ezdxf's auditor removes it
+        spline = msp.add_spline()
+        spline.dxf.degree = 3
+        spline.control_points = [(0, 0), (2, 0), (2, 1), (0, 1), (-1, 0.5)]
+        spline.knots = list(range(6))
+        spline.dxf.flags = spline.CLOSED | spline.PERIODIC
+
+    with pytest.raises(FormatError, match="ezdxf had to remove.*SPLINE"):
+        read(dxf_file(tmp_path, build))
+
+
+def test_dxf_units_cover_every_insunits_code(tmp_path):
+    square = lambda doc, msp: msp.add_lwpolyline([(0, 0), (1, 0), (1, 1), (0, 1)], close=True)  # noqa: E731
+    reading = read(dxf_file(tmp_path, square, units=9))  # mils
+    assert reading.body.mass_properties().area == pytest.approx(2.54e-5 ** 2, rel=1e-15)
+    assert "units: mil (from the file)" in reading.notices
+
+
+@given(degree=st.integers(1, 4), count=st.integers(5, 9), seed=st.integers(0, 10**6))
+@settings(max_examples=40, deadline=None)
+def test_clamped_bspline_is_the_same_curve(degree, count, seed):
+    from scipy.interpolate import BSpline
+
+    from plumbob.io.curves import clamped_bspline
+
+    rng = np.random.default_rng(seed)
+    control = rng.normal(size=(count, 2))
+    knots = np.sort(rng.integers(0, 6, size=count + degree + 1)).astype(float)
+    assume(knots[degree] < knots[count])  # a domain to evaluate on
+    c, k = clamped_bspline(control, knots, degree)
+    # on [start, end): scipy evaluates the end of an unclamped domain outside it
+    t = np.linspace(knots[degree], knots[count], 101)[:-1]
+    assert np.allclose(k[:degree + 1], knots[degree]) and np.allclose(k[-degree - 1:], knots[count])
+    assert np.abs(BSpline(k, c, degree)(t) - BSpline(knots, control, degree)(t)).max() < 1e-12
+
+
+def test_plumbob_polygon_refuses_what_would_integrate_wrongly():
+    from plumbob.bodies.primitives import polygon
+
+    with pytest.raises(GeometryError, match=r"crosses itself at \(1, 0.5\) m"):
+        polygon([[0, 0], [2, 0], [0, 1], [2, 1]])  # area 0 by the shoelace, not a lamina
+    with pytest.raises(GeometryError, match="hole outside its outer boundary"):
+        polygon([[0, 0], [1, 0], [1, 1], [0, 1]], holes=[[[5, 5], [6, 5], [6, 6]]])
+    touching = polygon([[0, 0], [4, 0], [4, 4], [0, 4]], holes=[[[0, 2], [1, 1], [1, 3]]])
+    assert touching.mass_properties().area == 15.0  # a hole touching at one point is fine
+
+
+@pytest.mark.parametrize("header", ["x,y", "X (mm); Y (mm)", '"x"\t"y"', "east north"])
+def test_csv_header_of_words_is_skipped(tmp_path, header):
+    path = tmp_path / "ring.csv"
+    path.write_text(f"{header}\n0,0\n2,0\n2,1\n")
+    assert read(str(path)).body.mass_properties().area == 1.0
+
+
+def test_csv_first_row_in_exponent_form_is_data(tmp_path):
+    path = tmp_path / "ring.csv"
+    path.write_text("1e0,0\n3,0\n3,1\n")
+    assert read(str(path)).body.mass_properties().area == 1.0
+
+
+def test_geojson_multipolygon_whose_parts_overlap(tmp_path):
+    path = tmp_path / "m.geojson"
+    square = [[0, 0], [2, 0], [2, 2], [0, 2], [0, 0]]
+    moved = [[x + 1, y] for x, y in square]
+    path.write_text(json.dumps({"type": "MultiPolygon", "coordinates": [[square], [moved]]}))
+    with pytest.raises(GeometryError, match="polygon 2's outer boundary overlaps polygon 1's"):
+        read(str(path))
+
+
+@given(copies=st.integers(2, 6), seed=st.integers(0, 10**6))
+@settings(max_examples=25, deadline=None)
+def test_duplicates_are_dropped_whatever_their_start_and_direction(tmp_path_factory, copies,
+                                                                   seed):
+    rng = np.random.default_rng(seed)
+    angles = np.sort(rng.uniform(0, 2 * np.pi, 7))
+    ring = np.column_stack((np.cos(angles), np.sin(angles))) * rng.uniform(1, 3)
+    area = shapely.Polygon(ring).area
+    rows = []
+    for _ in range(copies):  # the same outline from another vertex, either way round
+        drawn = np.roll(ring, rng.integers(len(ring)), axis=0)[:: rng.choice([-1, 1])]
+        rows.append("\n".join(f"{x:.17g},{y:.17g}" for x, y in drawn))
+    rows.append("10,10\n11,10\n10,11")
+    path = tmp_path_factory.mktemp("dups") / "d.csv"
+    path.write_text("\n\n".join(rng.permutation(rows)))
+    reading = read(str(path))
+    assert reading.body.mass_properties().area == pytest.approx(area + 0.5, rel=1e-13)
+    assert any(f"dropped {copies - 1} duplicate" in n for n in reading.notices)
+
+
+def test_dxf_entities_out_of_plane_or_unread_are_named(tmp_path):
+    def build(doc, msp):
+        msp.add_polyline3d([(5, 0, 0), (6, 0, 1), (6, 1, 0)], close=True)  # z varies: no outline
+        msp.add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+        msp.add_text("label")
+
+    reading = read(dxf_file(tmp_path, build))
+    assert reading.body.mass_properties().area == 2.0  # the tilted triangle not projected
+    assert "dxf: ignored 1 entities not drawn in the XY plane" in reading.notices
+    assert any("ignored 1 TEXT" in n for n in reading.notices)
+
+
+@pytest.mark.parametrize("vertices, holes, message", [
+    ([[0, 0], [1, 0], [1, 1]], 5, "holes must be a list"),
+    ("abc", (), "list of \\[x, y\\] points"),
+    ([[0, 0], [1, 0]], (), "fewer than three distinct points"),
+    ([[0, 0], [1, 0], [np.nan, 1]], (), "not a finite number"),
+    ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], (), "shape \\(3, 3\\)"),
+])
+def test_plumbob_polygon_bad_arguments_are_geometry_errors(vertices, holes, message):
+    from plumbob.bodies.primitives import polygon
+
+    with pytest.raises(GeometryError, match=message):
+        polygon(vertices, holes)

@@ -19,6 +19,7 @@ __all__ = [
     "MAX_DENSITY_DEGREE",
     "MAX_EXPRESSION_NODES",
     "MAX_FILE_BYTES",
+    "MAX_FLAT_POINTS",
     "MAX_NESTING",
     "MAX_OUTLINE_PAIRS",
     "MAX_OUTLINES",
@@ -50,6 +51,9 @@ MAX_OUTLINES = 100_000
 #: Pairs of outlines close enough to be compared (bounding boxes meet): how deeply and how
 #: densely a drawing's outlines may nest or crowd, since nesting is found pairwise.
 MAX_OUTLINE_PAIRS = 4_000_000
+#: Points one drawing's outlines may be flattened to for checking (crossings, nesting):
+#: a curve is flattened within 1e-7 of the drawing's size, ~7,000 points a full circle.
+MAX_FLAT_POINTS = 4_000_000
 #: Sides of a regular polygon or segments of a tessellated curve.
 MAX_SIDES = 1_000_000
 #: Circular segments per turn of a faceted boolean (a sphere costs about n²/2 triangles).

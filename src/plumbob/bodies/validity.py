@@ -63,11 +63,12 @@ def validity_error(geometry, label: str, path: str | None = None,
     if not hull.area > 1e-14 * size * size:
         return GeometryError(f"{label} has zero area: its points lie on a line and enclose no "
                              "area", path=path)
-    rings = _named_rings(geometry)
-    flat = [name for name, ring in rings if not shapely.convex_hull(ring).area > 1e-14 * size * size]
-    if flat:
-        return GeometryError(f"{label}: {flat[0]} has zero area (its points lie on a line)",
-                             path=path)
+    parts = shapely.get_parts(geometry)
+    rings, owner = shapely.get_rings(parts, return_index=True)  # each part: outer, then holes
+    flat = np.flatnonzero(~(shapely.area(shapely.convex_hull(rings)) > 1e-14 * size * size))
+    if len(flat):
+        return GeometryError(f"{label}: {_ring_name(owner, int(flat[0]))} has zero area (its "
+                             "points lie on a line)", path=path)
     reason = shapely.is_valid_reason(geometry)
     if reason is None or reason == "Valid Geometry":
         return None
@@ -76,29 +77,28 @@ def validity_error(geometry, label: str, path: str | None = None,
         else (reason, None)
     where = fmt_point(np.array(point) / scale) + unit if point is not None else "?"
     if what == "Self-intersection" and point is not None:
-        near = shapely.distance(shapely.Point(point), [ring for _, ring in rings])
-        names = [rings[i][0] for i in np.flatnonzero(near <= 1e-9 * size)[:2]]
+        near = shapely.distance(shapely.Point(point), rings)
+        names = [_ring_name(owner, int(k)) for k in np.flatnonzero(near <= 1e-9 * size)[:2]]
         if len(names) == 2 and all(n.endswith("outer boundary") for n in names):
             return GeometryError(f"{label}: {names[1]} overlaps {names[0]} at {where}; the "
                                  "polygons of a MultiPolygon must lie apart", path=path)
         if len(names) == 2:
             return GeometryError(f"{label}: {names[1]} crosses or touches {names[0]} at {where}; "
                                  "holes must lie apart, inside the outer boundary", path=path)
-        if names and names[0].startswith("hole"):
+        if names and "hole" in names[0]:
             return GeometryError(f"{label}: {names[0]} crosses itself at {where}", path=path)
     template = _REASONS.get(what, what.lower() + " near {p}")
     return GeometryError(f"{label} {template.format(p=where)}", path=path)
 
 
-def _named_rings(geometry) -> list[tuple[str, object]]:
-    """The rings of a (Multi)Polygon with the names messages give them."""
-    polygons = list(getattr(geometry, "geoms", [geometry]))
-    rings = []
-    for i, polygon in enumerate(polygons):  # per polygon: few
-        prefix = f"polygon {i + 1}'s " if len(polygons) > 1 else ""
-        rings.append((f"{prefix or 'the '}outer boundary", polygon.exterior))
-        rings += [(f"{prefix}hole {j + 1}", hole) for j, hole in enumerate(polygon.interiors)]
-    return rings
+def _ring_name(owner: np.ndarray, k: int) -> str:
+    """What messages call ring ``k`` of a (Multi)Polygon's rings (``owner``: each ring's
+    polygon, its rings in order: the outer boundary, then the holes)."""
+    part = int(owner[k])
+    within = k - int(np.searchsorted(owner, part))
+    prefix = f"polygon {part + 1}'s " if owner[-1] > 0 else "the "
+    return f"{prefix}outer boundary" if within == 0 else f"{prefix}hole {within}".replace(
+        "the hole", "hole")
 
 
 def _xy(points, what: str) -> np.ndarray:
@@ -129,6 +129,10 @@ def check_polygon(vertices, holes=(), label: str = "the polygon") -> None:
     import shapely
 
     shell = _xy(vertices, label)
+    try:
+        holes = list(holes)
+    except TypeError:
+        raise GeometryError(f"{label}'s holes must be a list of point lists") from None
     inner = [_xy(h, f"{label}'s hole {i + 1}") for i, h in enumerate(holes)]
     error = validity_error(shapely.Polygon(shell, inner), label, unit=" m")
     if error is not None:

@@ -11,8 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ELLIPSE_STEP", "arc_bulges", "clamped_bspline", "elliptic_arc_cubics",
-           "periodic_knots"]
+__all__ = ["ELLIPSE_STEP", "arc_bulges", "clamped_bspline", "elliptic_arc_cubics"]
 
 #: parameter step of the cubic pieces approximating elliptical arcs (64 per turn)
 ELLIPSE_STEP = 2 * np.pi / 64
@@ -124,17 +123,3 @@ def _insert_knot(points: np.ndarray, u: np.ndarray, p: int, t: float
     points = np.concatenate((points[:k - p + 1], new, points[k - s:]))
     return points, np.insert(u, k + 1, t)
 
-
-def periodic_knots(knots: np.ndarray, count: int, degree: int) -> np.ndarray | None:
-    """The full knot vector of a periodic spline stored the Autodesk way (``count`` + 1
-    knots for ``count`` control points, the first ``degree`` repeated at the end by the
-    caller), extended by one period at each side; None if ``knots`` is not that form.
-
-    >>> periodic_knots(np.arange(5.0), 4, 2).tolist()
-    [-2.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
-    """
-    u = np.asarray(knots, dtype=float)
-    if u.shape != (count + 1,) or count < degree:
-        return None
-    period = u[-1] - u[0]
-    return np.concatenate((u[count - degree:count] - period, u, u[1:degree + 1] + period))

@@ -33,7 +33,7 @@ from ..mesh.topology import connected_components
 from ..reading import Reading
 from ..units import units_scale
 from .checks import ABSURD_COORDINATE
-from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics, periodic_knots
+from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics
 from .laminas import Outline, body_from_outlines
 from .parts import stem
 
@@ -54,9 +54,12 @@ INSUNITS: dict[int, tuple[str, float]] = {
 JOIN_TOLERANCE = 1e-9  # relative to the drawing's size
 FLATTEN_TOLERANCE = 1e-7  # relative to the drawing's size
 _NAN = np.full((2, 2), np.nan)
+_TILTED = object()  # what a maker returns for an entity that is not drawn in a plane z = c
 #: segments a span needs at most when flattened within FLATTEN_TOLERANCE (√(1/8t))
 _SEGMENTS_PER_SPAN = int(np.ceil(np.sqrt(1 / (8 * FLATTEN_TOLERANCE))))
 _HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
+#: the entity kinds that draw outlines (read, or expanded), as ezdxf's messages name them
+_DRAWN = re.compile(r"\b(LWPOLYLINE|POLYLINE|CIRCLE|ARC|LINE|ELLIPSE|SPLINE|INSERT)\b")
 
 
 @dataclass(eq=False)
@@ -98,16 +101,20 @@ def read_dxf(path: str, units: str | None = None) -> Reading:
     except Exception as error:  # noqa: BLE001 - ezdxf raises every kind on corrupt entities
         raise FormatError(f"has an entity ezdxf cannot interpret: {type(error).__name__}: "
                           f"{str(error)[:200]}", path=path) from None
-    if counts.get("tilted"):
-        notices.append(f"dxf: ignored {counts.pop('tilted')} entities not drawn in the XY plane")
-    if counts.get("other"):
-        counts.pop("other")
+    tilted = counts.pop("tilted", 0)
+    if tilted:
+        notices.append(f"dxf: ignored {tilted} entities not drawn in the XY plane")
+    other = {k[6:]: counts.pop(k) for k in sorted(counts) if k.startswith("other ")}
+    if other:
+        kinds = ", ".join(f"{n} {k}" for k, n in other.items())
+        notices.append(f"dxf: ignored {kinds} (kinds that draw no outline plumbob reads)")
     closed, open_pieces = _split_closed(pieces)
     loops, leftovers = _join(open_pieces)
     closed += loops
     if not closed:
         kinds = ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) or "no drawable entities"
         where = (f"; an open end at {fmt_point(leftovers[0].points[-1])}" if leftovers else "")
+        where += f"; {tilted} not drawn in the XY plane" if tilted else ""
         raise FormatError(
             f"has no closed outline ({kinds}){where}: draw closed LWPOLYLINEs, CIRCLEs or "
             "LINE/ARC chains that meet end to end", path=path)
@@ -141,6 +148,12 @@ def _open(path: str):
     except Exception as error:  # noqa: BLE001 - the recovering parser may raise anything
         raise FormatError(f"is not a readable DXF file: {type(error).__name__}: "
                           f"{str(error)[:200]}", path=path) from None
+    for fix in auditor.fixes:  # per repair: an outline ezdxf dropped is no silent loss
+        message = str(fix.message)
+        if message.startswith(("Removed", "Deleted")) and "unused" not in message \
+                and _DRAWN.search(message):
+            raise FormatError(f"has an entity ezdxf had to remove ({message[:200]}); fix the "
+                              "file", path=path)
     guessed = (AuditError.INVALID_INTEGER_VALUE, AuditError.INVALID_FLOATING_POINT_VALUE)
     for problem in auditor.errors:  # per repair ezdxf made: few
         if problem.code in guessed:
@@ -220,7 +233,7 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, l
         return
     maker = _MAKERS.get(kind)
     if maker is None:
-        counts["other"] = counts.get("other", 0) + 1
+        counts[f"other {kind}"] = counts.get(f"other {kind}", 0) + 1
         return
     counts[kind] = counts.get(kind, 0) + 1
     extrusion = np.asarray(entity.dxf.get("extrusion", (0.0, 0.0, 1.0)), dtype=float)
@@ -237,6 +250,9 @@ def _collect(entity, pieces: list[_Piece], counts: dict[str, int], depth: int, l
     with np.errstate(all="ignore"):
         piece = maker(entity, label, name)
     if piece is None:
+        return
+    if piece is _TILTED:  # a 3D polyline, line or spline whose z varies: not a plane outline
+        counts["tilted"] = counts.get("tilted", 0) + 1
         return
     if not (np.isfinite(piece.points).all() and np.abs(piece.points).max() <= limit
             and np.isfinite(piece.bulges).all()
@@ -268,6 +284,17 @@ def _arc_reach(piece: _Piece) -> float:
         return float(np.abs(piece.points).max() + bow.max())
 
 
+def _z_varies(points) -> bool:
+    """Whether points given in world coordinates leave a plane z = constant (beyond
+    :data:`JOIN_TOLERANCE` of their extent): such an entity is no plane outline, and
+    projecting it onto XY would change its shape in silence."""
+    xyz = np.array([[float(c) for c in p][:3] for p in points], dtype=float).reshape(-1, 3)
+    if len(xyz) < 2 or xyz.shape[1] < 3:
+        return False
+    extent = np.ptp(xyz, axis=0)
+    return bool(extent[2] > JOIN_TOLERANCE * (float(np.linalg.norm(extent)) or 1.0))
+
+
 def _xy(points) -> np.ndarray:
     return np.array([[float(p[0]), float(p[1])] for p in points]).reshape(-1, 2)
 
@@ -294,6 +321,8 @@ def _polyline2d(entity, label, name):
     if not (entity.is_2d_polyline or entity.is_3d_polyline):
         return None  # polyface and polygon meshes have no outline
     vertices = list(entity.vertices)
+    if _z_varies([v.dxf.location for v in vertices]):
+        return _TILTED
     points = _xy([v.dxf.location for v in vertices])
     bulges = np.array([float(v.dxf.get("bulge", 0.0)) for v in vertices])
     if entity.is_3d_polyline:
@@ -327,6 +356,8 @@ def _arc(entity, label, name):
 
 
 def _line(entity, label, name):
+    if _z_varies([entity.dxf.start, entity.dxf.end]):
+        return _TILTED
     points = _xy([entity.dxf.start, entity.dxf.end])
     if np.array_equal(points[0], points[1]):
         return None
@@ -357,11 +388,11 @@ def _ellipse(entity, label, name):
 def _spline(entity, label, name):
     """A SPLINE on its own domain: non-rational ones of degree ≤ 3 as exact Bézier pieces,
     others flattened within :data:`FLATTEN_TOLERANCE` of their size (a stated error).
-    Unclamped (periodic, closed) splines are first clamped exactly by knot insertion; a
-    periodic spline stored the Autodesk way (one knot more than control points) is
-    unrolled first."""
+    Unclamped (periodic, closed) splines are first clamped exactly by knot insertion."""
     from ezdxf.math import BSpline, open_uniform_knot_vector
 
+    if _z_varies(entity.control_points) or _z_varies(entity.fit_points):
+        return _TILTED
     control = _xy(entity.control_points)
     if len(control):
         degree = int(entity.dxf.degree)
@@ -376,10 +407,6 @@ def _spline(entity, label, name):
         return None
     if knots.size == 0:
         knots = np.asarray(open_uniform_knot_vector(len(control), degree + 1), dtype=float)
-    if knots.size == len(control) + 1 and entity.closed:  # periodic, Autodesk's way
-        knots = periodic_knots(knots, len(control), degree)
-        control = np.vstack((control, control[:degree]))
-        weights = None if weights is None else np.concatenate((weights, weights[:degree]))
     if weights is not None and not (np.isfinite(weights).all() and (weights > 0).all()):
         raise ValueError("a spline's weights must be positive numbers")
     if weights is not None and np.ptp(weights) == 0:

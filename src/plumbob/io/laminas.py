@@ -22,7 +22,7 @@ from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..bodies.validity import CHECK_TOLERANCE, validity_error
 from ..errors import FormatError, GeometryError, fmt_point
-from ..limits import MAX_OUTLINE_PAIRS, MAX_OUTLINES, MAX_PARTS, check_count
+from ..limits import MAX_FLAT_POINTS, MAX_OUTLINE_PAIRS, MAX_OUTLINES, MAX_PARTS, check_count
 from .checks import check_extent
 from .parts import assemble, stem, unique_names
 
@@ -103,7 +103,19 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     notices = list(check_extent(lo, hi, path=path))
     size = float(np.linalg.norm(hi - lo))
     tol = max(size * CHECK_TOLERANCE, 1e-300)
-    flats = [o.ring.flattened(tol) for o in outlines]  # per outline
+    keep = _distinct(outlines)
+    if len(keep) < len(outlines):  # before flattening: 3,000 copies cost what one does
+        first_dup = int(np.setdiff1d(np.arange(len(outlines)), keep)[0])
+        notices.append(f"outlines: dropped {len(outlines) - len(keep)} duplicate outline(s) "
+                       f"({outlines[first_dup].label}, …)")
+        outlines = [outlines[int(k)] for k in keep]
+    pairs = _candidate_pairs(outlines, path)
+    flats, total = [], 0
+    for outline in outlines:  # per outline, counting the points before they pile up
+        flats.append(outline.ring.flattened(tol))
+        total += len(flats[-1])
+        check_count("points the outlines are flattened to for checking", total,
+                    MAX_FLAT_POINTS, path=path, hint="draw fewer or simpler curves")
     short = next((k for k, flat in enumerate(flats) if len(flat) < 3), None)
     if short is not None:
         raise GeometryError(f"{outlines[short].label} has zero area: it has fewer than three "
@@ -112,16 +124,9 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     rings = shapely.linearrings(np.concatenate(flats), indices=np.repeat(np.arange(len(flats)),
                                                                          counts))
     polygons = shapely.polygons(rings)
-    keep = _distinct(polygons)
-    if len(keep) < len(outlines):
-        first_dup = int(np.setdiff1d(np.arange(len(outlines)), keep)[0])
-        notices.append(f"outlines: dropped {len(outlines) - len(keep)} duplicate outline(s) "
-                       f"({outlines[first_dup].label}, …)")
-        outlines, polygons = [outlines[int(k)] for k in keep], polygons[keep]
-        flats = [flats[int(k)] for k in keep]
     areas = _signed_areas(outlines, flats)
     _check_each(outlines, polygons, areas, size, path, scale)
-    inside = _nesting(outlines, polygons, path, scale, lo)
+    inside = _nesting(outlines, polygons, pairs, path, scale, lo)
     same = shapely.equals(polygons[inside[0]], polygons[inside[1]])
     if same.any():  # the same outline drawn with other vertices: drop the later copies
         dup = np.unique(np.maximum(inside[0, same], inside[1, same]))
@@ -152,15 +157,33 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     return assemble(parts, name), tuple(notices)
 
 
-def _distinct(polygons: np.ndarray) -> np.ndarray:
-    """Indices of the first of each set of identical polygons: equal normalised coordinates
-    (any start vertex, either orientation), found by hashing — linear, not pairwise."""
-    import shapely
-
+def _distinct(outlines: list[Outline]) -> np.ndarray:
+    """Indices of the first of each set of identical outlines, found by hashing their exact
+    edges (:func:`_ring_key`) — linear, not pairwise, and before any curve is flattened."""
     first: dict[bytes, int] = {}
-    for k, key in enumerate(shapely.to_wkb(shapely.normalize(polygons))):  # per outline
-        first.setdefault(key, k)
+    for k, outline in enumerate(outlines):  # per outline
+        first.setdefault(_ring_key(outline.ring), k)
     return np.array(sorted(first.values()), dtype=int)
+
+
+def _ring_key(ring: Ring) -> bytes:
+    """The ring's edges (start, end, bulge, Bézier controls) each written the way round that
+    sorts first, then sorted: the same bytes for the same curve drawn from any vertex,
+    either way round."""
+    v = ring.vertices
+    n = len(v)
+    ahead = np.roll(v, -1, axis=0)
+    bulge = np.zeros((n, 1)) if ring.bulges is None else ring.bulges[:, None]
+    controls = np.full((n, 4), np.inf) if ring.controls is None else \
+        np.nan_to_num(ring.controls.reshape(n, 4), nan=np.inf)
+    forward = np.hstack((v, ahead, bulge, controls)) + 0.0  # + 0.0: no −0.0 in the bytes
+    backward = np.hstack((ahead, v, -bulge, controls[:, [2, 3, 0, 1]])) + 0.0
+    differs = forward != backward
+    first = np.argmax(differs, axis=1)
+    rows = np.arange(n)
+    flip = differs[rows, first] & (backward[rows, first] < forward[rows, first])
+    edges = np.where(flip[:, None], backward, forward)
+    return edges[np.lexsort(edges.T[::-1])].tobytes()
 
 
 def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray, size: float,
@@ -170,7 +193,7 @@ def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray
 
     floor = 1e-14 * size * size
     good = shapely.is_valid(polygons) & (shapely.area(shapely.convex_hull(polygons)) > floor)
-    for k in np.flatnonzero(~good)[:1]:
+    for k in np.flatnonzero(~good):  # the first that has an error (error path only)
         error = validity_error(polygons[k], outlines[k].label, path, scale)
         if error is not None:
             raise error
@@ -180,24 +203,50 @@ def _check_each(outlines: list[Outline], polygons: np.ndarray, areas: np.ndarray
                             path=path)
 
 
-def _nesting(outlines: list[Outline], polygons: np.ndarray, path: str | None,
-             scale: float | np.ndarray, lo: np.ndarray) -> np.ndarray:
-    """The pairs (container, contained), (2, m); outlines that cross are an error naming a
-    point. Candidate pairs (bounding boxes that meet) are counted, in chunks, against
-    :data:`MAX_OUTLINE_PAIRS` before any is compared, so no drawing asks for n² work."""
+def _ring_box(ring: Ring) -> np.ndarray:
+    """A box (xmin, ymin, xmax, ymax) holding the exact curve, from its own data: vertices,
+    Bézier controls (the convex hull property) and, per arc, the disc about its chord's
+    midpoint of radius chord/2 · max(1, |bulge|), which holds the whole arc."""
+    points = [ring.vertices]
+    if ring.controls is not None:
+        points.append(ring.controls[~np.isnan(ring.controls)].reshape(-1, 2))
+    if ring.bulges is not None:
+        ahead = np.roll(ring.vertices, -1, axis=0)
+        middle = (ring.vertices + ahead) / 2
+        reach = np.linalg.norm(ahead - ring.vertices, axis=1) / 2 \
+            * np.maximum(1.0, np.abs(ring.bulges))
+        points += [middle - reach[:, None], middle + reach[:, None]]
+    every = np.concatenate(points)
+    return np.concatenate((every.min(axis=0), every.max(axis=0)))
+
+
+def _candidate_pairs(outlines: list[Outline], path: str | None) -> np.ndarray:
+    """The pairs (i, j), i ≠ j, of outlines whose boxes meet, (2, m): the only pairs that may
+    nest or cross. Counted, in chunks, against :data:`MAX_OUTLINE_PAIRS` from the exact
+    curves' boxes — before anything is flattened or compared, so no drawing asks for n²
+    work or memory."""
     import shapely
 
-    tree = shapely.STRtree(polygons)
-    chunk = max(1, MAX_OUTLINE_PAIRS // len(polygons))
+    boxes = shapely.box(*np.array([_ring_box(o.ring) for o in outlines]).T)
+    tree = shapely.STRtree(boxes)
+    chunk = max(1, MAX_OUTLINE_PAIRS // len(boxes))
     found, total = [], 0
-    for start in range(0, len(polygons), chunk):  # per chunk of outlines
-        pairs = tree.query(polygons[start:start + chunk])
+    for start in range(0, len(boxes), chunk):  # per chunk of outlines
+        pairs = tree.query(boxes[start:start + chunk])
         pairs[0] += start
         total += pairs.shape[1]
         check_count("pairs of outlines whose bounding boxes meet", total, MAX_OUTLINE_PAIRS,
                     path=path, hint="the outlines nest or overlap too much to be compared")
         found.append(pairs[:, pairs[0] != pairs[1]])
-    pairs = np.concatenate(found, axis=1)
+    return np.concatenate(found, axis=1)
+
+
+def _nesting(outlines: list[Outline], polygons: np.ndarray, pairs: np.ndarray,
+             path: str | None, scale: float | np.ndarray, lo: np.ndarray) -> np.ndarray:
+    """The pairs (container, contained), (2, m), among the candidate ``pairs``; outlines
+    that cross are an error naming a point."""
+    import shapely
+
     a, b = polygons[pairs[0]], polygons[pairs[1]]
     crossing = np.flatnonzero(shapely.overlaps(a, b))
     if len(crossing):
@@ -226,6 +275,10 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
 
     if not named:
         raise FormatError("has no Polygon or MultiPolygon", path=path)
+    check_count("polygons", len(named), MAX_PARTS, path=path, hint="split the file")
+    parts_of = shapely.get_parts([g for _, g in named])
+    rings = len(parts_of) + int(shapely.get_num_interior_rings(parts_of).sum())
+    check_count("rings", rings, MAX_OUTLINES, path=path, hint="split the file")
     with np.errstate(over="ignore", invalid="ignore"):
         geometries = [shapely.transform(g, lambda c: c * scale) if scale != 1.0 else g
                       for _, g in named]

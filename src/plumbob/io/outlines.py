@@ -26,6 +26,7 @@ from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
 from ..units import units_scale
 from .laminas import Outline, body_from_outlines, body_from_polygons
+from .nesting import check_wkb_nesting, check_wkt_nesting
 from .parts import stem
 
 __all__ = ["OUTLINE_SUFFIXES", "read_outline"]
@@ -84,10 +85,13 @@ def _polygonal(geometry, path: str, what: str):
     kind = geometry.geom_type
     if kind in ("Polygon", "MultiPolygon"):
         return geometry
-    if kind == "GeometryCollection":
-        polys = [g for g in geometry.geoms if g.geom_type in ("Polygon", "MultiPolygon")]
-        if polys:
-            return shapely.MultiPolygon([p for g in polys for p in getattr(g, "geoms", [g])])
+    if kind == "GeometryCollection":  # nested collections too (their depth is checked)
+        parts = shapely.get_parts(geometry)
+        while (shapely.get_type_id(parts) == 7).any():  # per level of nesting
+            parts = shapely.get_parts(parts)
+        polys = shapely.get_parts(parts[np.isin(shapely.get_type_id(parts), (3, 6))])
+        if len(polys):
+            return shapely.MultiPolygon(list(polys))
     raise FormatError(f"holds a {kind.upper()}, which has no area; plumbob needs a POLYGON or "
                       "MULTIPOLYGON", path=path)
 
@@ -98,8 +102,14 @@ def _from_wkt(data: bytes, path: str):
     text = _text(data, path, "WKT").strip()
     if not text:
         raise FormatError("holds no WKT geometry", path=path)
+    check_wkt_nesting(text, path)  # GEOS would overflow its C stack
     try:
-        geometry = shapely.from_wkt(text)
+        with np.errstate(all="ignore"):  # 1e400 reads as inf: refused below, not warned
+            geometry = shapely.from_wkt(text)
+    except NotImplementedError:
+        raise FormatError("holds curved geometry (CIRCULARSTRING, CURVEPOLYGON, …), which "
+                          "plumbob does not read from WKT: linearise it, or draw it as DXF or "
+                          "SVG arcs", path=path) from None
     except (shapely.errors.ShapelyError, ValueError, TypeError) as error:
         raise FormatError(f"is not valid WKT: {str(error).splitlines()[0]}", path=path) from None
     return _polygonal(geometry, path, "WKT")
@@ -112,8 +122,15 @@ def _from_wkb(data: bytes, path: str):
     stripped = data.strip()
     if stripped and re.fullmatch(rb"[0-9a-fA-F]+", stripped):
         payload = stripped.decode("ascii")  # hex-encoded WKB
+        check_wkb_nesting(bytes.fromhex(payload) if len(payload) % 2 == 0 else b"", path)
+    else:
+        check_wkb_nesting(data, path)  # GEOS would overflow its C stack
     try:
-        geometry = shapely.from_wkb(payload)
+        with np.errstate(all="ignore"):
+            geometry = shapely.from_wkb(payload)
+    except NotImplementedError:
+        raise FormatError("holds curved geometry (CIRCULARSTRING, CURVEPOLYGON, …), which "
+                          "plumbob does not read from WKB: linearise it", path=path) from None
     except (shapely.errors.ShapelyError, ValueError, TypeError) as error:
         raise FormatError(f"is not valid WKB: {str(error).splitlines()[0]}", path=path) from None
     return _polygonal(geometry, path, "WKB")

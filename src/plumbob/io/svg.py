@@ -4,10 +4,11 @@ The file is read once (bounded) and first parsed with defusedxml, which
 refuses entity declarations (entity-expansion bombs) and external references;
 what its ``<use>`` references expand to — shapes and copies, through every
 level — is counted against :mod:`plumbob.limits` before anything is expanded;
-then svgelements resolves styles, ``<use>`` and transforms. Segments become ring edges: lines as they
-are, circular arcs as bulges (exact), quadratic Béziers raised exactly to
-cubics, cubic Béziers as they are, elliptical arcs as cubic Béziers within
-about 1e-11 of their size (the lamina is then marked not exact, with a bound).
+then svgelements resolves styles, ``<use>`` and transforms. Segments become
+ring edges: lines as they are, circular arcs as bulges (exact), quadratic
+Béziers raised exactly to cubics, cubic Béziers as they are, elliptical arcs as
+cubic Béziers within about 1e-11 of their size (the lamina is then marked not
+exact, with a bound).
 
 Coordinates are read in user units (the numbers in the path data). Their size
 comes from the ``<svg>`` element: with a viewBox and a physical width or
@@ -113,6 +114,8 @@ def _check_xml(data: bytes, path: str) -> None:
     _check_expansion(root, path)
 
 
+#: the sizes of shapes that SVG forbids to be negative
+_SIZES = {"circle": ("r",), "ellipse": ("rx", "ry"), "rect": ("width", "height")}
 #: the SVG elements that draw a shape
 _SHAPES = {"path", "rect", "circle", "ellipse", "polygon", "polyline", "line"}
 _HUGE = 10**18  # expansion counts are capped here before they are compared (as floats)
@@ -223,6 +226,11 @@ def _outlines(svg, path: str, scale: float) -> tuple[list[Outline], int]:
         ident = element.id
         kind = type(element).__name__.lower()
         name = f"{kind} {ident!r}" if ident else f"{kind} {count}"
+        for key in _SIZES.get(kind, ()):  # svgelements would draw -1 as 1
+            value = str(element.values.get(key, "")).strip()
+            if value.startswith("-") and re.search(r"[1-9]", value):
+                raise GeometryError(f"{name}: {key} = {value} is negative, which SVG calls an "
+                                    "error (nothing is drawn); fix the file", path=path)
         try:
             segments = list(abs(se.Path(element)))
         except Exception as error:  # noqa: BLE001
@@ -251,13 +259,12 @@ def _subpaths(segments, name: str, path: str, scale: float, allow_open: bool):
     nan = np.full((2, 2), np.nan)
     axes = np.array([scale, -scale])  # SVG's y runs down the page: flipped to up
 
-    def xy(point) -> np.ndarray:  # metres, y up
-        with np.errstate(over="ignore", invalid="ignore"):
-            p = np.array([float(point.x), float(point.y)]) * axes
-        if not (np.isfinite(p).all() and np.abs(p).max() <= ABSURD_COORDINATE):
-            raise GeometryError(f"{name}: the coordinate {fmt_point(p / axes)} is not a finite "
-                                "number of plausible size", path=path)
-        return p
+    def xy(point) -> np.ndarray:  # metres, y up; plain floats: called for every point
+        x, y = float(point.x) * scale, -float(point.y) * scale
+        if not (abs(x) <= ABSURD_COORDINATE and abs(y) <= ABSURD_COORDINATE):  # NaN fails
+            raise GeometryError(f"{name}: the coordinate {fmt_point((point.x, point.y))} is "
+                                "not a finite number of plausible size", path=path)
+        return np.array((x, y))
 
     def finish(closed: bool, end) -> None:
         nonlocal points, bulges, controls, error, approx, skipped
