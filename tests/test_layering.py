@@ -29,7 +29,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("spec",),
     ("loading",),
     ("stability", "energy"),
-    ("export", "batch"),
+    ("export", "batch", "balance"),
     ("report",),
     ("commands",),
     ("cli",),

@@ -52,32 +52,38 @@ def surface_samples(triangles: np.ndarray, gap: float) -> tuple[np.ndarray, np.n
     """Points on the mesh (n, 3) and the triangle each lies on (n,): every surface point
     lies within ``gap`` m of one.
 
-    Each triangle gets a barycentric lattice fine enough that its cells' edges are at
-    most ``gap`` long (a point of a cell is then within ``gap`` of a cell corner).
+    Each triangle is halved across its longest edge until no edge is longer than
+    ``gap`` (a point of such a piece is within ``gap`` of its corners); the pieces'
+    corners are the samples. Halving the longest edge keeps long slivers (a
+    cylinder's facets) to a count in proportion to their length, not its square.
 
     >>> tri = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
     >>> pts, ids = surface_samples(tri, 0.5)
     >>> len(pts), set(ids.tolist())
-    (10, {0})
+    (9, {0})
     """
     tri = np.asarray(triangles, dtype=float)
-    edges = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).max(axis=1)
-    splits = np.maximum(1, np.ceil(edges / gap)).astype(np.int64)
-    total = int(((splits + 1) * (splits + 2) // 2).sum())
-    check_count("surface samples", total, MAX_SAMPLES,
-                hint="use a coarser offset step (the samples are spaced about half a step)")
-    points, ids = [], []
-    for n in np.unique(splits):  # a few distinct lattice sizes: one pass each
-        which = np.flatnonzero(splits == n)
-        i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
-        keep = i + j <= n
-        u, v = i[keep] / n, j[keep] / n
-        t = tri[which]
-        pts = (t[:, None, 0] + u[None, :, None] * (t[:, None, 1] - t[:, None, 0])
-               + v[None, :, None] * (t[:, None, 2] - t[:, None, 0]))
-        points.append(pts.reshape(-1, 3))
-        ids.append(np.repeat(which, len(u)))
-    return np.concatenate(points), np.concatenate(ids)
+    ids = np.arange(len(tri))
+    done_tri, done_ids = [], []
+    while len(tri):
+        edges = np.linalg.norm(np.roll(tri, -1, axis=1) - tri, axis=2)  # edge k: corner k → k+1
+        longest = edges.argmax(axis=1)
+        done = edges.max(axis=1) <= gap
+        done_tri.append(tri[done])
+        done_ids.append(ids[done])
+        tri, ids, longest = tri[~done], ids[~done], longest[~done]
+        check_count("surface pieces sampled", 2.0 * len(tri) + sum(map(len, done_ids)),
+                    2 * MAX_SAMPLES, hint="use a coarser offset step (samples are a step apart)")
+        order = (longest[:, None] + np.arange(3)) % 3  # the longest edge first
+        t = tri[np.arange(len(tri))[:, None], order]
+        mid = (t[:, 0] + t[:, 1]) / 2
+        tri = np.concatenate((np.stack((t[:, 0], mid, t[:, 2]), axis=1),
+                              np.stack((mid, t[:, 1], t[:, 2]), axis=1)))
+        ids = np.concatenate((ids, ids))
+    # a corner shared by several pieces is one sample (of any of its triangles: the
+    # distance to a corner is the same from each)
+    points, first = np.unique(np.concatenate(done_tri).reshape(-1, 3), axis=0, return_index=True)
+    return points, np.repeat(np.concatenate(done_ids), 3)[first]
 
 
 def point_triangle_distances(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:

@@ -1,0 +1,101 @@
+"""The interior of a body cut into cells: what hollowing chooses from.
+
+Why cells: the moment of the weight about the support is linear in the material
+kept, so once the interior is cut into pieces, each with its own mass and centre,
+choosing which to empty is a small linear problem (:mod:`plumbob.balance.hollow`).
+
+The cells are the interior (a manifold3d ``Manifold``) sliced by the planes of a
+regular grid — slabs along x, each cut into columns along y, each into cells
+along z — so every cell is an exact piece of the interior (a cube deep inside,
+a cube clipped by the interior's surface near the walls) and together they tile
+it without gaps or overlaps.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..integrals.mesh import triangle_soup_moments
+from ..limits import MAX_PARTS, check_count
+
+__all__ = ["Cells", "grid_cells"]
+
+
+@dataclass(frozen=True, eq=False)
+class Cells:
+    """Pieces of a body's interior.
+
+    pieces: the cells, manifold3d ``Manifold`` objects.
+    volumes: (n,) m³. centres: (n, 3) m, each cell's centroid.
+    size: m, the grid's cell size.
+    """
+
+    pieces: tuple
+    volumes: np.ndarray
+    centres: np.ndarray
+    size: float
+
+    def __len__(self) -> int:
+        return len(self.pieces)
+
+
+def _slices(manifold, axis: int, planes: np.ndarray) -> list:
+    """``manifold`` cut by the planes ``x[axis] = planes`` (ascending): the pieces between
+    them, in order (empty ones dropped)."""
+    normal = np.zeros(3)
+    normal[axis] = 1.0
+    pieces, rest = [], manifold
+    for plane in planes:
+        if rest.is_empty():
+            break
+        above, below = rest.split_by_plane(normal.tolist(), float(plane))
+        if not below.is_empty():
+            pieces.append(below)
+        rest = above
+    if not rest.is_empty():
+        pieces.append(rest)
+    return pieces
+
+
+def grid_cells(interior, size: float) -> Cells:
+    """The interior (a manifold3d ``Manifold``) cut into cells of a ``size`` m grid.
+
+    Parameters
+    ----------
+    interior : manifold3d.Manifold
+    size : float
+        m, the grid's cell edge.
+
+    Returns
+    -------
+    Cells
+
+    Examples
+    --------
+    >>> import manifold3d
+    >>> cells = grid_cells(manifold3d.Manifold.cube([2.0, 1.0, 1.0]), 0.5)
+    >>> len(cells), round(float(cells.volumes.sum()), 12)
+    (16, 2.0)
+    """
+    lower, upper = (np.asarray(v, dtype=float) for v in
+                    (interior.bounding_box()[:3], interior.bounding_box()[3:]))
+    counts = np.maximum(1, np.ceil((upper - lower) / size - 1e-9)).astype(np.int64)
+    check_count("hollowing cells", float(np.prod(counts.astype(float))), MAX_PARTS,
+                hint="give a larger cell size")
+    planes = [lower[k] + size * np.arange(1, counts[k]) for k in range(3)]
+    pieces = [interior]
+    for axis in range(3):
+        pieces = [cut for piece in pieces for cut in _slices(piece, axis, planes[axis])]
+    volumes, centres, kept = [], [], []
+    for piece in pieces:
+        mesh = piece.to_mesh64()
+        verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
+        tri = verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
+        m = triangle_soup_moments(tri)
+        if m.m0 > 0:
+            kept.append(piece)
+            volumes.append(m.m0)
+            centres.append(m.origin + m.m1 / m.m0)
+    return Cells(tuple(kept), np.array(volumes), np.array(centres).reshape(-1, 3), float(size))
