@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..limits import MAX_SAMPLES, check_count
+from ..mesh.weld import merge_vertices
 
 __all__ = ["DistanceGrid", "distance_grid", "point_triangle_distances", "surface_samples"]
 
@@ -82,8 +83,10 @@ def surface_samples(triangles: np.ndarray, gap: float) -> tuple[np.ndarray, np.n
         ids = np.concatenate((ids, ids))
     # a corner shared by several pieces is one sample (of any of its triangles: the
     # distance to a corner is the same from each)
-    points, first = np.unique(np.concatenate(done_tri).reshape(-1, 3), axis=0, return_index=True)
-    return points, np.repeat(np.concatenate(done_ids), 3)[first]
+    points, index = merge_vertices(np.concatenate(done_tri).reshape(-1, 3))
+    owner = np.empty(len(points), dtype=np.int64)
+    owner[index] = np.repeat(np.concatenate(done_ids), 3)
+    return points, owner
 
 
 def point_triangle_distances(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -180,7 +183,8 @@ def _column_winding(triangles: np.ndarray, xs: np.ndarray, ys: np.ndarray,
 
 
 def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, step: float,
-                  *, band: tuple[float, float] | None = None) -> DistanceGrid:
+                  *, band: tuple[float, float] | None = None,
+                  cap: float | None = None) -> DistanceGrid:
     """Signed distances (positive inside) from a closed, outward mesh at the points of a
     regular grid covering the box ``lower``..``upper`` (each (3,), m) at ``step`` m.
 
@@ -196,6 +200,8 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
         Only distances between these bounds (m, unsigned) need be exact: a grid
         point that a coarser grid shows to lie outside the band keeps that coarse
         estimate (on the right side of the band), which saves most of the work.
+    cap : float, optional
+        m: distances beyond it are given as the cap itself (a lower bound).
 
     Returns
     -------
@@ -219,27 +225,38 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
     winding = _column_winding(tri, xs, ys, zs)
     gap = step
     samples, ids = surface_samples(tri, gap)
-    tree = cKDTree(samples)
+    # unbalanced, uncompacted: several times faster to query on samples that lie on
+    # lines and planes (the default tree degenerates there)
+    tree = cKDTree(samples, balanced_tree=False, compact_nodes=False)
     grid = np.stack(np.meshgrid(xs, ys, zs, indexing="ij"), axis=-1).reshape(-1, 3)
     distance = np.full(len(grid), np.nan)
-    if band is not None and np.all(counts > 2 * _COARSE):
-        # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose nearest
-        # coarse point is far outside the band is outside it too, and keeps that estimate.
-        coarse = distance_grid(tri, lower, upper, _COARSE * step)
-        index = np.minimum(np.rint(np.stack(np.meshgrid(
-            *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
-            np.array(coarse.values.shape) - 1).reshape(-1, 3)
-        estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
-        reach = _COARSE * step * np.sqrt(3) / 2
-        out = (estimate - reach > band[1]) | (estimate + reach < band[0])
-        distance[out] = estimate[out]
+    if band is not None:
+        cap = band[1] + gap
+        if np.all(counts > 2 * _COARSE):
+            # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose
+            # nearest coarse point is far outside the band is outside it too, and keeps
+            # that estimate (on the right side of the band).
+            reach = _COARSE * step * np.sqrt(3) / 2
+            coarse = distance_grid(tri, lower, upper, _COARSE * step, cap=band[1] + 2 * reach)
+            index = np.minimum(np.rint(np.stack(np.meshgrid(
+                *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
+                np.array(coarse.values.shape) - 1).reshape(-1, 3)
+            estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
+            out = (estimate - reach > band[1]) | (estimate + reach < band[0])
+            distance[out] = estimate[out]
     todo = np.flatnonzero(np.isnan(distance))
+    # Beyond the cap only "further than the cap" matters: a point with no sample within
+    # cap + gap is further than the cap (every surface point is within gap of a sample),
+    # and bounding the search spares the k-d tree points equidistant from a whole sphere.
+    bound = np.inf if cap is None else cap + gap
     for start in range(0, len(todo), _BLOCK):
         which_points = todo[start:start + _BLOCK]
         pts = grid[which_points]
-        near, which = tree.query(pts, k=min(CANDIDATES, len(samples)))
+        near, which = tree.query(pts, k=min(CANDIDATES, len(samples)), distance_upper_bound=bound)
         near, which = near.reshape(len(pts), -1), which.reshape(len(pts), -1)
-        cand = tri[ids[which]]
-        distance[which_points] = point_triangle_distances(pts[:, None, :], cand).min(axis=1)
+        found = which < len(samples)
+        cand = tri[ids[np.where(found, which, 0)]]
+        exact = np.where(found, point_triangle_distances(pts[:, None, :], cand), np.inf).min(axis=1)
+        distance[which_points] = np.minimum(exact, np.inf if cap is None else cap)
     sign = np.where(winding.reshape(-1) > 0.5, 1.0, -1.0)
     return DistanceGrid(lower, float(step), (sign * distance).reshape(tuple(counts)), gap)
