@@ -109,7 +109,7 @@ def number_option(text: str, label: str, *, infinite: bool = False) -> float:
 
 # ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
-    """PATH, --density/--material, --units, --repair, --json."""
+    """PATH, --density/--material, --units, --repair, --json, --shell/--infill."""
     parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
     group = parser.add_mutually_exclusive_group()
     group.add_argument(
@@ -134,6 +134,10 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         help="repair small defects in meshes (holes, winding) and report them",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    printing = parser.add_argument_group("as printed (FDM/SLA; see docs/printing.md)")
+    printing.add_argument("--shell", metavar="T", help="walls T thick at full density, e.g. "
+                          "1.2mm (a bare number is in --units)")
+    printing.add_argument("--infill", metavar="F", help="the interior's fill, e.g. 20%% or 0.2")
 
 
 def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
@@ -145,7 +149,8 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def load_body(args: argparse.Namespace) -> Reading:
-    """Read ``args.path`` and apply ``--density`` / ``--material``."""
+    """Read ``args.path`` and apply ``--density`` / ``--material``, then ``--shell`` /
+    ``--infill`` (the part as printed)."""
     reading = read(
         args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False)
     )
@@ -156,9 +161,14 @@ def load_body(args: argparse.Namespace) -> Reading:
         density = material(args.material).density
     elif getattr(args, "density", None) is not None:
         density = check_density(args.density, "--density")
-    if density is None:
-        return reading
-    return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+    body = reading.body if density is None else reading.body.with_default_density(density)
+    if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
+        from ..bodies.printed import printed_from_options
+        from ..units import length_scale
+
+        body = printed_from_options(body, args.shell, args.infill,
+                                    scale=length_scale(getattr(args, "units", None)))
+    return reading if body is reading.body else Reading(body, reading.notices, reading.path)
 
 
 def print_notices(reading: Reading, stream=None) -> None:
