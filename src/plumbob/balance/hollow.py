@@ -12,7 +12,10 @@ read::
 
 and the least material removed is ``min Σ x_i m_i`` (``--lightest``: the most),
 a 0–1 linear program that HiGHS (``scipy.optimize.milp``) solves at once for the
-few hundred cells and handful of rows a body has. The carved body is the body less
+few hundred cells and handful of rows a body has. More rows keep the emptied cells
+*well-composed* (no two touching only along an edge or at a corner,
+:func:`plumbob.balance.cells.manifold_rows`), so the carved mesh is a 2-manifold
+that any slicer accepts. The carved body is the body less
 the emptied cells, one closed mesh with an inner shell (manifold3d), and the void
 (the emptied cells' union) is a mesh of its own, for a slicer's modifier.
 
@@ -35,7 +38,7 @@ from ..bodies.solid import MeshSolid
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
 from ..results import Result
-from .cells import Cells, grid_cells
+from .cells import Cells, box_union, grid_cells, manifold_rows
 
 __all__ = ["HollowResult", "WrittenHollow", "hollow", "write_hollow", "CELLS_ALONG"]
 
@@ -117,9 +120,12 @@ def _choose(cells: Cells, density: float, mass: float, centre: np.ndarray, targe
     unit = mass * max(float(np.abs(rows).max()) / max(float(masses.max()), 1e-300), 1e-300)
     rows, limit = rows / unit, limit / unit
     cost = (-masses if lightest else masses) / mass
-    result = milp(cost, constraints=LinearConstraint(rows, -np.inf, limit),
-                  integrality=np.ones(len(masses)), bounds=Bounds(0, 1),
-                  options={"time_limit": TIME_LIMIT})
+    shape, shape_limit = manifold_rows(cells)
+    constraints = [LinearConstraint(rows, -np.inf, limit)]
+    if shape.shape[0]:
+        constraints.append(LinearConstraint(shape, -np.inf, shape_limit))
+    result = milp(cost, constraints=constraints, integrality=np.ones(len(masses)),
+                  bounds=Bounds(0, 1), options={"time_limit": TIME_LIMIT})
     if result.x is None:
         best = np.where(rows.sum(axis=0) > 0, 0.0, 1.0)  # every cell that helps every row…
         short = float(np.min(mass * target.slack(centre) - rows @ best)) / mass
@@ -128,7 +134,7 @@ def _choose(cells: Cells, density: float, mass: float, centre: np.ndarray, targe
             f"of mass about {-short:.3g} m short of it; give a thinner --wall, add ballast, "
             "or widen the base")
     chosen = np.rint(result.x)
-    if np.any(rows @ chosen > limit + 1e-9):
+    if np.any(rows @ chosen > limit + 1e-9) or np.any(shape @ chosen > shape_limit + 0.5):
         raise StabilityError("hollowing found no choice of whole cells that meets the target "
                              "within its time: give a smaller --cell size or a thinner --wall")
     return chosen.astype(bool)
@@ -216,8 +222,9 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
                                 before.center_of_mass) >= 0)), lightest)
     import manifold3d
 
-    chosen = [p for p, e in zip(cells.pieces, emptied) if e]
-    void_manifold = manifold3d.Manifold.batch_boolean(chosen, manifold3d.OpType.Add)
+    # the void is the interior within the chosen cells' boxes: one boolean, not a union of
+    # cells meeting face to face (which leaves coincident slivers behind)
+    void_manifold = interior ^ box_union(cells, emptied)
     outer = body.to_geometry(256) if not isinstance(body, MeshSolid) else outer_mesh.to_geometry()
     carved_manifold = outer - void_manifold
     if carved_manifold.status() != manifold3d.Error.NoError or carved_manifold.is_empty():
