@@ -195,6 +195,8 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     wall = float(wall)
     if not (np.isfinite(wall) and wall > 0):
         raise GeometryError(f"a wall thickness must be a positive length, not {wall!r}")
+    if cell_size is not None and not (np.isfinite(cell_size) and cell_size > 0):
+        raise GeometryError(f"a cell size must be a positive length, not {cell_size!r}")
     density = _density(body)
     triangles, _ = body_triangles(body)
     # the plan starts from the mesh that is carved and written (a curved body's faceting),
@@ -211,8 +213,6 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     interior = offset.body.to_geometry(256)
     lo, hi = np.asarray(interior.bounding_box()[:3]), np.asarray(interior.bounding_box()[3:])
     cell = float(cell_size) if cell_size is not None else float(np.max(hi - lo)) / CELLS_ALONG
-    if not (np.isfinite(cell) and cell > 0):
-        raise GeometryError(f"a cell size must be a positive length, not {cell_size!r}")
     cells = grid_cells(interior, cell)
     safety = 1e-6 * before.mass * size  # round-off of the written file, as a moment
     emptied = _choose(cells, rho, before.mass, before.center_of_mass, target, lightest, safety)
