@@ -245,6 +245,8 @@ class WrittenHollow(Result):
     verdict: :func:`plumbob.stability.check` of the body read back, resting along the
         target's ``down`` (its margin and critical tilt are what was achieved).
     plan: the :class:`HollowResult` written.
+    body: the carved body as read back from ``out`` (with the plan's density), for what
+        comes next (ballast on top of the carving).
     """
 
     out: str
@@ -252,6 +254,7 @@ class WrittenHollow(Result):
     mass_properties: MassProperties
     verdict: Any
     plan: HollowResult
+    body: Body | None = None
 
     _repr_fields = ("out", "void")
 
@@ -321,4 +324,4 @@ def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units
     props = back.mass_properties()
     props = replace(props, notes=tuple(n for n in props.notes if "assumed" not in n))
     verdict = check(back, down, props=props)
-    return WrittenHollow(str(out), written_void, props, verdict, plan)
+    return WrittenHollow(str(out), written_void, props, verdict, plan, back)
