@@ -152,11 +152,17 @@ def test_a_wall_too_thick_for_the_body():
         hollow(box(1, 1, 1), wall=0.6, target=Below(0.45))
 
 
-def test_write_takes_stl_only(tmp_path):
+def test_write_takes_stl_or_3mf(tmp_path):
     plan = hollow(box(1, 1, 1, density=1000.0), wall=0.1, target=Below(0.45), cell_size=0.2)
-    with pytest.raises(GeometryError, match="STL"):
+    with pytest.raises(GeometryError, match="STL or 3MF"):
         write_hollow(plan, str(tmp_path / "carved.obj"))
     assert not (tmp_path / "carved.obj").exists()
+    written = write_hollow(plan, str(tmp_path / "carved.3mf"), void=str(tmp_path / "void.3mf"))
+    assert (tmp_path / "void.3mf").exists()
+    # a 3MF is in millimetres: read back at the same size and mass
+    assert written.mass_properties.mass == pytest.approx(plan.after.mass, rel=1e-6)
+    assert np.allclose(written.mass_properties.center_of_mass, plan.after.center_of_mass, atol=1e-6)
+    assert written.verdict.stands
 
 
 def test_cells_tile_the_interior():

@@ -283,19 +283,36 @@ def _stl_bytes(triangles: np.ndarray, scale: float, name: str) -> bytes:
     return header + np.uint32(len(tri)).tobytes() + record.tobytes()
 
 
+def _three_mf_bytes(triangles: np.ndarray) -> bytes:
+    """A 3MF of ``triangles`` (m), in millimetres (3MF's default unit), via trimesh."""
+    import trimesh
+
+    from ..mesh.weld import merge_vertices
+
+    vertices, index = merge_vertices(np.asarray(triangles, dtype=float).reshape(-1, 3))
+    mesh = trimesh.Trimesh(vertices / 1e-3, index.reshape(-1, 3), process=False)
+    return mesh.export(file_type="3mf")
+
+
+def _mesh_bytes(path: str, triangles: np.ndarray, scale: float, name: str) -> bytes:
+    kind = os.path.splitext(str(path))[1].lower()
+    return _stl_bytes(triangles, scale, name) if kind == ".stl" else _three_mf_bytes(triangles)
+
+
 def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units: str | None = None,
                  down=None) -> WrittenHollow:
-    """Write the carved body to ``out`` (and the void to ``void``) as binary STL, each
-    atomically, then read ``out`` back and measure it.
+    """Write the carved body to ``out`` (and the void to ``void``), each atomically, then
+    read ``out`` back and measure it.
 
     Parameters
     ----------
     plan : HollowResult
     out, void : str
-        Paths (``.stl``); ``void`` optional.
+        Paths, ``.stl`` (binary) or ``.3mf``; ``void`` optional.
     units : str, optional
-        The unit of the written coordinates (that of the file the body came from:
-        ``mm`` for most prints); default metres.
+        The unit of an STL's coordinates (that of the file the body came from: ``mm``
+        for most prints); default metres. A 3MF is written in millimetres, its
+        format's default unit, whatever ``units`` says.
     down : array_like, optional
         The direction of gravity for the stability check of the written body
         (default −z).
@@ -311,14 +328,15 @@ def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units
 
     scale = LENGTH_UNITS[units] if units else 1.0
     for path in (out, void):
-        if path is not None and os.path.splitext(str(path))[1].lower() != ".stl":
-            raise GeometryError(f"hollowing writes STL files (.stl), not {path!r}")
-    write_atomic(str(out), _stl_bytes(plan.carved.triangles, scale, "carved"))
+        if path is not None and os.path.splitext(str(path))[1].lower() not in (".stl", ".3mf"):
+            raise GeometryError(f"hollowing writes STL or 3MF files (.stl, .3mf), not {path!r}")
+    write_atomic(str(out), _mesh_bytes(out, plan.carved.triangles, scale, "carved"))
     written_void = None
     if void is not None and plan.void is not None:
-        write_atomic(str(void), _stl_bytes(plan.void.triangles, scale, "void"))
+        write_atomic(str(void), _mesh_bytes(void, plan.void.triangles, scale, "void"))
         written_void = str(void)
-    back = read(str(out), units=units or "m").body
+    stl = os.path.splitext(str(out))[1].lower() == ".stl"
+    back = read(str(out), units=(units or "m") if stl else None).body
     density = plan.before.mass / plan.before.measure
     back = back.with_default_density(density)
     props = back.mass_properties()
