@@ -4,14 +4,18 @@
   of mass (:class:`Target`);
 * :func:`balance` — the least ballast, and where, that meets it (:class:`BalanceResult`,
   checked by plumbob's own check of the body with the ballast);
-* :func:`solve_parameter` — the smallest change of one design parameter that meets it.
+* :func:`solve_parameter` — the smallest change of one design parameter that meets it;
+* :func:`hollow` / :func:`write_hollow` — which interior cells to empty, behind a wall,
+  so it meets the target (:class:`HollowResult`), and the carved body and void written
+  and checked again from the file (:class:`WrittenHollow`).
 
 Built on :mod:`plumbob.stability`; scipy loads only when a function needs it.
 """
 
+from .hollow import HollowResult, WrittenHollow, hollow, write_hollow
 from .result import BalanceResult, balance
 from .solve import ParameterSolution, solve_parameter
 from .targets import Target, target_for
 
-__all__ = ["BalanceResult", "ParameterSolution", "Target", "balance", "solve_parameter",
-           "target_for"]
+__all__ = ["BalanceResult", "HollowResult", "ParameterSolution", "Target", "WrittenHollow",
+           "balance", "hollow", "solve_parameter", "target_for", "write_hollow"]

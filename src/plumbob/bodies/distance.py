@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..limits import MAX_SAMPLES, check_count
+from ..mesh.weld import merge_vertices
 
 __all__ = ["DistanceGrid", "distance_grid", "point_triangle_distances", "surface_samples"]
 
@@ -52,32 +53,40 @@ def surface_samples(triangles: np.ndarray, gap: float) -> tuple[np.ndarray, np.n
     """Points on the mesh (n, 3) and the triangle each lies on (n,): every surface point
     lies within ``gap`` m of one.
 
-    Each triangle gets a barycentric lattice fine enough that its cells' edges are at
-    most ``gap`` long (a point of a cell is then within ``gap`` of a cell corner).
+    Each triangle is halved across its longest edge until no edge is longer than
+    ``gap`` (a point of such a piece is within ``gap`` of its corners); the pieces'
+    corners are the samples. Halving the longest edge keeps long slivers (a
+    cylinder's facets) to a count in proportion to their length, not its square.
 
     >>> tri = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
     >>> pts, ids = surface_samples(tri, 0.5)
     >>> len(pts), set(ids.tolist())
-    (10, {0})
+    (9, {0})
     """
     tri = np.asarray(triangles, dtype=float)
-    edges = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).max(axis=1)
-    splits = np.maximum(1, np.ceil(edges / gap)).astype(np.int64)
-    total = int(((splits + 1) * (splits + 2) // 2).sum())
-    check_count("surface samples", total, MAX_SAMPLES,
-                hint="use a coarser offset step (the samples are spaced about half a step)")
-    points, ids = [], []
-    for n in np.unique(splits):  # a few distinct lattice sizes: one pass each
-        which = np.flatnonzero(splits == n)
-        i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
-        keep = i + j <= n
-        u, v = i[keep] / n, j[keep] / n
-        t = tri[which]
-        pts = (t[:, None, 0] + u[None, :, None] * (t[:, None, 1] - t[:, None, 0])
-               + v[None, :, None] * (t[:, None, 2] - t[:, None, 0]))
-        points.append(pts.reshape(-1, 3))
-        ids.append(np.repeat(which, len(u)))
-    return np.concatenate(points), np.concatenate(ids)
+    ids = np.arange(len(tri))
+    done_tri, done_ids = [], []
+    while len(tri):
+        edges = np.linalg.norm(np.roll(tri, -1, axis=1) - tri, axis=2)  # edge k: corner k → k+1
+        longest = edges.argmax(axis=1)
+        done = edges.max(axis=1) <= gap
+        done_tri.append(tri[done])
+        done_ids.append(ids[done])
+        tri, ids, longest = tri[~done], ids[~done], longest[~done]
+        check_count("surface pieces sampled", 2.0 * len(tri) + sum(map(len, done_ids)),
+                    2 * MAX_SAMPLES, hint="use a coarser offset step (samples are a step apart)")
+        order = (longest[:, None] + np.arange(3)) % 3  # the longest edge first
+        t = tri[np.arange(len(tri))[:, None], order]
+        mid = (t[:, 0] + t[:, 1]) / 2
+        tri = np.concatenate((np.stack((t[:, 0], mid, t[:, 2]), axis=1),
+                              np.stack((mid, t[:, 1], t[:, 2]), axis=1)))
+        ids = np.concatenate((ids, ids))
+    # a corner shared by several pieces is one sample (of any of its triangles: the
+    # distance to a corner is the same from each)
+    points, index = merge_vertices(np.concatenate(done_tri).reshape(-1, 3))
+    owner = np.empty(len(points), dtype=np.int64)
+    owner[index] = np.repeat(np.concatenate(done_ids), 3)
+    return points, owner
 
 
 def point_triangle_distances(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -174,7 +183,8 @@ def _column_winding(triangles: np.ndarray, xs: np.ndarray, ys: np.ndarray,
 
 
 def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, step: float,
-                  *, band: tuple[float, float] | None = None) -> DistanceGrid:
+                  *, band: tuple[float, float] | None = None,
+                  cap: float | None = None) -> DistanceGrid:
     """Signed distances (positive inside) from a closed, outward mesh at the points of a
     regular grid covering the box ``lower``..``upper`` (each (3,), m) at ``step`` m.
 
@@ -190,6 +200,8 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
         Only distances between these bounds (m, unsigned) need be exact: a grid
         point that a coarser grid shows to lie outside the band keeps that coarse
         estimate (on the right side of the band), which saves most of the work.
+    cap : float, optional
+        m: distances beyond it are given as the cap itself (a lower bound).
 
     Returns
     -------
@@ -213,27 +225,38 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
     winding = _column_winding(tri, xs, ys, zs)
     gap = step
     samples, ids = surface_samples(tri, gap)
-    tree = cKDTree(samples)
+    # unbalanced, uncompacted: several times faster to query on samples that lie on
+    # lines and planes (the default tree degenerates there)
+    tree = cKDTree(samples, balanced_tree=False, compact_nodes=False)
     grid = np.stack(np.meshgrid(xs, ys, zs, indexing="ij"), axis=-1).reshape(-1, 3)
     distance = np.full(len(grid), np.nan)
-    if band is not None and np.all(counts > 2 * _COARSE):
-        # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose nearest
-        # coarse point is far outside the band is outside it too, and keeps that estimate.
-        coarse = distance_grid(tri, lower, upper, _COARSE * step)
-        index = np.minimum(np.rint(np.stack(np.meshgrid(
-            *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
-            np.array(coarse.values.shape) - 1).reshape(-1, 3)
-        estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
-        reach = _COARSE * step * np.sqrt(3) / 2
-        out = (estimate - reach > band[1]) | (estimate + reach < band[0])
-        distance[out] = estimate[out]
+    if band is not None:
+        cap = band[1] + gap
+        if np.all(counts > 2 * _COARSE):
+            # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose
+            # nearest coarse point is far outside the band is outside it too, and keeps
+            # that estimate (on the right side of the band).
+            reach = _COARSE * step * np.sqrt(3) / 2
+            coarse = distance_grid(tri, lower, upper, _COARSE * step, cap=band[1] + 2 * reach)
+            index = np.minimum(np.rint(np.stack(np.meshgrid(
+                *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
+                np.array(coarse.values.shape) - 1).reshape(-1, 3)
+            estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
+            out = (estimate - reach > band[1]) | (estimate + reach < band[0])
+            distance[out] = estimate[out]
     todo = np.flatnonzero(np.isnan(distance))
+    # Beyond the cap only "further than the cap" matters: a point with no sample within
+    # cap + gap is further than the cap (every surface point is within gap of a sample),
+    # and bounding the search spares the k-d tree points equidistant from a whole sphere.
+    bound = np.inf if cap is None else cap + gap
     for start in range(0, len(todo), _BLOCK):
         which_points = todo[start:start + _BLOCK]
         pts = grid[which_points]
-        near, which = tree.query(pts, k=min(CANDIDATES, len(samples)))
+        near, which = tree.query(pts, k=min(CANDIDATES, len(samples)), distance_upper_bound=bound)
         near, which = near.reshape(len(pts), -1), which.reshape(len(pts), -1)
-        cand = tri[ids[which]]
-        distance[which_points] = point_triangle_distances(pts[:, None, :], cand).min(axis=1)
+        found = which < len(samples)
+        cand = tri[ids[np.where(found, which, 0)]]
+        exact = np.where(found, point_triangle_distances(pts[:, None, :], cand), np.inf).min(axis=1)
+        distance[which_points] = np.minimum(exact, np.inf if cap is None else cap)
     sign = np.where(winding.reshape(-1) > 0.5, 1.0, -1.0)
     return DistanceGrid(lower, float(step), (sign * distance).reshape(tuple(counts)), gap)

@@ -97,7 +97,8 @@ def inward_offset(body: Body, distance: float, *, step: float | None = None,
         m, positive: the wall thickness.
     step : float, optional
         The level-set grid step, m, for bodies without a closed form; default the
-        smaller of half the distance and the body's size / 64.
+        smaller of half the distance and the body's size / 64 (coarser for a large
+        body with a thin wall, to keep the grid within half a million points).
     extra : float
         m, added to the distance of a level set only: a level-set offset taken
         deeper by its own surface error keeps every wall at least ``distance`` thick.
@@ -347,10 +348,21 @@ def manifold_triangles(manifold) -> np.ndarray:
     return verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
 
 
+def _default_step(triangles: np.ndarray, t: float, size: float) -> float:
+    """The smaller of ``t / 2`` and the size / 64 — or coarser, so the grid stays within
+    half the sample limit (there is no option to ask for less on the command line)."""
+    from ..limits import MAX_SAMPLES
+
+    h = min(t / 2, size / DEFAULT_STEPS)
+    extent = np.ptp(triangles.reshape(-1, 3), axis=0) - 2 * t
+    cells = float(np.prod(np.maximum(extent, 0.0) + 5 * h))
+    return max(h, (cells / (MAX_SAMPLES / 2)) ** (1 / 3))
+
+
 def _level_set_offset(body: Body, t: float, step: float | None, extra: float) -> InwardOffset:
     triangles, own = body_triangles(body)
     size = float(np.linalg.norm(np.ptp(triangles.reshape(-1, 3), axis=0)))
-    h = float(step) if step is not None else min(t / 2, size / DEFAULT_STEPS)
+    h = float(step) if step is not None else _default_step(triangles, t, size)
     if not (np.isfinite(h) and h > 0):
         raise GeometryError(f"an offset step must be a positive number, not {step!r}")
     fine = level_set_manifold(triangles, t + extra, h)

@@ -197,3 +197,32 @@ def parse_fraction(text: str) -> float:
         raise GeometryError(f"an infill must be a fraction (0.2) or a percentage (20%), not {text!r}")
     value = float(match.group(1))
     return value / 100 if match.group(2) else value
+
+
+def printed_from_options(body: Body, shell: str | None, infill: str | None, *,
+                         scale: float = 1.0, where: str = "--shell/--infill") -> Printed:
+    """``body`` as printed with a shell and infill given as text (``"1.2mm"``, ``"20%"``),
+    as the command line (``--shell``, ``--infill``) and a spec part give them; a bare
+    shell number is in units of ``scale`` m.
+
+    Both are needed: a shell without an infill (or the reverse) is an error that says so,
+    rather than a guessed default.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> printed_from_options(box(0.02, 0.02, 0.02), "1mm", "20%").infill
+    0.2
+    >>> printed_from_options(box(1, 1, 1), "1mm", None)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: --shell/--infill: give both the wall thickness and the infill (...)
+    """
+    if shell is None or infill is None:
+        raise GeometryError(f"{where}: give both the wall thickness and the infill "
+                            "(--shell 1.2mm --infill 20%)")
+    try:
+        thickness = parse_length(shell, scale, what="a shell thickness")
+        if not thickness > 0:
+            raise GeometryError(f"a shell thickness must be positive, not {shell!r}")
+        return printed(body, thickness, parse_fraction(infill))
+    except GeometryError as error:
+        raise error.within(where) from None

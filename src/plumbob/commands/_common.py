@@ -163,7 +163,7 @@ def number_option(text: str, label: str, *, infinite: bool = False) -> float:
 
 # ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
-    """PATH, --density/--material, --units, --repair, --set, --json."""
+    """PATH, --density/--material, --units, --repair, --set, --json, --shell/--infill."""
     parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
     group = parser.add_mutually_exclusive_group()
     group.add_argument(
@@ -203,6 +203,10 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         help="let a spec read mesh files outside its own folder (refused by default)",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    printing = parser.add_argument_group("as printed (FDM/SLA; see docs/printing.md)")
+    printing.add_argument("--shell", metavar="T", help="walls T thick at full density, e.g. "
+                          "1.2mm (a bare number is in --units)")
+    printing.add_argument("--infill", metavar="F", help="the interior's fill, e.g. 20%% or 0.2")
 
 
 def add_report_units_argument(parser: argparse.ArgumentParser) -> None:
@@ -232,6 +236,8 @@ def report_units(args: argparse.Namespace):
         raise ArgumentError("--report-units changes the text report only; the JSON is always "
                             "in SI units (leave out one of them)")
     return units or ReportUnits()
+
+
 def assignment(text: str) -> tuple[str, str]:
     """An argparse type: ``NAME=VALUE`` (``--set``) as (name, value)."""
     name, sep, value = text.partition("=")
@@ -297,7 +303,8 @@ def pose_down(body, index: int, option: str, g: float, props):
 
 
 def load_body(args: argparse.Namespace) -> Reading:
-    """Read ``args.path`` and apply ``--density`` / ``--material``."""
+    """Read ``args.path`` and apply ``--density`` / ``--material``, then ``--shell`` /
+    ``--infill`` (the part as printed)."""
     reading = read(
         args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
         parameters=parameter_overrides(getattr(args, "parameters", None)),
@@ -306,11 +313,18 @@ def load_body(args: argparse.Namespace) -> Reading:
     if getattr(args, "material", None) is not None:
         from ..materials import material
 
-        return with_default_density(reading, material(args.material).density,
-                                    f"--material {args.material}")
-    if getattr(args, "density", None) is not None:
-        return with_default_density(reading, check_density(args.density, "--density"),
-                                    "--density")
+        reading = with_default_density(reading, material(args.material).density,
+                                       f"--material {args.material}")
+    elif getattr(args, "density", None) is not None:
+        reading = with_default_density(reading, check_density(args.density, "--density"),
+                                       "--density")
+    if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
+        from ..bodies.printed import printed_from_options
+        from ..units import length_scale
+
+        body = printed_from_options(reading.body, args.shell, args.infill,
+                                    scale=length_scale(getattr(args, "units", None)))
+        reading = Reading(body, reading.notices, reading.path)
     return reading
 
 

@@ -33,7 +33,9 @@ __all__ = ["build_parts", "named", "spec_file", "PRIMITIVES", "PART_KEYS", "MATE
 PLACEMENT_KEYS = {"at", "rotate", "mirror"}
 #: what a part, or the [shape] table for all its parts, may say of their material
 MATERIAL_KEYS = {"density", "material", "thickness"}
-PART_KEYS = {"type", "name", "op"} | MATERIAL_KEYS | PLACEMENT_KEYS
+#: a part as printed: walls ``shell`` thick, the inside at ``infill`` (bodies.printed)
+PRINT_KEYS = {"shell", "infill"}
+PART_KEYS = {"type", "name", "op"} | MATERIAL_KEYS | PLACEMENT_KEYS | PRINT_KEYS
 
 
 # ----------------------------------------------------------------- primitives
@@ -330,7 +332,23 @@ def _build_part(
         body = body.translated(-box)
     mat = _material(spec, table, where, inherited)
     body = _placement(spec, _apply_material(spec, body, mat, where), table, where)
-    return _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
+    body = _apply_field(spec, body, mat, where) if _own_field(mat, inherited) else body
+    return _printed(spec, body, table, where) if PRINT_KEYS & set(table) else body
+
+
+def _printed(spec: SpecContext, body: Body, table: dict, where: str) -> Body:
+    """A part with ``shell`` (a length) and ``infill`` (0.2 or "20%"): the part as printed."""
+    from ..bodies.printed import parse_fraction, printed
+
+    if not PRINT_KEYS <= set(table):
+        raise spec.error(where, 'give both shell (the wall thickness) and infill (0.2 or "20%")')
+    raw = table["infill"]
+    with spec.at(f"{where}.infill"):
+        infill = parse_fraction(raw) if isinstance(raw, str) and raw.strip().endswith("%") \
+            else spec.number(raw, f"{where}.infill")
+    shell = spec.number(table["shell"], f"{where}.shell", length=True)
+    with spec.at(where):
+        return printed(body, shell, infill)
 
 
 def _build_group(

@@ -1,0 +1,224 @@
+"""Hollowing so that it stands: the leaning figurine of issue 14, checked on the written
+files by plumbob's own ``check`` and independently by trimesh (closure, walls, mass)."""
+
+from __future__ import annotations
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+from _hollow_target import target_for
+
+from plumbob.balance.cells import box_union, grid_cells, manifold_rows
+from plumbob.balance.hollow import _stl_bytes, hollow, write_hollow
+from plumbob.bodies.csg import union
+from plumbob.bodies.primitives import box, cylinder, sphere
+from plumbob.errors import GeometryError, StabilityError
+from plumbob.massprops import rotation_matrix
+
+MM = 1e-3
+RHO = 1200.0  # kg/m³, a resin
+
+
+class Below:
+    """A target with one row: the centre of mass at most ``height`` m up."""
+
+    def __init__(self, height: float):
+        self.height = height
+
+    def slack(self, points):
+        return self.height - np.asarray(points, dtype=float).T[2:3]
+
+
+def figurine():
+    """A leaning figurine, mm: a 36 × 36 × 12 plinth, a body (r 9, 55 long) leaning 58°
+    from its foot 6 mm off centre, and a head (r 11). As a solid it topples."""
+    plinth = box(36 * MM, 36 * MM, 12 * MM).translated([-18 * MM, -18 * MM, 0])
+    lean = rotation_matrix([0, 1, 0], np.radians(58))
+    foot = np.array([6 * MM, 0, 8 * MM])
+    body = cylinder(9 * MM, 55 * MM).transformed(lean, foot)
+    head = sphere(11 * MM).translated(lean @ np.array([0, 0, 55 * MM]) + foot)
+    return union(plinth, body, head)
+
+
+def _cli_json(capsys, *argv):
+    from plumbob.cli import main
+
+    assert main(list(argv)) in (0, None)
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.fixture(scope="module")
+def carved_files(tmp_path_factory):
+    """The figurine written as an STL in mm, hollowed with 2 mm walls for a 3 mm margin."""
+    from plumbob import read
+
+    folder = tmp_path_factory.mktemp("figurine")
+    source = folder / "figurine.stl"
+    source.write_bytes(_stl_bytes(figurine().shape.triangles, MM, "figurine"))
+    body = read(str(source), units="mm").body.with_default_density(RHO)
+    plan = hollow(body, wall=2 * MM, target=target_for(body, margin=3 * MM))
+    written = write_hollow(plan, str(folder / "carved.stl"), void=str(folder / "void.stl"),
+                           units="mm")
+    return source, folder / "carved.stl", folder / "void.stl", plan, written
+
+
+def test_the_figurine_topples_as_given(carved_files, capsys):
+    source = carved_files[0]
+    out = _cli_json(capsys, "check", str(source), "--units", "mm", "--density", str(RHO), "--json")
+    assert out["verdict"] == "topples"
+
+
+def test_the_carved_figurine_stands_with_the_margin(carved_files, capsys):
+    _, carved, _, plan, written = carved_files
+    out = _cli_json(capsys, "check", str(carved), "--units", "mm", "--density", str(RHO), "--json")
+    assert out["verdict"] == "stands"
+    assert out["margin"] >= 3 * MM
+    # the report's numbers are the written file's
+    assert written.verdict.margin == pytest.approx(out["margin"], rel=1e-9)
+    assert written.as_dict()["mass_after"] == pytest.approx(out["mass"], rel=1e-9)
+    assert plan.target_met and plan.removed_mass > 0
+    assert written.mass_properties.mass < plan.before.mass
+
+
+def test_the_carved_and_void_meshes_are_closed(carved_files):
+    import trimesh
+
+    _, carved, void, _, _ = carved_files
+    for path in (carved, void):
+        mesh = trimesh.load(str(path))
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.is_volume
+    # the void (the carved body's inner shell) has no pinched corner either
+    assert _welded_is_2_manifold(triangles=trimesh.load(str(void)).triangles)
+
+
+def test_walls_are_at_least_2mm_everywhere(carved_files):
+    """Independently: points spread over the void's surface (and its corners), their
+    distances to the figurine's outer surface by trimesh, and all inside it."""
+    import trimesh
+
+    source, _, void, _, _ = carved_files
+    outer = trimesh.load(str(source))
+    hole = trimesh.load(str(void))
+    points, _ = trimesh.sample.sample_surface(hole, 1500, seed=7)
+    points = np.concatenate((points, hole.vertices[:: max(1, len(hole.vertices) // 500)]))
+    _, distance, _ = trimesh.proximity.closest_point(outer, points)
+    assert outer.contains(points).all()
+    assert distance.min() >= 2.0 - 1e-4  # mm; float32 corners
+
+
+def test_mass_properties_agree_with_trimesh(carved_files, capsys):
+    import trimesh
+
+    _, carved, _, _, _ = carved_files
+    out = _cli_json(capsys, "mass", str(carved), "--units", "mm", "--density", str(RHO), "--json")
+    mesh = trimesh.load(str(carved))
+    mesh.apply_scale(MM)
+    mesh.density = RHO
+    assert out["mass"] == pytest.approx(mesh.mass, rel=1e-9)
+    assert np.allclose(out["center_of_mass"], mesh.center_mass, rtol=0, atol=1e-12)
+    assert np.allclose(out["inertia"], mesh.moment_inertia, rtol=1e-7, atol=1e-15)
+
+
+# ---------------------------------------------------------------- the plan itself
+def test_least_and_lightest():
+    cube = box(1, 1, 1, density=1000.0)
+    least = hollow(cube, wall=0.1, target=Below(0.45), cell_size=0.2)
+    most = hollow(cube, wall=0.1, target=Below(0.45), cell_size=0.2, lightest=True)
+    assert least.target_met and most.target_met
+    assert most.removed_mass > least.removed_mass
+    # the least removal is bounded below by taking mass from the interior's very top:
+    # (500 − 0.9 m) / (1000 − m) ≤ 0.45  ⇒  m ≥ 50 / 0.45
+    assert least.removed_mass >= 50 / 0.45
+    for plan in (least, most):
+        assert plan.after.center_of_mass[2] <= 0.45
+        assert plan.after.mass == pytest.approx(1000 - plan.removed_mass, rel=1e-12)
+
+
+def test_nothing_to_carve_when_the_target_is_met():
+    plan = hollow(box(1, 1, 1, density=1000.0), wall=0.1, target=Below(0.6), cell_size=0.2)
+    assert plan.void is None and not plan.emptied.any() and plan.target_met
+    assert plan.after.mass == pytest.approx(1000.0)
+
+
+def test_an_unreachable_target_says_what_to_do():
+    with pytest.raises(StabilityError, match="thinner --wall"):
+        hollow(box(1, 1, 1, density=1000.0), wall=0.1, target=Below(0.2), cell_size=0.2)
+
+
+def test_a_wall_too_thick_for_the_body():
+    with pytest.raises(GeometryError, match="thinner --wall"):
+        hollow(box(1, 1, 1), wall=0.6, target=Below(0.45))
+
+
+def test_write_takes_stl_or_3mf(tmp_path):
+    plan = hollow(box(1, 1, 1, density=1000.0), wall=0.1, target=Below(0.45), cell_size=0.2)
+    with pytest.raises(GeometryError, match="STL or 3MF"):
+        write_hollow(plan, str(tmp_path / "carved.obj"))
+    assert not (tmp_path / "carved.obj").exists()
+    written = write_hollow(plan, str(tmp_path / "carved.3mf"), void=str(tmp_path / "void.3mf"))
+    assert (tmp_path / "void.3mf").exists()
+    # a 3MF is in millimetres: read back at the same size and mass
+    assert written.mass_properties.mass == pytest.approx(plan.after.mass, rel=1e-6)
+    assert np.allclose(written.mass_properties.center_of_mass, plan.after.center_of_mass, atol=1e-6)
+    assert written.verdict.stands
+
+
+def test_cells_tile_the_interior():
+    import manifold3d
+
+    interior = manifold3d.Manifold.sphere(1.0, 64)
+    cells = grid_cells(interior, 0.3)
+    assert cells.volumes.sum() == pytest.approx(interior.volume(), rel=1e-9)
+    centre = (cells.volumes[:, None] * cells.centres).sum(axis=0) / cells.volumes.sum()
+    assert np.allclose(centre, 0.0, atol=1e-9)
+    assert len({tuple(i) for i in cells.index.tolist()}) == len(cells)
+
+
+def _welded_is_2_manifold(manifold=None, triangles=None) -> bool:
+    """Whether the mesh (a manifold3d ``Manifold`` or triangles (n, 3, 3)), its corners
+    welded by position, is a closed 2-manifold: every edge on exactly two triangles, and
+    the triangles around every corner one fan (a corner where two boxes meet alone is
+    two fans)."""
+    import networkx as nx
+
+    if manifold is not None:
+        mesh = manifold.to_mesh64()
+        triangles = np.asarray(mesh.vert_properties)[:, :3][np.asarray(mesh.tri_verts)]
+    _, weld = np.unique(triangles.reshape(-1, 3), axis=0, return_inverse=True)
+    faces = weld.reshape(-1, 3)
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    if not np.all(counts == 2):
+        return False
+    for corner in np.unique(faces):
+        around = [tuple(sorted(f)) for f in faces[np.any(faces == corner, axis=1)].tolist()]
+        fan = nx.Graph()
+        fan.add_nodes_from(around)
+        fan.add_edges_from((a, b) for a, b in itertools.combinations(around, 2)
+                           if len(set(a) & set(b)) == 2)
+        if nx.number_connected_components(fan) != 1:
+            return False
+    return True
+
+
+def test_manifold_rows_are_exactly_well_composedness():
+    """Every choice of cells in a 2 × 2 × 2 block: the rows hold iff the boxes' union is a
+    closed 2-manifold once welded (each edge on two faces, as a slicer sees it) — and
+    manifold3d took it as it is (given a pinched edge it may build another shape)."""
+    import manifold3d
+
+    cells = grid_cells(manifold3d.Manifold.cube([1.0, 1.0, 1.0]), 0.5)
+    matrix, limit = manifold_rows(cells)
+    for bits in itertools.product((0, 1), repeat=len(cells)):
+        chosen = np.array(bits, dtype=bool)
+        if not chosen.any():
+            continue
+        rows_hold = bool(np.all(matrix @ chosen.astype(float) <= limit))
+        built = box_union(cells, chosen)
+        # each box reaches half a cell beyond the unit cube's side it touches: 0.75 m
+        volume = 0.75**3 * chosen.sum()
+        manifold = (built.status() == manifold3d.Error.NoError and _welded_is_2_manifold(built)
+                    and abs(built.volume() - volume) < 1e-12)  # not "repaired" into another shape
+        assert rows_hold == manifold, bits
