@@ -178,6 +178,13 @@ def balance(body, down=None, *, margin: float | None = None,
                 f"({density - net:g} kg/m³): a pocket of it would make the body lighter there")
     plan = plan_ballast(body if region is None else region, target, props.mass,
                         before.center_of_mass, density=net, shape=shape, depth=depth)
+    if plan.mass > 0 and meets(before, margin, require_tilt_deg, before.support.tolerance,
+                               toward):
+        # the check's own numbers say it meets the target already: a plan of a few
+        # round-off kilograms is no ballast
+        from dataclasses import replace
+
+        plan = replace(plan, mass=0.0, volume=None if plan.volume is None else 0.0)
     if plan.mass > 0:
         from ..bodies.csg import Assembly
 

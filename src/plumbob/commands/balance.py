@@ -56,8 +56,19 @@ def register(subparsers) -> None:
     parser.add_argument("--ballast-shape", choices=("box", "cylinder"), default="box",
                         help="the ballast's shape with --ballast-material (default box; a "
                              "lamina's is a square through its thickness)")
-    # Hollowing (--wall, --out, --void, --lightest; plumbob.balance.hollow) registers its
-    # options here and is called from run() before the ballast; see _hollow below.
+    hollowing = parser.add_argument_group("hollowing (see docs/printing.md)")
+    hollowing.add_argument("--wall", type=length, metavar="T",
+                           help="hollow it first: keep walls T thick (e.g. 2mm) and empty cells "
+                                "of the inside so it meets the target")
+    hollowing.add_argument("--out", metavar="FILE",
+                           help="with --wall: write the carved body here (.stl or .3mf)")
+    hollowing.add_argument("--void", metavar="FILE",
+                           help="with --wall: also write the emptied volume (a slicer modifier)")
+    hollowing.add_argument("--lightest", action="store_true",
+                           help="with --wall: empty as much as the target allows, not as little")
+    hollowing.add_argument("--cell", type=length, metavar="L",
+                           help="with --wall: the cells' size (default: the interior's longest "
+                                "extent / 16)")
     parser.set_defaults(func=run)
 
 
@@ -82,10 +93,54 @@ def _target(args, body, props):
     return down, args.margin, tilt, toward
 
 
-def _hollow(args, reading, props):  # noqa: ARG001 — the place hollowing is wired in
-    """Hollowing (plumbob.balance.hollow) runs here when its options are given; until it
-    is wired, the body is balanced as it is."""
-    return reading.body, props
+def _hollow(args, reading, props):
+    """With --wall: carve the body (plumbob.balance.hollow), write --out (and --void), and
+    go on with the body read back from --out. Returns (body, props, written or None)."""
+    from ..errors import StabilityError
+
+    if args.wall is None:
+        if args.out or args.void or args.lightest or args.cell is not None:
+            raise StabilityError("--out, --void, --lightest and --cell go with --wall T")
+        return reading.body, props, None
+    if not args.out:
+        raise StabilityError("--wall needs --out FILE.stl: where to write the carved body")
+    if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
+        raise StabilityError("--wall carves a solid body: give it without --shell/--infill")
+    import numpy as np
+
+    from ..balance.hollow import hollow, write_hollow
+    from ..balance.targets import target_for
+
+    down, margin, tilt, toward = _target(args, reading.body, props)
+    if toward is not None:
+        raise StabilityError("hollowing meets a margin, or a tilt in every direction: "
+                             "--toward is for ballast alone")
+    target = target_for(reading.body, down=down, margin=margin,
+                        require_tilt=None if tilt is None else float(np.radians(tilt)))
+    plan = hollow(reading.body, wall=args.wall, target=target, lightest=args.lightest,
+                  cell_size=args.cell)
+    written = write_hollow(plan, args.out, void=args.void, units=args.units, down=down)
+    return written.body, written.mass_properties, written
+
+
+def _hollow_text(w, scale: float) -> str:
+    """The hollowing's lines: what was emptied and written, and the written file's check."""
+    from ..report import format_number, format_vector, table
+
+    def num(value: float, digits: int = 6) -> str:
+        return format_number(float(clean(value, scale)), digits)
+
+    p = w.plan
+    rows = [("hollowed", f"walls {num(p.wall)} m: {int(p.emptied.sum())} of {len(p.cells)} cells "
+                         f"of {num(p.cells.size, 4)} m emptied, {num(p.removed_mass)} kg removed"),
+            ("before", f"mass {num(p.before.mass)} kg, centre of mass "
+                       f"{format_vector(clean(p.before.center_of_mass, scale))} m"),
+            ("after (written)", f"mass {num(w.mass_properties.mass)} kg, centre of mass "
+                                f"{format_vector(clean(w.mass_properties.center_of_mass, scale))} m, "
+                                f"{w.verdict.verdict}, margin {num(w.verdict.margin)} m, critical "
+                                f"tilt {num(w.verdict.critical_tilt_deg, 4)}°"),
+            ("wrote", w.out + (f" and the void {w.void}" if w.void else ""))]
+    return table(rows, title="hollowing")
 
 
 def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
@@ -146,7 +201,7 @@ def run(args) -> int:
     from ._common import load_body
 
     reading, props, notes = open_body(args)
-    body, props = _hollow(args, reading, props)
+    body, props, carved = _hollow(args, reading, props)
     down, margin, tilt, toward = _target(args, body, props)
     region = None
     if args.ballast_region:
@@ -162,8 +217,13 @@ def run(args) -> int:
                      shape=args.ballast_shape, g=args.g, props=props)
     kind = getattr(body, "kind", "solid")
     if args.json:
-        print_json({**header(reading, kind), **result.as_dict()}, reading, notes)
+        out = {**header(reading, kind), **result.as_dict()}
+        if carved is not None:
+            out["hollow"] = carved.as_dict()
+        print_json(out, reading, notes)
     else:
         scale = float(np.linalg.norm(np.ptp(body.hull_points(), axis=0)))
+        if carved is not None:
+            print(_hollow_text(carved, scale))
         print(_text(result, args.path, kind, notes, scale))
     return 0 if result.passes else 1
