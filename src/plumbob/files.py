@@ -54,7 +54,7 @@ def read_bytes(path: str, limit: int = MAX_FILE_BYTES) -> bytes:
                              "of file", path=path)
     try:
         with open(path, "rb") as handle:
-            data = handle.read(limit + 1)
+            data = handle.read(min(limit, size) + 1)  # never ask for more than is there
     except OSError as error:
         raise InputFileError(f"cannot be read: {error.strerror or error}", path=path) from None
     if len(data) > limit:
