@@ -115,6 +115,15 @@ def test_ascii_stl_triangle_limit(tmp_path, monkeypatch):
         read(str(path))
 
 
+def test_ply_header_face_count_is_checked_before_trimesh(tmp_path):
+    path = tmp_path / "many.ply"
+    path.write_bytes(b"ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                     b"property float x\nproperty float y\nproperty float z\n"
+                     b"element face 4000000000\nproperty list uchar int vertex_indices\n"
+                     b"end_header\n" + bytes(36))
+    assert_bad_input(run_limited("mass", path), "faces 4000000000", "limit")
+
+
 # ------------------------------------------------------------------ open meshes
 def test_cube_without_top_and_bottom_is_open(tmp_path):
     tri = CUBE_V[CUBE_F]

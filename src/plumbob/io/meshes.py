@@ -126,6 +126,8 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Read
         file_units = check_3mf_archive(path)
     elif file_type == "obj":
         check_obj_indices(path)
+    elif file_type == "ply":
+        _check_ply_header(path)
     elif file_type in ("glb", "gltf"):
         file_units = "meter"  # glTF's unit, by its specification
     if file_units is not None and file_unit_scale(file_units) is None:
@@ -164,7 +166,7 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
 
     try:
         scene = trimesh.load(path, file_type=file_type, force="scene", process=False)
-        meshes, skipped = [], 0
+        meshes, skipped, triangles = [], 0, 0
         graph = scene.graph
         for node in graph.nodes_geometry:  # per instance
             transform, geometry_name = graph[node]
@@ -187,6 +189,8 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
                 if np.linalg.det(matrix[:3, :3]) < 0:
                     faces = faces[:, ::-1]  # a mirror turns the winding inside out
             meshes.append((str(node), vertices[faces]))
+            triangles += len(faces)
+            check_count("triangles", triangles, limits.MAX_TRIANGLES, path=path)
     except PlumbobError:
         raise
     except Exception as error:  # noqa: BLE001 - trimesh's parsers raise every kind on bad input
@@ -256,3 +260,18 @@ def check_obj_indices(path: str) -> None:
             f"{total} vertices{f', {before[owner[at]]} above that line' if values[at] < 0 else ''}"
             "; OBJ counts from 1, negative indices count back): a file counting from 0?",
             path=path)
+
+
+def _check_ply_header(path: str) -> None:
+    """Check the face count a PLY header declares against :data:`plumbob.limits.MAX_TRIANGLES`
+    before trimesh allocates for it (the header is text, whatever the body's encoding)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(1 << 16)
+    except OSError as error:
+        raise InputFileError(f"cannot be read: {error.strerror or error}", path=path) from None
+    for line in head.split(b"end_header", 1)[0].splitlines():  # a few header lines
+        words = line.split()
+        if len(words) == 3 and words[0] == b"element" and words[1] == b"face" and \
+                words[2].isdigit():
+            check_count("faces", int(words[2]), limits.MAX_TRIANGLES, path=path)
