@@ -166,6 +166,27 @@ def test_obj_negative_index_beyond_the_vertices(tmp_path):
     assert_bad_input(run_limited("mass", path), "index -9", "line 21")
 
 
+def test_obj_continued_lines_are_joined_and_errors_name_the_physical_line(tmp_path):
+    faces = ["f " + " ".join(str(i) for i in f) for f in CUBE_F + 1]
+    faces[0] = faces[0].replace(" ", " \\\n", 1)  # 'f \' then the indices on the next line
+    good = obj_text(np.zeros((0, 3), dtype=int)) + "\n".join(faces) + "\n"
+    path = tmp_path / "continued.obj"
+    path.write_text(good)
+    assert cli_json(run_limited("mass", path, "--json"))["volume"] == pytest.approx(1.0)
+    path.write_text(good + "f 1 2 \\\n 99\n")
+    assert_bad_input(run_limited("mass", path), "line 22", "index 99")
+
+
+def test_obj_materials_are_one_body(tmp_path):
+    half = len(CUBE_F) // 2
+    text = obj_text(np.zeros((0, 3), dtype=int)) + "usemtl a\n" + "".join(
+        "f " + " ".join(map(str, f)) + "\n" for f in CUBE_F[:half] + 1) + "usemtl b\n" + "".join(
+        "f " + " ".join(map(str, f)) + "\n" for f in CUBE_F[half:] + 1)
+    path = tmp_path / "materials.obj"
+    path.write_text(text)
+    assert cli_json(run_limited("mass", path, "--json"))["volume"] == pytest.approx(1.0)
+
+
 def test_obj_relative_indices_read_right(tmp_path):
     path = tmp_path / "relative.obj"
     path.write_text(obj_text(CUBE_F - 8))  # -8..-1: the eight vertices above

@@ -143,6 +143,8 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Read
                        "(points or lines)")
     if not meshes:
         raise FormatError("contains no triangle mesh", path=path)
+    if file_type == "obj" and len(meshes) > 1:  # trimesh splits by material: one body
+        meshes = [(stem(path), np.concatenate([tri for _, tri in meshes]))]
     several = len(meshes) > 1
     lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
     parts = []
@@ -213,7 +215,10 @@ def check_obj_indices(path: str) -> None:
     normal indices after ``/`` are blanked), and the triangle count is checked
     against :data:`plumbob.limits.MAX_TRIANGLES` before trimesh builds anything.
     """
-    a = np.frombuffer(read_bytes(path) + b"\n", dtype=np.uint8)
+    data = read_bytes(path) + b"\n"
+    physical = np.frombuffer(data, dtype=np.uint8)
+    # a line ending in a backslash continues on the next: join them, keeping byte offsets
+    a = np.frombuffer(data.replace(b"\\\r\n", b"   ").replace(b"\\\n", b"  "), dtype=np.uint8)
     ends = np.flatnonzero(a == 10)
     starts = np.r_[0, ends[:-1] + 1]
     spaced = _blank(a[np.minimum(starts + 1, len(a) - 1)])
@@ -245,8 +250,8 @@ def check_obj_indices(path: str) -> None:
     except ValueError:  # numpy ≥ 2.3 raises on text that is not numbers
         values = None
     if values is None or len(values) != len(word_start) or np.any(values != np.round(values)):
-        bad = int(np.flatnonzero(face)[0])
-        raise FormatError(f"a face (from line {bad + 1} on) is not a list of whole vertex "
+        bad = int(np.count_nonzero(physical[: starts[face][0]] == 10)) + 1
+        raise FormatError(f"a face (from line {bad} on) is not a list of whole vertex "
                           "numbers", path=path)
     values = values.astype(np.int64)
     owner = np.repeat(np.arange(len(starts)), words)
@@ -255,8 +260,9 @@ def check_obj_indices(path: str) -> None:
     wrong = (values == 0) | (values > total) | (-values > before[owner])
     if wrong.any():
         at = int(np.argmax(wrong))
+        line = int(np.count_nonzero(physical[: starts[owner[at]]] == 10)) + 1
         raise FormatError(
-            f"line {owner[at] + 1}: face index {values[at]} refers to no vertex (the file has "
+            f"line {line}: face index {values[at]} refers to no vertex (the file has "
             f"{total} vertices{f', {before[owner[at]]} above that line' if values[at] < 0 else ''}"
             "; OBJ counts from 1, negative indices count back): a file counting from 0?",
             path=path)
