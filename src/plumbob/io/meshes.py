@@ -48,9 +48,9 @@ def check_3mf_archive(path: str) -> str | None:
 
     Every member's declared size is checked against :data:`plumbob.limits.MAX_ARCHIVE_BYTES`
     (all members together) and :data:`~plumbob.limits.MAX_ARCHIVE_RATIO` (each member's
-    expansion) before anything is extracted, so a zip bomb is refused unread; the model
-    parts are then read (bounded by their checked sizes) and parsed with defusedxml,
-    which refuses DTDs and entity declarations (entity-expansion bombs). Raises
+    expansion) before anything is extracted, so a zip bomb is refused unread; each model
+    part's start is then parsed with defusedxml up to its root element — where any DTD
+    or entity declaration must stand — refusing them (entity-expansion bombs). Raises
     :class:`FormatError` or :class:`LimitError`. The unit is 3MF's ``unit`` attribute
     (default millimeter).
     """
@@ -89,14 +89,11 @@ def check_3mf_archive(path: str) -> str | None:
         unit = None
         for member in models:  # a handful of parts
             try:
-                with archive.open(member) as stream:
-                    text = stream.read(member.file_size + 1)
-                if len(text) > member.file_size:
-                    raise FormatError(f"{member.filename} is longer than its zip entry says: "
-                                      "corrupt archive", path=path)
-                root = safe_xml.fromstring(text, forbid_dtd=True)
-            except PlumbobError:
-                raise
+                with archive.open(member) as stream:  # a DTD can only come before the root
+                    events = safe_xml.iterparse(stream, events=("start",), forbid_dtd=True)
+                    _, root = next(iter(events))
+            except StopIteration:
+                raise FormatError(f"{member.filename} is empty", path=path) from None
             except DefusedXmlException as error:
                 raise FormatError(
                     f"{member.filename} declares a DTD or XML entities ({type(error).__name__}), "
