@@ -150,9 +150,7 @@ class MeshSolid(_UniformSolid):
     def to_geometry(self, segments: int = 128):
         import manifold3d
 
-        verts, index = np.unique(
-            self.triangles.reshape(-1, 3).astype(np.float64), axis=0, return_inverse=True
-        )
+        verts, index = merge_vertices(self.triangles.reshape(-1, 3))
         mesh = manifold3d.Mesh(
             vert_properties=verts.astype(np.float32),
             tri_verts=index.reshape(-1, 3).astype(np.uint32),
