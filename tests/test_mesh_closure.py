@@ -173,6 +173,10 @@ def test_closed_mesh_solid_checks_once_and_keeps_its_moments():
     assert moved.checked and moved.mass_properties().volume == pytest.approx(1.0)
 
 
-def test_a_mesh_solid_needs_float_triangles():
-    with pytest.raises(GeometryError, match="array of floats"):
-        MeshSolid(np.zeros((4, 3, 3), dtype=int))
+def test_a_mesh_solid_needs_real_triangles():
+    with pytest.raises(GeometryError, match="array of real numbers"):
+        MeshSolid(cube().astype(complex))
+    with pytest.raises(GeometryError, match="array of real numbers"):
+        MeshSolid(cube()[:, :2])
+    whole = MeshSolid(np.rint(cube(2) * 2).astype(int))  # whole numbers are coordinates too
+    assert whole.mass_properties().volume == pytest.approx(8.0)

@@ -99,9 +99,11 @@ class MeshSolid(_UniformSolid):
 
     def __post_init__(self) -> None:
         tri = np.asarray(self.triangles)
+        if tri.dtype.kind in "iu":
+            tri = tri.astype(float)
         if tri.ndim != 3 or tri.shape[1:] != (3, 3) or tri.dtype.kind != "f":
-            raise GeometryError("a mesh needs an (n, 3, 3) array of floats: its triangles' "
-                                "corners, m")
+            raise GeometryError("a mesh needs an (n, 3, 3) array of real numbers: its "
+                                "triangles' corners, m")
         if len(tri) < 4:
             raise GeometryError(
                 f"a closed mesh needs at least 4 triangles, this one has {len(tri)}"
