@@ -126,7 +126,7 @@ def test_several_shells_add():
 
 def test_open_mesh_is_an_error_not_a_number():
     tri = trimesh.creation.box([1, 1, 1]).triangles[:-1]
-    with pytest.raises(GeometryError, match="not closed"):
+    with pytest.raises(GeometryError, match="is open"):
         MeshSolid(tri).mass_properties()
 
 

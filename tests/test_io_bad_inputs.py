@@ -69,7 +69,7 @@ def test_unreadable_file(tmp_path, monkeypatch):
     def refuse(*args, **kwargs):
         raise PermissionError(13, "Permission denied")
 
-    monkeypatch.setattr("plumbob.io.open", refuse, raising=False)
+    monkeypatch.setattr("plumbob.io.stl.open", refuse, raising=False)
     with pytest.raises(InputFileError, match="cannot be read: Permission denied"):
         read(str(path))
 

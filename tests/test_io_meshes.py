@@ -11,9 +11,10 @@ from conftest import rel
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "bad_inputs"))
 from make_bad_inputs import ascii_stl, binary_stl, cube, model_xml, three_mf  # noqa: E402
 
+from plumbob import limits  # noqa: E402
 from plumbob.bodies.csg import Assembly  # noqa: E402
 from plumbob.bodies.solid import MeshSolid  # noqa: E402
-from plumbob.errors import FormatError, GeometryError  # noqa: E402
+from plumbob.errors import FormatError, GeometryError, LimitError  # noqa: E402
 from plumbob.io import read  # noqa: E402
 from plumbob.io.meshes import read_mesh  # noqa: E402
 
@@ -136,11 +137,12 @@ def test_mirrored_instance_keeps_outward_winding(tmp_path):
     assert not any("inside out" in n for n in reading.notices)
 
 
-def test_3mf_expansion_limit_is_checked_before_reading(tmp_path):
+def test_3mf_expansion_limit_is_checked_before_reading(tmp_path, monkeypatch):
     path = write(tmp_path / "cube.3mf", three_mf(model_xml(cube())))
     assert read_mesh(path).body.mass_properties().volume == pytest.approx(1e-9)
-    with pytest.raises(FormatError, match="possible zip bomb"):
-        read_mesh(path, max_expanded=1000)
+    monkeypatch.setattr(limits, "MAX_ARCHIVE_BYTES", 1000)
+    with pytest.raises(LimitError, match="MAX_ARCHIVE_BYTES"):
+        read_mesh(path)
 
 
 def test_3mf_without_a_model_is_refused(tmp_path):

@@ -54,9 +54,7 @@ def read_bytes(path: str, limit: int = MAX_FILE_BYTES) -> bytes:
                              "of file", path=path)
     try:
         with open(path, "rb") as handle:
-            data = handle.read(size + 1)  # a buffer of the file's size, not of the limit's
-            if len(data) > size:  # it grew: read on, never past the limit
-                data += handle.read(limit + 1 - len(data))
+            data = handle.read(min(limit, size) + 1)  # never ask for more than is there
     except OSError as error:
         raise InputFileError(f"cannot be read: {error.strerror or error}", path=path) from None
     if len(data) > limit:

@@ -99,9 +99,11 @@ class MeshSolid(_UniformSolid):
 
     def __post_init__(self) -> None:
         tri = np.asarray(self.triangles)
+        if tri.dtype.kind in "iu":
+            tri = tri.astype(float)
         if tri.ndim != 3 or tri.shape[1:] != (3, 3) or tri.dtype.kind != "f":
-            raise GeometryError("a mesh needs an (n, 3, 3) array of floats: its triangles' "
-                                "corners, m")
+            raise GeometryError("a mesh needs an (n, 3, 3) array of real numbers: its "
+                                "triangles' corners, m")
         if len(tri) < 4:
             raise GeometryError(
                 f"a closed mesh needs at least 4 triangles, this one has {len(tri)}"
@@ -150,9 +152,7 @@ class MeshSolid(_UniformSolid):
     def to_geometry(self, segments: int = 128):
         import manifold3d
 
-        verts, index = np.unique(
-            self.triangles.reshape(-1, 3).astype(np.float64), axis=0, return_inverse=True
-        )
+        verts, index = merge_vertices(self.triangles.reshape(-1, 3))
         mesh = manifold3d.Mesh(
             vert_properties=verts.astype(np.float32),
             tri_verts=index.reshape(-1, 3).astype(np.uint32),

@@ -13,6 +13,7 @@ from ..errors import GeometryError
 
 __all__ = [
     "ABSURD_COORDINATE",
+    "ASSUMED_METRES_LIMIT",
     "PLAUSIBLE_SIZE",
     "check_extent",
     "check_reach",
@@ -24,22 +25,38 @@ __all__ = [
 ABSURD_COORDINATE = 1e9
 #: m; bounding-box diagonals outside this range draw a warning about units
 PLAUSIBLE_SIZE = (1e-5, 1e3)
+#: m; a model with no unit in its file (metres assumed) that is larger than this along
+#: any axis is almost surely in millimetres: a printed part, a figurine, a bracket —
+#: metres would make it a building. It draws a specific notice suggesting --units mm.
+ASSUMED_METRES_LIMIT = 10.0
 #: items per pass of :func:`finite_bounds`
 CHUNK = 1 << 16
 
 
-def check_extent(lo: np.ndarray, hi: np.ndarray, *, path: str | None) -> tuple[str, ...]:
+def check_extent(lo: np.ndarray, hi: np.ndarray, *, path: str | None,
+                 assumed: bool = False) -> tuple[str, ...]:
     """Reject absurd coordinates; warn when the size is implausible for its units.
 
-    ``lo``, ``hi``: the bounding box corners in metres (units applied).
+    ``lo``, ``hi``: the bounding box corners in metres (units applied). ``assumed``:
+    the file has no unit and none was given, so metres were assumed; then a model
+    larger than :data:`ASSUMED_METRES_LIMIT` along an axis gets its own notice.
 
     >>> check_extent(np.zeros(2), np.array([2000.0, 0.0]), path=None)[0][:30]
     'size: the model is 2000 m acro'
+    >>> print(check_extent(np.zeros(3), np.array([40.0, 30.0, 119.0]), path=None,
+    ...                    assumed=True)[0])
+    size: the model is 40 × 30 × 119 m, implausible for metres (assumed: the file has no \
+unit); it is most likely in millimetres: pass --units mm
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
     check_reach(float(max(np.abs(lo).max(), np.abs(hi).max())), path=path)
     size = float(np.linalg.norm(hi - lo))
+    sides = hi - lo
+    if assumed and float(sides.max()) > ASSUMED_METRES_LIMIT:
+        shown = " × ".join(f"{side:.4g}" for side in sides)
+        return (f"size: the model is {shown} m, implausible for metres (assumed: the file "
+                "has no unit); it is most likely in millimetres: pass --units mm",)
     small, large = PLAUSIBLE_SIZE
     if size > large:
         return (f"size: the model is {size:.4g} m across, implausible for its units; "

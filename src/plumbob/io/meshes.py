@@ -6,65 +6,82 @@ A file with several meshes (a 3MF with several objects, a glTF scene) gives an
 :class:`~plumbob.bodies.csg.Assembly`, one named part per mesh instance, each
 placed by its scene transform.
 
-3MF is a zip of XML. Before trimesh opens it, the archive's declared sizes are
-checked against :data:`MAX_EXPANDED_BYTES` (a zip bomb is refused unread) and
-the start of every model part is parsed with defusedxml, which refuses DTDs and
-entity declarations (entity-expansion bombs). trimesh itself parses with entity
-resolution off.
+3MF is a zip of XML. Before trimesh opens it, the archive's declared sizes and
+expansion ratios are checked against :mod:`plumbob.limits` (a zip bomb is
+refused unread) and every model part is parsed with defusedxml, which refuses
+DTDs and entity declarations (entity-expansion bombs). trimesh itself parses
+with entity resolution off.
+
+OBJ face indices are checked before trimesh reads them (:func:`check_obj_indices`):
+an index of 0 (a file counting from 0) or past the vertices would otherwise wrap
+round to another vertex and give a wrong mass without a word.
 """
 
 from __future__ import annotations
 
 import os
+import warnings
 import zipfile
 
 import numpy as np
 
-from ..errors import FormatError, InputFileError, PlumbobError
+from .. import limits
+from ..errors import FormatError, InputFileError, LimitError, PlumbobError
+from ..files import read_bytes
+from ..limits import check_count
 from ..reading import Reading
 from ..units import file_unit_scale, units_scale
 from .checks import check_extent, finite_bounds
 from .parts import assemble, stem
 from .solids import mesh_solid
 
-__all__ = ["MESH_SUFFIXES", "MAX_EXPANDED_BYTES", "read_mesh", "check_3mf_archive"]
+__all__ = ["MESH_SUFFIXES", "read_mesh", "check_3mf_archive", "check_obj_indices"]
 
 MESH_SUFFIXES = {".obj": "obj", ".ply": "ply", ".off": "off", ".3mf": "3mf", ".glb": "glb",
                  ".gltf": "gltf"}
-#: bytes; a 3MF archive whose parts expand past this is refused
-MAX_EXPANDED_BYTES = 1 << 30
 #: a 3MF with more parts than this is refused
 MAX_ARCHIVE_MEMBERS = 10_000
 
 
-def check_3mf_archive(path: str, max_expanded: int = MAX_EXPANDED_BYTES) -> str | None:
+def check_3mf_archive(path: str) -> str | None:
     """Check a 3MF archive before it is unpacked; return the unit its model declares.
 
-    Raises :class:`FormatError` when it is not a zip, expands past
-    ``max_expanded`` bytes, has no model, or its model XML declares a DTD or
-    entities. The unit is 3MF's ``unit`` attribute (default millimeter).
+    Every member's declared size is checked against :data:`plumbob.limits.MAX_ARCHIVE_BYTES`
+    (all members together) and :data:`~plumbob.limits.MAX_ARCHIVE_RATIO` (each member's
+    expansion) before anything is extracted, so a zip bomb is refused unread; each model
+    part's start is then parsed with defusedxml up to its root element — where any DTD
+    or entity declaration must stand — refusing them (entity-expansion bombs). Raises
+    :class:`FormatError` or :class:`LimitError`. The unit is 3MF's ``unit`` attribute
+    (default millimeter).
     """
     import defusedxml.ElementTree as safe_xml
     from defusedxml import DefusedXmlException
 
     try:
         archive = zipfile.ZipFile(path)
-    except (zipfile.BadZipFile, zipfile.LargeZipFile, ValueError, EOFError) as error:
+        members = archive.infolist()
+    except NotImplementedError as error:  # a compression or zip version Python lacks
+        raise FormatError(f"uses a zip feature Python cannot read ({error}): save it again "
+                          "as a plain 3MF", path=path) from None
+    except Exception as error:  # noqa: BLE001 - zipfile raises many kinds on corrupt input
         raise FormatError(f"is not a readable 3MF (zip) archive: {error}", path=path) from None
     with archive:
-        try:
-            members = archive.infolist()
-        except Exception as error:  # noqa: BLE001 - zipfile raises many kinds on corrupt input
-            raise FormatError(f"has a corrupt zip directory: {error}", path=path) from None
-        if len(members) > MAX_ARCHIVE_MEMBERS:
-            raise FormatError(f"has {len(members)} archive parts (limit {MAX_ARCHIVE_MEMBERS}): "
-                              "refused", path=path)
+        check_count("archive parts", len(members), MAX_ARCHIVE_MEMBERS, path=path)
+        packed = max(os.path.getsize(path), 1)
         expanded = sum(m.file_size for m in members)
-        if expanded > max_expanded:
-            raise FormatError(
-                f"would expand to {expanded / 2**20:.0f} MiB (limit {max_expanded / 2**20:.0f} MiB)"
-                f" from {os.path.getsize(path) / 2**20:.2g} MiB: refused as a possible zip bomb",
+        if expanded > limits.MAX_ARCHIVE_BYTES:
+            raise LimitError(
+                f"would expand to {expanded} bytes, over plumbob's limit of "
+                f"{limits.MAX_ARCHIVE_BYTES} (plumbob.limits.MAX_ARCHIVE_BYTES): refused unread",
                 path=path)
+        for m in members:  # a handful of parts
+            ratio = m.file_size / max(m.compress_size, 1)
+            if m.file_size > 2**20 and ratio > limits.MAX_ARCHIVE_RATIO:
+                raise FormatError(
+                    f"{m.filename} would expand {ratio:.0f} times, to {m.file_size / 2**20:.0f}"
+                    f" MiB from a {packed / 2**20:.2g} MiB file (limit {limits.MAX_ARCHIVE_RATIO}"
+                    " times, plumbob.limits.MAX_ARCHIVE_RATIO): refused unread as a possible zip "
+                    "bomb", path=path)
         models = [m for m in members if m.filename.lower().endswith(".model")]
         if not models:
             raise FormatError("is a zip archive with no 3D model part (3D/3dmodel.model): "
@@ -72,26 +89,29 @@ def check_3mf_archive(path: str, max_expanded: int = MAX_EXPANDED_BYTES) -> str 
         unit = None
         for member in models:  # a handful of parts
             try:
-                with archive.open(member) as stream:
+                with archive.open(member) as stream:  # a DTD can only come before the root
                     events = safe_xml.iterparse(stream, events=("start",), forbid_dtd=True)
                     _, root = next(iter(events))
+            except StopIteration:
+                raise FormatError(f"{member.filename} is empty", path=path) from None
             except DefusedXmlException as error:
                 raise FormatError(
                     f"{member.filename} declares a DTD or XML entities ({type(error).__name__}), "
                     "which 3MF never needs: refused (entity-expansion attack?)",
                     path=path) from None
-            except StopIteration:
-                raise FormatError(f"{member.filename} is empty", path=path) from None
+            except NotImplementedError as error:
+                raise FormatError(f"uses a zip feature Python cannot read ({error}): save it "
+                                  "again as a plain 3MF", path=path) from None
             except Exception as error:  # noqa: BLE001 - XML and zip errors of every kind
-                raise FormatError(f"{member.filename} is not well-formed XML: {error}",
+                text = str(error).splitlines()[0][:200] if str(error) else type(error).__name__
+                raise FormatError(f"{member.filename} is not well-formed XML: {text}",
                                   path=path) from None
             if "3dmodel.model" in member.filename.lower():
                 unit = root.attrib.get("unit", "millimeter")
     return unit or "millimeter"
 
 
-def read_mesh(path: str, units: str | None = None, repair: bool = False,
-              *, max_expanded: int = MAX_EXPANDED_BYTES) -> Reading:
+def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Reading:
     """Read an OBJ, PLY, OFF, 3MF, GLB or glTF file as a body (see module docstring)."""
     suffix = os.path.splitext(path)[1].lower()
     file_type = MESH_SUFFIXES.get(suffix)
@@ -100,7 +120,11 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
                              path=path)
     file_units = None
     if file_type == "3mf":
-        file_units = check_3mf_archive(path, max_expanded)
+        file_units = check_3mf_archive(path)
+    elif file_type == "obj":
+        check_obj_indices(path)
+    elif file_type == "ply":
+        _check_ply_header(path)
     elif file_type in ("glb", "gltf"):
         file_units = "meter"  # glTF's unit, by its specification
     if file_units is not None and file_unit_scale(file_units) is None:
@@ -116,13 +140,15 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
                        "(points or lines)")
     if not meshes:
         raise FormatError("contains no triangle mesh", path=path)
+    if file_type == "obj" and len(meshes) > 1:  # trimesh splits by material: one body
+        meshes = [(stem(path), np.concatenate([tri for _, tri in meshes]))]
     several = len(meshes) > 1
     lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
     parts = []
     for _, tri in meshes:  # per mesh instance
         tlo, thi = finite_bounds(tri, path=path)
         lo, hi = np.minimum(lo, tlo * scale), np.maximum(hi, thi * scale)
-    notices += check_extent(lo, hi, path=path)
+    notices += check_extent(lo, hi, path=path, assumed=units is None and file_units is None)
     for name, tri in meshes:
         body, more = mesh_solid(tri * scale if scale != 1.0 else tri, path=path, name=name,
                                 repair=repair, label=f"mesh {name!r}" if several else None,
@@ -139,7 +165,7 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
 
     try:
         scene = trimesh.load(path, file_type=file_type, force="scene", process=False)
-        meshes, skipped = [], 0
+        meshes, skipped, triangles = [], 0, 0
         graph = scene.graph
         for node in graph.nodes_geometry:  # per instance
             transform, geometry_name = graph[node]
@@ -162,6 +188,8 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
                 if np.linalg.det(matrix[:3, :3]) < 0:
                     faces = faces[:, ::-1]  # a mirror turns the winding inside out
             meshes.append((str(node), vertices[faces]))
+            triangles += len(faces)
+            check_count("triangles", triangles, limits.MAX_TRIANGLES, path=path)
     except PlumbobError:
         raise
     except Exception as error:  # noqa: BLE001 - trimesh's parsers raise every kind on bad input
@@ -169,3 +197,84 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
         raise FormatError(f"cannot be read as {file_type.upper()}: {type(error).__name__}"
                           f"{': ' + text if text else ''}", path=path) from None
     return meshes, skipped
+
+
+def _blank(a: np.ndarray) -> np.ndarray:
+    return (a == 32) | (a == 9) | (a == 13)
+
+
+def check_obj_indices(path: str) -> None:
+    """Refuse an OBJ whose face refers to a vertex it does not have, naming the line.
+
+    OBJ counts vertices from 1; a negative index counts back from the last vertex
+    defined before its line. One vectorised pass over the file's bytes: the first
+    number of every word of every ``f`` line is parsed in one C call (texture and
+    normal indices after ``/`` are blanked), and the triangle count is checked
+    against :data:`plumbob.limits.MAX_TRIANGLES` before trimesh builds anything.
+    """
+    data = read_bytes(path) + b"\n"
+    physical = np.frombuffer(data, dtype=np.uint8)
+    # a line ending in a backslash continues on the next: join them, keeping byte offsets
+    a = np.frombuffer(data.replace(b"\\\r\n", b"   ").replace(b"\\\n", b"  "), dtype=np.uint8)
+    ends = np.flatnonzero(a == 10)
+    starts = np.r_[0, ends[:-1] + 1]
+    spaced = _blank(a[np.minimum(starts + 1, len(a) - 1)])
+    vertex = (a[starts] == ord("v")) & spaced
+    face = (a[starts] == ord("f")) & spaced
+    if not face.any():
+        return
+    before = np.cumsum(vertex) - vertex  # vertices defined above each line
+    total = int(vertex.sum())
+    # the bytes of face lines after their 'f': one word per vertex reference
+    step = np.zeros(len(a) + 1, dtype=np.int8)
+    step[starts[face] + 2] += 1
+    step[ends[face]] -= 1
+    inside = np.cumsum(step[:-1], dtype=np.int8).view(bool)
+    word = inside & ~_blank(a)
+    word_start = np.flatnonzero(word & ~np.r_[False, word[:-1]])
+    slash = (a == ord("/")) & word
+    seen = np.cumsum(slash, dtype=np.int32)
+    base = np.zeros(len(a), dtype=np.int32)
+    base[word_start] = seen[word_start]
+    keep = (word & (seen == np.maximum.accumulate(base))) | (a == 10)  # before any '/'
+    numbers = np.where(keep, a, np.uint8(32))
+    words = np.bincount(np.searchsorted(starts, word_start, side="right") - 1,
+                        minlength=len(starts))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            values = np.fromstring(numbers.tobytes(), sep=" ")  # one C pass
+    except ValueError:  # numpy ≥ 2.3 raises on text that is not numbers
+        values = None
+    if values is None or len(values) != len(word_start) or np.any(values != np.round(values)):
+        bad = int(np.count_nonzero(physical[: starts[face][0]] == 10)) + 1
+        raise FormatError(f"a face (from line {bad} on) is not a list of whole vertex "
+                          "numbers", path=path)
+    values = values.astype(np.int64)
+    owner = np.repeat(np.arange(len(starts)), words)
+    check_count("triangles", int(np.maximum(words[face] - 2, 0).sum()), limits.MAX_TRIANGLES,
+                path=path)
+    wrong = (values == 0) | (values > total) | (-values > before[owner])
+    if wrong.any():
+        at = int(np.argmax(wrong))
+        line = int(np.count_nonzero(physical[: starts[owner[at]]] == 10)) + 1
+        raise FormatError(
+            f"line {line}: face index {values[at]} refers to no vertex (the file has "
+            f"{total} vertices{f', {before[owner[at]]} above that line' if values[at] < 0 else ''}"
+            "; OBJ counts from 1, negative indices count back): a file counting from 0?",
+            path=path)
+
+
+def _check_ply_header(path: str) -> None:
+    """Check the face count a PLY header declares against :data:`plumbob.limits.MAX_TRIANGLES`
+    before trimesh allocates for it (the header is text, whatever the body's encoding)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(1 << 16)
+    except OSError as error:
+        raise InputFileError(f"cannot be read: {error.strerror or error}", path=path) from None
+    for line in head.split(b"end_header", 1)[0].splitlines():  # a few header lines
+        words = line.split()
+        if len(words) == 3 and words[0] == b"element" and words[1] == b"face" and \
+                words[2].isdigit():
+            check_count("faces", int(words[2]), limits.MAX_TRIANGLES, path=path)

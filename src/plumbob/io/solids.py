@@ -19,19 +19,21 @@ __all__ = ["mesh_solid"]
 
 def mesh_solid(triangles: np.ndarray, *, path: str | None = None, name: str | None = None,
                repair: bool = False, label: str | None = None, scale: float = 1.0,
-               extent: bool = False) -> tuple[MeshSolid, tuple[str, ...]]:
+               extent: bool = False, assumed: bool = False) -> tuple[MeshSolid, tuple[str, ...]]:
     """A :class:`MeshSolid` from a triangle soup (n, 3, 3) in metres, checked and fixed.
 
     See :func:`plumbob.mesh.check_solid` for ``repair``, ``label`` and ``scale``;
     errors name ``path``. ``extent`` adds the implausible-size check on the
     mesh's bounding box (:func:`~plumbob.io.checks.check_extent`), for readers
-    that did not find the box while parsing.
+    that did not find the box while parsing; ``assumed``: the file has no unit and
+    metres were assumed (see :func:`~plumbob.io.checks.check_extent`).
     """
     try:
         checked = check_solid(triangles, repair=repair, label=label, scale=scale)
     except PlumbobError as error:
         raise type(error)(error.message, path=path) from None
-    notices = check_extent(checked.surface.lo, checked.surface.hi, path=path) if extent else ()
+    notices = check_extent(checked.surface.lo, checked.surface.hi, path=path,
+                           assumed=assumed) if extent else ()
     try:
         body = MeshSolid(checked.triangles, name=name, moments=checked.moments, checked=True)
     except PlumbobError as error:

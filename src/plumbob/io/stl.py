@@ -17,14 +17,16 @@ if overlapping shells have to be united).
 
 from __future__ import annotations
 
-import os
 import sys
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
+from .. import limits
 from ..errors import FormatError, InputFileError
+from ..files import require_regular_file
+from ..limits import check_count
 from ..reading import Reading
 from ..units import units_scale
 from .checks import check_extent, check_reach, raise_nonfinite
@@ -66,9 +68,13 @@ class StlFile:
 
 
 def load_stl(path: str) -> StlFile:
-    """Parse the STL at ``path`` (no units, no checks beyond the format and finiteness)."""
+    """Parse the STL at ``path`` (no units, no checks beyond the format, finiteness and
+    :data:`plumbob.limits.MAX_TRIANGLES`, checked from the header before allocating).
+
+    Only a regular file is read (:func:`plumbob.files.require_regular_file`), in blocks
+    bounded by its size."""
+    size = require_regular_file(path)
     try:
-        size = os.path.getsize(path)
         with open(path, "rb") as f:
             head = f.read(84)
     except OSError as error:
@@ -78,7 +84,12 @@ def load_stl(path: str) -> StlFile:
     looks_ascii = head.lstrip()[:5].lower() == b"solid"
     if size >= 84:
         count = int.from_bytes(head[80:84], "little")
-        if 84 + 50 * count == size:
+        if 84 + 50 * count == size and not (count == 0 and looks_ascii):
+            if count == 0:
+                raise FormatError("is a binary STL of 0 triangles: there is no solid to "
+                                  "measure", path=path)
+            check_count("triangles", count, limits.MAX_TRIANGLES, path=path,
+                        hint="split the mesh or raise plumbob.limits.MAX_TRIANGLES")
             return _load_binary(path, count)
         if looks_ascii:
             loaded = _load_ascii(path, size)
@@ -202,6 +213,8 @@ def _parse_block(block: bytes, state: _AsciiState, path: str) -> None:
     solids = _line_tokens(a, prev, b"solid")
     vertex = _line_tokens(a, prev, b"vertex")
     state.facets += low.count(b"endfacet")
+    check_count("triangles", state.facets, limits.MAX_TRIANGLES, path=path,
+                hint="split the mesh or raise plumbob.limits.MAX_TRIANGLES")
     ends = newlines[np.searchsorted(newlines, vertex + 6)]
     # Keep the bytes from after each 'vertex' to its line's end (newline included).
     spans = np.bincount(vertex + 6, minlength=len(a) + 1) - np.bincount(ends + 1,
@@ -308,7 +321,8 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     scale, notices = units_scale(units)
     notices = list(notices) + list(stl.notices)
     if stl.lo is not None:
-        notices += check_extent(stl.lo * scale, stl.hi * scale, path=path)
+        notices += check_extent(stl.lo * scale, stl.hi * scale, path=path,
+                                assumed=units is None)
     else:
         check_reach(stl.reach * scale, path=path)
     several = len(stl.solids) > 1
@@ -318,6 +332,7 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     for solid, name in zip(stl.solids, names):
         tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float) * scale
         body, more = mesh_solid(tri, path=path, name=name, repair=repair, extent=stl.lo is None,
+                                assumed=units is None,
                                 label=f"solid {name!r}" if several else None, scale=scale)
         parts.append(body)
         notices.extend(more)

@@ -1,5 +1,9 @@
 """Triangle meshes on their own: welding, topology, closure, repair, shells, the solid check.
 
+The closure rule is :mod:`plumbob.mesh.closure`'s: a surface is closed when no loop
+of its unshared edges spans an area, once copies of a vertex closer than
+:data:`plumbob.tolerances.WELD` of the size are welded (:mod:`plumbob.mesh.weld`).
+
 These functions take any triangle soup — an ``(n, 3, 3)`` array of corners in
 metres, as a reader, a generator or a user's own code makes it — and need
 nothing from files or bodies. The readers in :mod:`plumbob.io` call
@@ -30,12 +34,22 @@ plumbob.errors.GeometryError: is open with a hole too large to close safely (3 b
 
 from __future__ import annotations
 
-from .closure import CLOSURE_TOLERANCE, SurfaceSummary, is_closed, surface_summary
+from .closure import (
+    CLOSURE_TOLERANCE,
+    Holes,
+    SurfaceSummary,
+    edges_pair,
+    holes,
+    is_closed,
+    require_closed,
+    surface_summary,
+)
+from .graph import connected_components
 from .repair import HOLE_AREA_FRACTION, fill_holes
 from .shells import resolve_shells, unite_shells
 from .solid import FULL_CHECK_LIMIT, CheckedSolid, check_solid
-from .topology import Topology, connected_components, mesh_topology
-from .weld import merge_vertices
+from .topology import Topology, mesh_topology
+from .weld import merge_vertices, weld_near
 from .winding import solid_angle, solid_angles, winding_numbers
 
 __all__ = [
@@ -43,18 +57,23 @@ __all__ = [
     "FULL_CHECK_LIMIT",
     "HOLE_AREA_FRACTION",
     "CheckedSolid",
+    "Holes",
     "SurfaceSummary",
     "Topology",
     "check_solid",
     "connected_components",
+    "edges_pair",
     "fill_holes",
+    "holes",
     "is_closed",
     "merge_vertices",
     "mesh_topology",
+    "require_closed",
     "resolve_shells",
     "solid_angle",
     "solid_angles",
     "surface_summary",
     "unite_shells",
+    "weld_near",
     "winding_numbers",
 ]

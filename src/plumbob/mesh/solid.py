@@ -1,11 +1,14 @@
 """Is this triangle soup a solid? The check every mesh passes before it is measured.
 
-A triangle mesh must close and face outward. The cheap test (its vector area
-vanishes, :mod:`plumbob.mesh.closure`) runs on every mesh; the full
-topological check — vertices merged, edges paired, boundary edges counted and
-located, winding made consistent, shells found and checked for overlap — runs
-when the cheap test fails, when ``repair`` is asked for, or when the mesh is
-small enough (:data:`FULL_CHECK_LIMIT`) that it costs little.
+A triangle mesh must close and face outward. The cheap tests run on every
+mesh: its vector area vanishes and every directed edge meets its reverse
+(:func:`~plumbob.mesh.closure.edges_pair`, one pass, no sort). The full
+topological check — vertices welded (exact copies, then copies within
+:data:`plumbob.tolerances.WELD` of the size), edges paired, holes told from
+T-junction slits and located, winding made consistent, shells found and checked
+for overlap — runs when a cheap test fails, when ``repair`` is asked for, or
+when the mesh is small enough (:data:`FULL_CHECK_LIMIT`) that it costs little.
+The closure rule itself is :mod:`plumbob.mesh.closure`'s.
 
 Errors here name no file: a reader adds its path (see :mod:`plumbob.io.solids`).
 """
