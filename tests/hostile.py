@@ -66,3 +66,21 @@ def assert_bad_input(outcome: Outcome, *phrases: str) -> str:
     for phrase in phrases:
         assert phrase.lower() in line.lower(), (phrase, line)
     return line
+
+
+def run_in_process(capsys, *args: str, cwd: str | os.PathLike | None = None) -> Outcome:
+    """``plumbob *args`` through :func:`plumbob.cli.main` in this process: the same exit
+    status and output as the command, without a process start-up (for corpora of many
+    files whose limits :func:`run_limited` already covers case by case)."""
+    from plumbob.cli import main
+
+    capsys.readouterr()
+    here = os.getcwd()
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        status = main([str(arg) for arg in args])
+    finally:
+        os.chdir(here)
+    out, err = capsys.readouterr()
+    return Outcome(status, out, err)
