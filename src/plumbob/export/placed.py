@@ -31,7 +31,9 @@ UNIT_NAMES_3MF = {"m": "meter", "cm": "centimeter", "mm": "millimeter", "in": "i
 
 def body_triangles(body) -> np.ndarray:
     """The body's surface as triangles (n, 3, 3), m: a mesh's own triangles, else the
-    boolean-geometry surface of :meth:`~plumbob.bodies.base.Body.to_geometry`."""
+    boolean-geometry surface of :meth:`~plumbob.bodies.base.Body.to_geometry` (curves cut
+    into 128 segments a turn: a curved shape's placed surface reaches below z = 0 by at
+    most that tessellation's sagitta, 3·10⁻⁴ of its radius)."""
     tri = getattr(body, "triangles", None)
     if tri is not None:
         return np.asarray(tri, dtype=float)
@@ -101,6 +103,9 @@ def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None =
     if fmt == "3mf" and UNIT_NAMES_3MF[unit] == "meter":
         unit = "m"
     scale = 1.0 / LENGTH_UNITS[unit]
+    if any(np.asarray(p.down).size != 3 for p in poses):
+        raise GeometryError("cannot export a lamina's poses as meshes: it stands in its own "
+                            "plane and has no surface of triangles (--plot draws them)")
     tri = body_triangles(body)
     if tri.ndim != 3 or tri.shape[1:] != (3, 3):
         raise GeometryError("cannot export its poses as meshes: it is not a solid with a "
