@@ -67,6 +67,18 @@ def _face_edges(h: Hull3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return order, np.cumsum(count) - count, count
 
 
+def _distinct(keys: np.ndarray) -> np.ndarray:
+    """The distinct values of an integer array, sorted (a sort, no hashing)."""
+    keys = np.sort(keys)
+    return keys[np.concatenate(([True], keys[1:] != keys[:-1]))] if len(keys) else keys
+
+
+def _member(keys: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """Which of ``keys`` are in the sorted array ``known``."""
+    pos = np.minimum(np.searchsorted(known, keys), max(len(known) - 1, 0))
+    return (known[pos] == keys) if len(known) else np.zeros(len(keys), dtype=bool)
+
+
 def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
     """The physical face of each of ``sinks`` (exact face ids): the exact faces reached
     through neighbours whose corners all lie within ``tol`` (m) of the sink's plane."""
@@ -79,8 +91,8 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
     f_owner, f_face = owner, sinks
     while len(f_owner):
         rows, idx = expand(count[f_face], start[f_face])
-        key = np.unique(f_owner[rows] * nF + h.eg[order[idx]])
-        key = key[~np.isin(key, known, assume_unique=True)]
+        key = _distinct(f_owner[rows] * nF + h.eg[order[idx]])
+        key = key[~_member(key, known)]
         o, g = key // nF, key % nF
         rows, idx = expand(count[g], start[g])
         corner = h.ea[order[idx]]
@@ -89,14 +101,14 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
         np.maximum.at(worst, rows, off)
         ok = (worst <= tol) & (dot(h.normals[g], n_s[o]) > 0)
         f_owner, f_face = o[ok], g[ok]
-        known = np.union1d(known, key[ok])
+        known = np.sort(np.concatenate((known, key[ok])))
     owner, face = known // nF, known % nF
 
     # the boundary: edges of a member face whose other side is not a member
     rows, idx = expand(count[face], start[face])
     edge = order[idx]
     o = owner[rows]
-    outside = ~np.isin(o * nF + h.eg[edge], known, assume_unique=False)
+    outside = ~_member(o * nF + h.eg[edge], known)
     edge, o = edge[outside], o[outside]
     A, D = h.X[h.ea[edge]], h.X[h.eb[edge]] - h.X[h.ea[edge]]
     foot = (h_s[o])[:, None] * n_s[o]

@@ -30,8 +30,8 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise dot products of (…, 3) arrays."""
-    return (a * b).sum(axis=-1)
+    """Row-wise dot products of (…, 3) arrays (einsum: no (…, 3) temporary)."""
+    return np.einsum("...i,...i->...", a, b)
 
 
 def group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
