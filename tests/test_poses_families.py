@@ -11,7 +11,6 @@ from plumbob.bodies.primitives import box
 from plumbob.bodies.solid import MeshSolid
 from plumbob.loading import read
 from plumbob.stability import poses_from_points, resting_poses
-from plumbob.stability.poses.vectors import components
 
 
 def mesh_body(mesh: trimesh.Trimesh) -> MeshSolid:
@@ -145,28 +144,6 @@ def test_float32_noise_never_splits_a_face(tmp_path):
     sides = [p for p in ps.poses if len(p.face) == 4]
     assert len(sides) == 10 and len([p for p in ps.poses if len(p.face) == 10]) == 2
     assert all(p.critical_tilt_deg == pytest.approx(18.0, abs=0.01) for p in sides)
-
-
-def test_components_matches_a_breadth_first_search():
-    rng = np.random.default_rng(5)
-    for _ in range(50):
-        n = int(rng.integers(1, 60))
-        i, j = rng.integers(0, n, (2, int(rng.integers(0, 80))))
-        label = components(n, i, j)
-        seen = -np.ones(n, dtype=int)
-        adj = [[] for _ in range(n)]
-        for a, b in zip(i, j):
-            adj[a].append(b)
-            adj[b].append(a)
-        for s in range(n):
-            if seen[s] < 0:
-                stack, seen[s] = [s], s
-                while stack:
-                    for b in adj[stack.pop()]:
-                        if seen[b] < 0:
-                            seen[b] = s
-                            stack.append(b)
-        assert np.array_equal(label, seen)  # the least node of each component
 
 
 def test_a_fine_sphere_is_fast_and_rolls():

@@ -36,8 +36,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...mesh.topology import connected_components
 from .landscape import Landscape
-from .vectors import components, dot, group_first
+from .vectors import dot, group_first
 
 __all__ = ["Families", "families", "ROLL_ANGLE_DEG", "ROLL_EXTENT_DEG", "ROLL_MEMBERS",
            "LEVEL_RIPPLES", "CIRCLE_RESIDUAL"]
@@ -116,10 +117,9 @@ def families(land: Landscape, roll_angle_deg: float = ROLL_ANGLE_DEG,
     high_side = np.maximum(land.heights[land.sa], land.heights[land.sb])
     join = (land.sh * np.cos(np.radians(roll_angle_deg)) <= low_side) & (roll_angle_deg > 0)
     join |= land.sh - high_side <= neutral_height
-    root = components(P, np.concatenate((land.sa[join], land.same[0])),
-                      np.concatenate((land.sb[join], land.same[1])))
-    roots, label = np.unique(root, return_inverse=True)
-    nfam = len(roots)
+    label = connected_components(P, np.concatenate((land.sa[join], land.same[0])),
+                                 np.concatenate((land.sb[join], land.same[1])))
+    nfam = int(label.max()) + 1 if P else 0
     members = np.bincount(label, minlength=nfam)
     ripple = np.zeros(nfam)
     np.maximum.at(ripple, label[land.sa[join]], (land.sh - high_side)[join])

@@ -169,7 +169,7 @@ class Poses:
         >>> from plumbob.stability import resting_poses
         >>> shown, rest, p = resting_poses(box(1, 1, 4)).shown(top=4)
         >>> len(shown), rest, round(p, 4)
-        (4, 2, 0.0374)
+        (4, 2, 0.0375)
         """
         keep = list(self.poses)
         if min_probability is not None:

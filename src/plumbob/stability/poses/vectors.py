@@ -12,7 +12,7 @@ import numpy as np
 
 from ...errors import StabilityError
 
-__all__ = ["unit", "cross", "dot", "group_first", "expand", "pointer_sinks", "components",
+__all__ = ["unit", "cross", "dot", "group_first", "expand", "pointer_sinks",
            "fibonacci_sphere"]
 
 
@@ -79,34 +79,6 @@ def pointer_sinks(nxt: np.ndarray) -> np.ndarray:
         ptr = jumped
     raise StabilityError("the resting poses could not be resolved: the rolling graph has a "
                          "cycle (a degenerate hull?)")
-
-
-def components(n: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-    """Connected components of the graph on ``0..n-1`` with edges ``i[k]–j[k]``: per node,
-    the least node of its component (hooking and pointer jumping, so the rounds grow
-    with the logarithm of the components' size, not with their diameter; no scipy).
-
-    >>> components(6, np.array([0, 4, 2]), np.array([1, 5, 4])).tolist()
-    [0, 0, 2, 3, 2, 2]
-    """
-    label = np.arange(n)
-    i = np.asarray(i, dtype=np.int64)
-    j = np.asarray(j, dtype=np.int64)
-    while len(i):
-        li, lj = label[i], label[j]
-        differ = li != lj
-        if not differ.any():
-            break
-        li, lj = li[differ], lj[differ]
-        # hook the larger root under the smaller one, then jump pointers to the roots
-        np.minimum.at(label, np.maximum(li, lj), np.minimum(li, lj))
-        while True:
-            jumped = label[label]
-            if np.array_equal(jumped, label):
-                break
-            label = jumped
-        i, j = i[differ], j[differ]
-    return label
 
 
 def fibonacci_sphere(n: int) -> np.ndarray:
