@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.topology import connected_components
 from .vectors import cross, dot, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
@@ -92,8 +93,6 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     >>> len(h.normals), len(h.ea), h.heights.tolist()
     (6, 24, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
     from scipy.spatial import ConvexHull, QhullError
 
     try:
@@ -142,8 +141,8 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
         und = np.minimum(np.arange(len(ea)), etwin)
         heights = np.max(dot(X[tri], tn[:, None, :]), axis=1)
         return Hull3(X, tn, heights, area, ea, eb, ef, eg, start, degree, etwin, und)
-    graph = coo_matrix((np.ones(int(same.sum())), (i[same], j[same])), shape=(m, m))
-    nfaces, comp = connected_components(graph, directed=False)
+    comp = connected_components(m, i[same], j[same])  # numpy: no scipy.sparse import
+    nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
     comp, bent, nfaces = _split_bent(comp, nfaces, tri.ravel(), tri_of, X, normals, eps)
     if bent.any():
