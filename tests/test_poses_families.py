@@ -157,3 +157,27 @@ def test_a_fine_sphere_is_fast_and_rolls():
     ps = resting_poses(body)
     assert time.perf_counter() - start < 20.0  # seconds, on a loaded 2-core machine
     assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].members > 80_000
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1))
+def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
+    """rocking() sweeps only the points its exact filter keeps (those near the rim of the
+    projected hull): the same heights and tilts as sweeping every point."""
+    import plumbob.stability.rocking as rocking_module
+
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(3000, 3))
+    X /= np.linalg.norm(X, axis=1)[:, None]
+    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
+    down = rng.normal(size=3)
+    down /= np.linalg.norm(down)
+    fast = rocking_module.rocking(X, down, eps, azimuths=6)
+    keep = rocking_module._candidates
+    try:
+        rocking_module._candidates = lambda a, b, alpha, eps, coarse: np.arange(len(a))
+        slow = rocking_module.rocking(X, down, eps, azimuths=6)
+    finally:
+        rocking_module._candidates = keep
+    assert np.array_equal(fast.heights, slow.heights)
+    assert np.allclose(fast.tilts_deg, slow.tilts_deg, rtol=0, atol=1e-9)
