@@ -9,6 +9,8 @@ for a body, sampling its curved surfaces first.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ...errors import GeometryError
@@ -55,22 +57,23 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
     exit_height = _exits(land, fam)
     rise = np.maximum(0.0, exit_height - land.heights[fam.rep])
     barrier = np.where(np.isfinite(exit_height), mass * g * rise, np.nan)
-    # no rocker holds a tilt steeper than the one rolling it over its lowest exit
-    exit_tilt = np.degrees(np.arccos(np.clip(land.heights[fam.rep] / exit_height, -1.0, 1.0)))
-    margin = land.margin[fam.rep]
-    tilt = np.degrees(np.arctan2(np.maximum(margin, 0.0), land.heights[fam.rep]))
-    tilt[fam.kind == "rolling"] = 0.0
     order = np.lexsort((land.heights[fam.rep], -prob))
     size = float(np.linalg.norm(np.ptp(land.points, axis=0)))
     poses = []
     for f in order.tolist():
         r = int(fam.rep[f])
         down, height = land.normals[r].copy(), float(land.heights[r])
-        t = float(tilt[f])
-        if fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
+        # per pose in scalar math: numpy's vectorised arctan2 may round an element
+        # differently by where it lies in memory (a worker would disagree with its parent)
+        t = math.degrees(math.atan2(max(float(land.margin[r]), 0.0), height))
+        if fam.kind[f] == "rolling":
+            t = 0.0
+        elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
             eps = 2.0 * max(float(fam.ripple[f]), HULL_SAMPLING * size)
             rocks = float(rocking(land.points, down, eps).tilts_deg.min())
-            t = max(t, min(rocks, float(exit_tilt[f])))  # never below its own face's
+            # no rocker holds a tilt steeper than the one rolling it over its lowest exit
+            exit_tilt = math.degrees(math.acos(min(1.0, height / float(exit_height[f]))))
+            t = max(t, min(rocks, exit_tilt))  # and never less than its own face's
         axis = None if np.isnan(fam.axis[f, 0]) else fam.axis[f].copy()
         poses.append(Pose(down, height, float(prob[f]), t,
                           None if np.isnan(barrier[f]) else float(barrier[f]),
