@@ -110,6 +110,9 @@ def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None =
     if tri.ndim != 3 or tri.shape[1:] != (3, 3):
         raise GeometryError("cannot export its poses as meshes: it is not a solid with a "
                             "surface of triangles")
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise PlumbobError(f"cannot export poses to {folder}: it is a file, not a folder; "
+                           "name a folder (it is made if missing)")
     try:
         os.makedirs(folder, exist_ok=True)
     except OSError as exc:
