@@ -27,7 +27,7 @@ def test_export_into_a_file_is_a_clear_error(tmp_path):
 
 
 def test_a_lamina_has_no_mesh_to_export(tmp_path):
-    outcome = run_limited("poses", os.path.join(ROOT, "shapes", "sculpture.toml"), "--export", str(tmp_path / "x"),
-                          cwd=tmp_path)
+    sculpture = os.path.join(ROOT, "shapes", "sculpture.toml")
+    outcome = run_limited("poses", sculpture, "--export", str(tmp_path / "x"), cwd=tmp_path)
     assert_bad_input(outcome, "lamina", "no surface of triangles")
     assert not (tmp_path / "x").exists()
