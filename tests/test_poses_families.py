@@ -94,7 +94,8 @@ def test_quasi_static_values_of_a_cube_and_a_tetrahedron_stay():
 def irregular_prism(seed: int, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
     """A 64-sided prism with irregular sides (angles and radii jittered) and a centre of
     mass off its axis: its sides merge into physical faces as the tolerance grows past
-    their few-millimetre bends, a few at a time."""
+    their few-millimetre bends, and into families as the roll angle grows, a few at a
+    time."""
     rng = np.random.default_rng(seed)
     k = (np.arange(n) + rng.uniform(-0.2, 0.2, n)) * 2 * np.pi / n
     r = 0.5 * (1 + rng.uniform(-1e-3, 1e-3, n))
@@ -112,7 +113,7 @@ def test_more_tolerance_never_gives_more_poses(seed, tolerances, roll):
               for t in sorted(tolerances)]
     assert counts == sorted(counts, reverse=True)
     if roll == 0 and min(tolerances) < 1e-4 and max(tolerances) > 3e-2:
-        assert counts[0] > 40 and counts[-1] < 10  # the test is not vacuous
+        assert counts[-1] * 3 <= counts[0]  # the test is not vacuous: sides do merge
 
 
 @settings(max_examples=25, deadline=None)
@@ -130,8 +131,8 @@ def test_a_larger_roll_angle_never_gives_more_poses(seed, angles, prism):
     assert counts == sorted(counts, reverse=True)
     for r in results:
         assert r.probabilities.sum() == pytest.approx(1.0, abs=1e-12)
-    if prism and min(angles) == 0 and max(angles) > 5:
-        assert counts[0] > 40 and counts[-1] <= 3  # the sides roll: one pose
+    if prism and min(angles) == 0 and max(angles) > 20:
+        assert counts[-1] * 4 <= counts[0]  # the test is not vacuous: the sides join
 
 
 def test_float32_noise_never_splits_a_face(tmp_path):
