@@ -179,3 +179,10 @@ def test_the_mesh_pose_is_the_same_as_the_bodys():
     body = MeshSolid(np.asarray(mesh.triangles))
     reference = resting_poses(box(1, 2, 3))
     assert np.allclose(resting_poses(body).probabilities, reference.probabilities, atol=1e-12)
+
+
+def test_the_commands_default_roll_angle_is_the_librarys():
+    from plumbob.commands.poses import ROLL_ANGLE
+    from plumbob.stability.poses.families import ROLL_ANGLE_DEG
+
+    assert ROLL_ANGLE == ROLL_ANGLE_DEG

@@ -1,7 +1,7 @@
 """``plumbob poses PATH``: every stable resting pose and how likely a random drop lands in it.
 
-Only the standard library is imported here; the pose code (numpy, scipy) loads when
-the command runs.
+Only the standard library is imported here; the pose code (numpy) loads when the
+command runs.
 """
 
 from __future__ import annotations
@@ -33,7 +33,14 @@ def register(subparsers) -> None:
         "poses", help="stable resting poses and their landing probabilities",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
-    # -- quasi-static pose options
+    add_quasi_static_arguments(parser)
+    add_shown_arguments(parser)
+    add_plot_argument(parser)
+    parser.set_defaults(func=run)
+
+
+def add_quasi_static_arguments(parser: argparse.ArgumentParser) -> None:
+    """How faces are grouped into poses: --tolerance, --sampling-tolerance, --roll-angle."""
     parser.add_argument("--tolerance", type=positive, metavar="M",
                         help="faces within M metres of a resting face's plane are one face "
                              "(default 1e-6 of the body's size)")
@@ -44,6 +51,10 @@ def register(subparsers) -> None:
     parser.add_argument("--roll-angle", type=non_negative, metavar="DEG", default=ROLL_ANGLE,
                         help="faces a tilt of DEG degrees or less rolls the body between are "
                              f"one rolling (or rocking) pose (default {ROLL_ANGLE:g}; 0: none)")
+
+
+def add_shown_arguments(parser: argparse.ArgumentParser) -> None:
+    """Which poses are shown and written: --top, --min-probability, --export(-format)."""
     parser.add_argument("--top", type=count, metavar="N", help="show only the N most probable")
     parser.add_argument("--min-probability", type=probability, metavar="P",
                         help="show only poses at least P likely (the most probable always)")
@@ -52,8 +63,6 @@ def register(subparsers) -> None:
                              "(pose-01-p0.4123.stl: rank and probability)")
     parser.add_argument("--export-format", choices=("stl", "3mf"), default="stl",
                         help="STL in the --units length (default), or 3MF, which states it")
-    add_plot_argument(parser)
-    parser.set_defaults(func=run)
 
 
 def probability(text: str) -> float:
