@@ -1,7 +1,7 @@
 """``plumbob poses PATH``: every stable resting pose and how likely a random drop lands in it.
 
-Only the standard library is imported here; the pose code (numpy, scipy) loads when
-the command runs.
+Only the standard library is imported here; the pose code (numpy) loads when the
+command runs.
 """
 
 from __future__ import annotations
@@ -9,20 +9,24 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_stability_arguments, clean, header, open_body, positive
+from ._common import add_stability_arguments, clean, count, header, non_negative, open_body, positive
 from ._common import dump_json as to_json
 from ._dynamic import add_dynamic_arguments, check_dynamic, run_dynamic
 
 __all__ = ["register", "run"]
 
+ROLL_ANGLE = 15.0  # degrees: plumbob.stability.poses.families.ROLL_ANGLE_DEG (not imported: numpy)
+
 DESCRIPTION = """\
-All stable resting poses of a solid (faces of its convex hull, coplanar triangles
-merged into one physical face) or of a lamina (edges of its hull), most probable
-first. For each: the down direction in the body's frame, the height of the centre of
-mass, the quasi-static probability of landing in it from a random drop (the area of
-its basin on the sphere of directions over 4 pi, after Baktash, Sharp, Zhou, Crane
-and Jacobson, 2025), the critical tilt and the energy barrier to leave it. Poses of a
-rolling surface (a cylinder's side) are merged into one neutral pose."""
+All stable resting poses of a solid (faces of its convex hull; faces coplanar within
+the tolerance are one face) or of a lamina (edges of its hull), most probable first.
+For each: the down direction in the body's frame, the height of the centre of mass,
+the quasi-static probability of landing in it from a random drop (the area of its
+basin on the sphere of directions over 4 pi, after Baktash, Sharp, Zhou, Crane and
+Jacobson, 2025), the critical tilt, the energy barrier to leave it, and (in the
+JSON) the 4x4 transform that sets the body down in it on z = 0. Faces a small tilt
+rolls the body between (a cylinder's side, a cone's, a ball) are one rolling pose,
+with the axis it rolls about; the bottom of a bowl is one rocking pose."""
 
 
 def register(subparsers) -> None:
@@ -30,15 +34,45 @@ def register(subparsers) -> None:
         "poses", help="stable resting poses and their landing probabilities",
         description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_stability_arguments(parser)
-    parser.add_argument("--tolerance", type=positive, metavar="M",
-                        help="faces coplanar within M metres are one face (default 1e-6 of "
-                             "the body's size)")
-    parser.add_argument("--hull-tolerance", type=positive, metavar="M",
-                        help="how closely curved surfaces are sampled, m (default 1e-4 of the "
-                             "body's size)")
+    add_quasi_static_arguments(parser)
+    add_shown_arguments(parser)
     add_plot_argument(parser)
     add_dynamic_arguments(parser)  # --dynamic and its settings: commands/_dynamic.py
     parser.set_defaults(func=run)
+
+
+def add_quasi_static_arguments(parser: argparse.ArgumentParser) -> None:
+    """How faces are grouped into poses: --tolerance, --sampling-tolerance, --roll-angle."""
+    parser.add_argument("--tolerance", type=positive, metavar="M",
+                        help="faces within M metres of a resting face's plane are one face "
+                             "(default 1e-6 of the body's size)")
+    parser.add_argument("--sampling-tolerance", "--hull-tolerance", type=positive, metavar="M",
+                        dest="sampling_tolerance",
+                        help="how closely curved surfaces of shapes are sampled, m (default "
+                             "1e-4 of the size); a mesh's own vertices are used as they are")
+    parser.add_argument("--roll-angle", type=non_negative, metavar="DEG", default=ROLL_ANGLE,
+                        help="faces a tilt of DEG degrees or less rolls the body between are "
+                             f"one rolling (or rocking) pose (default {ROLL_ANGLE:g}; 0: none)")
+
+
+def add_shown_arguments(parser: argparse.ArgumentParser) -> None:
+    """Which poses are shown and written: --top, --min-probability, --export(-format)."""
+    parser.add_argument("--top", type=count, metavar="N", help="show only the N most probable")
+    parser.add_argument("--min-probability", type=probability, metavar="P",
+                        help="show only poses at least P likely (the most probable always)")
+    parser.add_argument("--export", metavar="DIR",
+                        help="write each shown pose, placed on z = 0, as a mesh file in DIR "
+                             "(pose-01-p0.4123.stl: rank and probability)")
+    parser.add_argument("--export-format", choices=("stl", "3mf"), default="stl",
+                        help="STL in the --units length (default), or 3MF, which states it")
+
+
+def probability(text: str) -> float:
+    """An argparse type: a probability, 0 ≤ P ≤ 1."""
+    value = non_negative(text)
+    if value > 1:
+        raise argparse.ArgumentTypeError(f"a probability is at most 1, not {text}")
+    return value
 
 
 def run(args) -> int:
@@ -51,14 +85,30 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     body = reading.body
     result = resting_poses(body, g=args.g, tolerance=args.tolerance,
-                           hull_tolerance=args.hull_tolerance, props=props)
+                           sampling_tolerance=args.sampling_tolerance,
+                           roll_angle_deg=args.roll_angle, props=props)
     if args.dynamic:  # Monte Carlo drops in MuJoCo, matched to these poses
         return run_dynamic(args, reading, props, result, notes)
     notes += list(result.notes)
+    shown, rest, rest_p = result.shown(args.top, args.min_probability)
+    if rest:
+        notes.append(f"{rest} more pose(s) with total probability {rest_p:.4g} not shown "
+                     "(--top, --min-probability)")
+    written = []
+    if args.export:
+        from ..export.placed import export_poses
+
+        written = export_poses(body, shown, args.export, args.export_format,
+                               getattr(args, "units", None))
     if args.plot:
         write_plot(args.plot, "poses", result, body, path=args.path)
     if args.json:
         out = {**header(reading, getattr(body, "kind", "solid")), **result.as_dict()}
+        out["poses"] = [p.as_dict() for p in shown]
+        if rest:
+            out["more"] = {"poses": rest, "probability": rest_p}
+        if written:
+            out["exported"] = written
         if notes:
             out["notes"] = notes
         if reading.notices:
@@ -74,11 +124,19 @@ def run(args) -> int:
           f"centre of mass {vec(result.center_of_mass)} m")
     print(f"{'#':>3}  {'probability':>11}  {'down':<28}{'height m':>11}{'tilt °':>9}"
           f"{'barrier J':>13}")
-    for k, p in enumerate(result.poses, 1):
+    for k, p in enumerate(shown, 1):
         barrier = "—" if p.energy_barrier is None else num(p.energy_barrier, 5)
-        tag = "  rolls" if p.neutral else ""
+        tag = ""
+        if p.kind == "rolling":
+            tag = "  rolls" + ("" if p.axis is None else f" about {vec(p.axis, 4)}")
+        elif p.kind == "rocking":
+            tag = "  rocks"
         print(f"{k:>3}  {p.probability:>11.6f}  {vec(p.down, 4):<28}{num(p.com_height, 5):>11}"
               f"{num(p.critical_tilt_deg, 4):>9}{barrier:>13}{tag}")
+    if rest:
+        print(f"     {rest} more pose(s) with total probability {rest_p:.4g}")
+    for path in written:
+        print(f"wrote {path}")
     for note in notes:
         print(f"note: {note}")
     return 0

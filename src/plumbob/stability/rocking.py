@@ -73,6 +73,43 @@ class Rocking:
         return float((self.heights.max(axis=1) - self.heights[:, 0]).min())
 
 
+_COARSE = (60, 8)  # fine steps per interval of the exact candidate filter's two passes
+
+
+def _candidates(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, eps: float,
+                coarse: int) -> np.ndarray:
+    """Which points can come within ``eps`` of the support somewhere on the sweep: the
+    points (projected to ``(a, b)`` in the plane of the sweep, reach ``a cos α + b sin α``)
+    whose best reach over some coarse interval of ``alpha`` is not below the support's
+    worst there, less ``eps``. Exact (no point that matters is dropped): a fixed point's
+    reach is a sinusoid, whose extremes over an interval are at its ends or its crest
+    (trough) inside it; the support is at least the reach of the point supporting an
+    end. It leaves the points near the rim of the projected hull: a few hundred."""
+    ends = alpha[::coarse]
+    if ends[-1] != alpha[-1]:
+        ends = np.append(ends, alpha[-1])
+    lo_a, hi_a = ends[:-1], ends[1:]
+    r = np.hypot(a, b)
+
+    def interval(angle: np.ndarray) -> np.ndarray:  # the interval holding each angle, or -1
+        at = np.mod(angle, 2 * np.pi)
+        j = np.searchsorted(ends, at, side="right") - 1
+        return np.where((j >= 0) & (j < len(lo_a)) & (at <= ends[-1]), j, -1)
+
+    reach_lo = np.cos(lo_a)[:, None] * a + np.sin(lo_a)[:, None] * b
+    reach_hi = np.cos(hi_a)[:, None] * a + np.sin(hi_a)[:, None] * b
+    best = np.maximum(reach_lo, reach_hi)
+    crest = interval(np.arctan2(b, a))
+    has = np.flatnonzero(crest >= 0)
+    best[crest[has], has] = r[has]
+    s = np.argmax(reach_lo, axis=1)  # the support at each interval's start
+    rows = np.arange(len(lo_a))
+    worst = np.minimum(reach_lo[rows, s], reach_hi[rows, s])
+    trough = interval(np.arctan2(b[s], a[s]) + np.pi) == rows
+    worst = np.where(trough, -r[s], worst)
+    return np.flatnonzero(np.any(best >= (worst - eps)[:, None], axis=0))
+
+
 def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24) -> Rocking:
     """Turn the contact direction away from ``down`` along ``azimuths`` ways (2 in a
     plane) over points (n, dim) given relative to the centre of mass, sampled to within
@@ -94,11 +131,14 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
     tilts = np.empty(len(directions))
     for k, direction in enumerate(directions):  # a few dozen ways, each vectorised
         u = np.cos(alpha)[:, None] * down + np.sin(alpha)[:, None] * direction
-        reach = u @ points.T
+        pts = points
+        for coarse in _COARSE:  # a cheap wide pass, then a tight one on what is left
+            pts = pts[_candidates(pts @ down, pts @ direction, alpha, eps, coarse)]
+        reach = u @ pts.T
         top = reach.max(axis=1)
         heights[k] = top
         near = reach >= top[:, None] - eps
-        contact = (near @ points) / near.sum(axis=1, keepdims=True)
+        contact = (near @ pts) / near.sum(axis=1, keepdims=True)
         cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
         theta = np.arccos(np.clip(cosine, -1.0, 1.0))
         peak = np.maximum.accumulate(theta)

@@ -4,11 +4,9 @@
 qhull as fallback) into a :class:`Hull3`: faces merged only
 where *exactly* coplanar (to rounding error), with a directed edge list that says,
 for every edge, which face lies on each side — the Gauss map's arcs, on which the
-rolling and the basin tracing run. :func:`physical_faces` groups those exact faces
-into the faces a reader would call one (coplanar within a tolerance, in metres);
-that grouping is applied only when poses are reported, so the landscape itself
-stays consistent. :func:`group_margin3` measures how far the foot of the centre
-of mass lies inside a physical face.
+rolling and the basin tracing run. Grouping exact faces into the faces a reader
+would call one is :mod:`.faces`' job, done only when poses are reported, so the
+landscape itself stays consistent.
 
 Everything is relative to the centre of mass, which sits at the origin.
 """
@@ -21,10 +19,10 @@ import numpy as np
 
 from ...errors import GeometryError
 from ...mesh.topology import connected_components
-from .convex import half_edge_twins, hull_ring2, hull_triangles
+from .convex import half_edge_twins, hull_triangles
 from .vectors import cross, dot, unit
 
-__all__ = ["Hull3", "build_hull3", "physical_faces", "group_margin3", "shifted"]
+__all__ = ["Hull3", "build_hull3", "shifted"]
 
 
 @dataclass(frozen=True)
@@ -172,51 +170,6 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     heights = np.full(nfaces, -np.inf)
     np.maximum.at(heights, ef, dot(X[ea], normals[ef]))
     return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, pos3, und)
-
-
-def physical_faces(h: Hull3, tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Exact faces grouped into physical ones: neighbours coplanar within ``tol`` (m).
-
-    Returns the group of each face, and per group its unit normal and height h(normal).
-    """
-    nF = len(h.normals)
-    # a face's extent bounds how far its corners stray from a neighbour's plane
-    ext = np.zeros(nF)
-    np.maximum.at(ext, h.ef, np.linalg.norm(h.X[h.ea] - h.X[h.eb], axis=1))
-    f, g = h.ef, h.eg
-    pair = f < g
-    f, g = f[pair], g[pair]
-    cos = np.clip(dot(h.normals[f], h.normals[g]), -1.0, 1.0)
-    sin = np.sqrt(np.maximum(0.0, 1.0 - cos * cos))
-    same = (cos > 0) & (sin * np.maximum(ext[f], ext[g]) <= tol)
-    if not same.any():
-        return np.arange(nF), h.normals, h.heights
-    group = connected_components(nF, f[same], g[same])
-    ngroups = int(group.max()) + 1
-    normals = _weighted_normals(group, ngroups, h.normals, h.areas)
-    group, bent, ngroups = _split_bent(group, ngroups, h.ea, h.ef, h.X, normals, tol)
-    if bent.any():
-        normals = _weighted_normals(group, ngroups, h.normals, h.areas)
-    heights = np.full(ngroups, -np.inf)
-    np.maximum.at(heights, group[h.ef], dot(h.X[h.ea], normals[group[h.ef]]))
-    return group, normals, heights
-
-
-def group_margin3(pts: np.ndarray, normal: np.ndarray) -> tuple[float, np.ndarray]:
-    """Signed distance from the foot of the centre (the origin) to the boundary of the
-    physical face with corners ``pts`` (k, 3) (positive inside), m, and its corners
-    counter-clockwise about ``normal``."""
-    seed = np.array([1.0, 0.0, 0.0]) if abs(normal[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e1 = unit(seed - (seed @ normal) * normal)
-    e2 = cross(normal, e1)
-    q = np.stack((pts @ e1, pts @ e2), axis=1)  # the foot h·normal is at the origin
-    ring = hull_ring2(q)
-    if ring is None:
-        return 0.0, pts
-    v = q[ring]
-    d = np.roll(v, -1, axis=0) - v
-    out = np.stack((d[:, 1], -d[:, 0]), axis=1) / np.linalg.norm(d, axis=1)[:, None]
-    return float(dot(v, out).min()), pts[ring]
 
 
 def shifted(h: Hull3, delta: np.ndarray) -> Hull3:

@@ -1,12 +1,13 @@
-"""The height function's landscape: poses, basin areas and saddles per physical face.
+"""The height function's landscape: the candidate poses, their basins and saddles.
 
 :func:`landscape3` runs the 3D pipeline — exact hull (:mod:`.hull`), rolls and
 basins on it (:mod:`.rolling`, :mod:`.basins`), a nudged centre when the
 landscape is degenerate (a centre exactly above a vertex or an edge's end, as
-symmetric meshes have) — and then sums it over physical faces. :func:`landscape2`
+symmetric meshes have) — and then grows each stable face's physical face
+(:mod:`.faces`): the faces coplanar with it within the tolerance. :func:`landscape2`
 does the same one dimension down for a lamina: the hull's edges are the poses and
-the basins are exact arcs of the circle of directions. :func:`families` says which
-stable faces are joined by saddles so low they are one rolling surface.
+the basins are exact arcs of the circle of directions. Which candidates are one
+rolling or rocking family is :mod:`.families`' question.
 
 The result, a :class:`Landscape`, is all :mod:`.resting` needs to report poses.
 """
@@ -20,11 +21,12 @@ import numpy as np
 
 from ...errors import GeometryError, StabilityError
 from .basins import basins3
-from .hull import build_hull3, group_margin3, physical_faces, shifted
+from .faces import physical_faces
+from .hull import build_hull3, shifted
 from .rolling import Roller, edge_geometry
 from .vectors import dot, pointer_sinks, unit
 
-__all__ = ["Landscape", "landscape3", "landscape2", "families"]
+__all__ = ["Landscape", "landscape3", "landscape2"]
 
 _NUDGES = (0.0, 1e-9, 1e-7, 1e-5)  # relative moves of the centre for degenerate landscapes
 _NUDGE_DIRECTION = np.array([0.5773, 0.2245, 0.7853]) / np.linalg.norm([0.5773, 0.2245, 0.7853])
@@ -33,31 +35,50 @@ _NUDGE_DIRECTION = np.array([0.5773, 0.2245, 0.7853]) / np.linalg.norm([0.5773, 
 
 @dataclass(frozen=True)
 class Landscape:
-    """The height function's landscape over physical faces (3D) or edges (2D).
+    """The height function's landscape over the stable faces (3D) or edges (2D) of the
+    exact hull: the candidate poses.
 
-    normals, heights: (G, dim), (G,) per physical face.
-    area: (G,) area of its basin (sr, or rad for a lamina); stable: (G,) it is a minimum.
-    sa, sb, sh: saddles (maxima for a lamina) between the basins of sa and sb, at height sh.
-    margin: ``margin(g) -> (signed margin m, face corners (k, dim))``.
+    normals, heights: (P, dim), (P,) per candidate: the outward unit normal of the
+    stable face and the height of the centre of mass over it, m.
+    area: (P,) the area of its basin (sr, or rad for a lamina), > 0.
+    margin: (P,) how far the foot of the centre lies inside the physical face, m.
+    sa, sb, sh: saddles (maxima for a lamina) between the basins of candidates sa and
+    sb (never equal), at height sh, m.
+    same: (2, L) pairs of candidates on one physical face (the second lies within the
+    tolerance of the first's plane, reached through such faces): one pose.
+    corners: ``corners(p) -> (k, dim)`` the physical face's corners, m, relative to the
+    centre of mass. points: the hull points relative to the centre of mass.
+    faces: exact hull faces (3D) or hull edges (2D).
     """
 
     normals: np.ndarray
     heights: np.ndarray
     area: np.ndarray
-    stable: np.ndarray
+    margin: np.ndarray
     sa: np.ndarray
     sb: np.ndarray
     sh: np.ndarray
-    margin: Callable[[int], tuple[float, np.ndarray]]
+    same: np.ndarray
+    corners: Callable[[int], np.ndarray]
+    points: np.ndarray
+    faces: int
     method: str
     error: float
 
 
+def _between(label: np.ndarray, fa: np.ndarray, fb: np.ndarray, sh: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Saddles between different candidates, as candidate ids."""
+    a, b = label[fa], label[fb]
+    keep = (a != b) & (a >= 0) & (b >= 0)
+    return a[keep], b[keep], sh[keep]
+
+
 def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
     """3D: the landscape over the physical faces of the hull of ``X`` (n, 3), m, relative
-    to the centre of mass; faces coplanar within ``tol`` (m) are one. Basins are traced
-    exactly, from a centre nudged by a hair when the landscape is degenerate, and from
-    ``samples`` rolled directions when that fails too."""
+    to the centre of mass; faces coplanar within ``tol`` (m) of a stable face's plane are
+    one. Basins are traced exactly, from a centre nudged by a hair when the landscape is
+    degenerate, and from ``samples`` rolled directions when that fails too."""
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
     eps = 1e-12 * size
     h0 = build_hull3(X, eps)
@@ -90,19 +111,17 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
             fa, fb, stable = true.sinks(fa), true.sinks(fb), true.stable
         except StabilityError:
             pass  # the true centre's rolls are degenerate too: keep the nudged answer
-    group, gnormals, gheights = physical_faces(h0, tol)
-    ng = len(gnormals)
-    garea = np.bincount(group, weights=area, minlength=ng)
-    gstable = np.bincount(group, weights=stable.astype(float), minlength=ng) > 0
-    by_group = np.argsort(group[h0.ef], kind="stable")
-    bounds = np.searchsorted(group[h0.ef][by_group], np.arange(ng + 1))
+    sinks = np.flatnonzero(stable & (area > 0))
+    pf = physical_faces(h0, sinks, tol)
+    label = np.full(len(h0.normals), -1, dtype=np.int64)
+    label[sinks] = np.arange(len(sinks))
+    sa, sb, sh = _between(label, fa, fb, eg3.sheight[sad])
 
-    def margin(gid: int) -> tuple[float, np.ndarray]:
-        corners = np.unique(h0.ea[by_group[bounds[gid]:bounds[gid + 1]]])
-        return group_margin3(h0.X[corners], gnormals[gid])
+    def corners(p: int) -> np.ndarray:
+        return pf.corners(h0, p)
 
-    return Landscape(gnormals, gheights, garea, gstable & (garea > 0), group[fa], group[fb],
-                      eg3.sheight[sad], margin, method, error)
+    return Landscape(h0.normals[sinks], h0.heights[sinks], area[sinks], pf.margin, sa, sb, sh,
+                     pf.same, corners, h0.X[h0.degree > 0], len(h0.normals), method, error)
 
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:
@@ -156,24 +175,16 @@ def landscape2(X: np.ndarray, tol: float) -> Landscape:
     np.add.at(arc, sink[lower[~is_max]], width[~is_max])
     error = abs(arc.sum() - 2 * np.pi) / (2 * np.pi)
 
-    def margin(gid: int) -> tuple[float, np.ndarray]:
-        return float(margins[gid]), np.array([V[gid], V[(gid + 1) % m]])
-
     sad = np.flatnonzero(is_max)
-    return Landscape(normals, heights, arc, stable & (arc > 0), sink[prev_edge[sad]],
-                      sink[sad], np.linalg.norm(V[sad], axis=1), margin, "exact", float(error))
+    keep = stable & (arc > 0)
+    label = np.full(m, -1, dtype=np.int64)
+    label[keep] = np.arange(int(keep.sum()))
+    sa, sb, sh = _between(label, sink[prev_edge[sad]], sink[sad], np.linalg.norm(V[sad], axis=1))
+    ids = np.flatnonzero(keep)
 
+    def corners(p: int) -> np.ndarray:
+        g = ids[p]
+        return np.array([V[g], V[(g + 1) % m]])
 
-def families(land: Landscape, neutral_height: float) -> np.ndarray:
-    """Per physical face, a family label: stable faces joined by saddles no higher than
-    ``neutral_height`` above them share one."""
-    n = len(land.normals)
-    if not (neutral_height > 0 and len(land.sh)):
-        return np.arange(n)
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    rise = land.sh - np.maximum(land.heights[land.sa], land.heights[land.sb])
-    low = (land.sa != land.sb) & (rise <= neutral_height)
-    graph = coo_matrix((np.ones(int(low.sum())), (land.sa[low], land.sb[low])), shape=(n, n))
-    return connected_components(graph, directed=False)[1]
+    return Landscape(normals[ids], heights[ids], arc[ids], margins[ids], sa, sb, sh,
+                     np.zeros((2, 0), dtype=np.int64), corners, V, m, "exact", float(error))

@@ -9,94 +9,106 @@ for a body, sampling its curved surfaces first.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ...arguments import answering, finite_result, instance, non_negative, optional, positive
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
-from ...tolerances import contact_tolerance, sampling_tolerance
+from ...tolerances import CONTACT, HULL_SAMPLING
+from ...tolerances import sampling_tolerance as sampling
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
 from ..verdict import STANDARD_GRAVITY
-from .landscape import Landscape, families, landscape2, landscape3
+from .families import ROLL_ANGLE_DEG, Families, families
+from .landscape import Landscape, landscape2, landscape3
+from .placement import placement
 from .result import Pose, Poses
 
 __all__ = ["resting_poses", "poses_from_points", "assemble", "FALLBACK_SAMPLES",
-           "BOWL_SPREAD_DEG"]
+           "ROLL_ANGLE_DEG"]
 
 FALLBACK_SAMPLES = 200_000  # Fibonacci directions when the exact basins cannot be traced
-# A family of stable sampled faces whose normals all lie within this angle of its lowest
-# face is the bottom of a bowl (a self-righting rocker), not a rolling surface.
-BOWL_SPREAD_DEG = 5.0
+_FLOAT32_ULPS = 8 * 2.0 ** -24  # float32 round-off of coordinates, relative to their size
+
+
+def _exits(land: Landscape, fam: Families) -> np.ndarray:
+    """Per family, the height of its lowest saddle to another family, m (inf: none)."""
+    nfam = len(fam.kind)
+    a, b = fam.label[land.sa], fam.label[land.sb]
+    out = a != b
+    low = np.full(nfam, np.inf)
+    np.minimum.at(low, a[out], land.sh[out])
+    np.minimum.at(low, b[out], land.sh[out])
+    return low
 
 
 def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
-              neutral_height: float, notes: list[str], X: np.ndarray | None = None) -> Poses:
-    """The poses of a landscape: stable faces merged into families, each with its
-    probability, critical tilt and energy barrier, most probable first.
+             roll_angle_deg: float, neutral_height: float, notes: list[str]) -> Poses:
+    """The poses of a landscape: candidates joined into families (:mod:`.families`), each
+    with its probability, critical tilt, energy barrier and placement, most probable
+    first.
 
     com: (dim,) the centre of mass, m (the landscape is relative to it). notes: appended
-    to. X: the hull points relative to the centre, when a bowl's rocking pose should be
-    measured (only with ``neutral_height`` > 0).
+    to.
     """
-    ids = np.flatnonzero(land.stable)
-    family = families(land, neutral_height)
-    total = land.area[ids].sum()
-    weight = mass * g
-    roots, members_of = np.unique(family[ids], return_inverse=True)
-    fam_a, fam_b = family[land.sa], family[land.sb]
+    fam = families(land, roll_angle_deg, neutral_height)
+    prob = np.bincount(fam.label, weights=land.area, minlength=len(fam.kind))
+    prob /= prob.sum()
+    exit_height = _exits(land, fam)
+    rise = np.maximum(0.0, exit_height - land.heights[fam.rep])
+    barrier = np.where(np.isfinite(exit_height), mass * g * rise, np.nan)
+    order = np.lexsort((land.heights[fam.rep], -prob))
+    size = float(np.linalg.norm(np.ptp(land.points, axis=0)))
     poses = []
-    for k, root in enumerate(roots.tolist()):
-        members = ids[members_of == k]
-        p = float(land.area[members].sum() / total)
-        rep = int(members[np.argmax(land.area[members])])
-        neutral = len(members) > 1
-        bowl = False
-        if neutral:
-            low = int(members[np.argmin(land.heights[members])])
-            # The members as low as the lowest (within the sampling's ridges): spread along
-            # a rolling surface, or clustered round the bottom of a bowl, which rocks back.
-            level = members[land.heights[members] <= land.heights[low] + 4 * neutral_height]
-            spread = np.degrees(np.arccos(np.clip(land.normals[level] @ land.normals[low], -1, 1)))
-            bowl = X is not None and float(spread.max()) <= BOWL_SPREAD_DEG
-            if bowl:
-                rep, neutral = low, False
-        between = (fam_a != fam_b) & ((fam_a == root) | (fam_b == root))
-        barrier = None
-        if between.any():
-            barrier = float(weight * max(0.0, float(np.min(land.sh[between])) - land.heights[rep]))
-        margin, face = land.margin(rep)
-        tilt = 0.0 if neutral else float(np.degrees(np.arctan2(max(margin, 0.0),
-                                                               land.heights[rep])))
-        if bowl:
-            tilt = float(rocking(X, land.normals[rep], neutral_height).tilts_deg.min())
-        poses.append(Pose(land.normals[rep].copy(), float(land.heights[rep]), p, tilt, barrier,
-                          face + com, neutral, len(members)))
-    poses.sort(key=lambda q: (-q.probability, q.com_height))
-    neutral_poses = [q for q in poses if q.neutral]
-    if neutral_poses:
-        notes.append(f"{sum(q.members for q in neutral_poses)} hull faces of rolling surfaces "
-                     f"were merged into {len(neutral_poses)} neutral pose(s)")
-    rockers = [q for q in poses if q.members > 1 and not q.neutral]
+    for f in order.tolist():
+        r = int(fam.rep[f])
+        down, height = land.normals[r].copy(), float(land.heights[r])
+        # per pose in scalar math: numpy's vectorised arctan2 may round an element
+        # differently by where it lies in memory (a worker would disagree with its parent)
+        t = math.degrees(math.atan2(max(float(land.margin[r]), 0.0), height))
+        if fam.kind[f] == "rolling":
+            t = 0.0
+        elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
+            eps = 2.0 * max(float(fam.ripple[f]), HULL_SAMPLING * size)
+            rocks = float(rocking(land.points, down, eps).tilts_deg.min())
+            # no rocker holds a tilt steeper than the one rolling it over its lowest exit
+            exit_tilt = math.degrees(math.acos(min(1.0, height / float(exit_height[f]))))
+            t = max(t, min(rocks, exit_tilt))  # and never less than its own face's
+        axis = None if np.isnan(fam.axis[f, 0]) else fam.axis[f].copy()
+        poses.append(Pose(down, height, float(prob[f]), t,
+                          None if np.isnan(barrier[f]) else float(barrier[f]),
+                          land.corners(r) + com, str(fam.kind[f]), int(fam.members[f]), axis,
+                          placement(down, com, height)))
+    rolling = [q for q in poses if q.kind == "rolling"]
+    if rolling:
+        notes.append(f"{sum(q.members for q in rolling)} faces of rolling surfaces were merged "
+                     f"into {len(rolling)} rolling pose(s) (neighbours within a "
+                     f"{roll_angle_deg:g}° roll)")
+    rockers = [q for q in poses if q.kind == "rocking"]
     if rockers:
-        notes.append(f"{sum(q.members for q in rockers)} hull faces at the bottom of curved bowls "
+        notes.append(f"{sum(q.members for q in rockers)} faces at the bottom of curved bowls "
                      f"were merged into {len(rockers)} rocking pose(s); their critical tilt is "
                      "that of the rocker, to about a degree")
     if land.method == "sampled":
         notes.append("the basins could not be traced exactly (degenerate hull): probabilities "
                      f"come from rolling {FALLBACK_SAMPLES} directions downhill")
-    return Poses(tuple(poses), mass, g, com.copy(), land.method, len(land.normals),
+    return Poses(tuple(poses), mass, g, com.copy(), land.method, land.faces,
                  int(len(land.sh)), land.error, tuple(notes))
 
 
 def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                       g: float = STANDARD_GRAVITY, tolerance: float | None = None,
-                      neutral_height: float = 0.0, samples: int = FALLBACK_SAMPLES,
+                      roll_angle_deg: float = ROLL_ANGLE_DEG, neutral_height: float = 0.0,
+                      samples: int = FALLBACK_SAMPLES,
                       notes: tuple[str, ...] = ()) -> Poses:
     """Resting poses of the convex hull of a set of points.
 
-    The basins are traced on the exact hull; faces coplanar within ``tolerance`` are
-    then reported as one physical face, their probabilities summed.
+    The basins are traced on the exact hull; faces coplanar within ``tolerance`` of a
+    stable face's plane are then one physical face, their probabilities summed, and
+    faces a tilt of at most ``roll_angle_deg`` rolls the body between are one rolling
+    (or rocking) family.
 
     Parameters
     ----------
@@ -110,11 +122,16 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     g : float, optional
         Gravitational acceleration, m/s² (default standard gravity).
     tolerance : float, optional
-        Faces coplanar within it are one physical face, m; default 1e-6 of the points'
-        size.
+        Faces whose corners lie within it of a stable face's plane are one physical face,
+        m; default 1e-6 of the points' size (and at least 8 float32 round-offs of their
+        largest coordinate, so float32 noise never splits a face).
+    roll_angle_deg : float, optional
+        Stable faces the body rolls between when tilted by at most this, degrees, are
+        one pose of kind ``"rolling"`` (or ``"rocking"`` for a bowl's bottom); 0 merges
+        nothing. Default :data:`~.families.ROLL_ANGLE_DEG` (15°).
     neutral_height : float, optional
-        Stable faces joined by saddles at most this much higher, m, are one neutral
-        (rolling) pose; 0 (the default) merges nothing.
+        Stable faces joined by saddles at most this much higher, m, are one family too
+        (the ripple of a sampled curved surface); 0 (the default) joins none that way.
     samples : int, optional
         Directions rolled downhill when the exact basins cannot be traced (a degenerate
         hull); the result's ``method`` is then ``"sampled"``.
@@ -172,17 +189,21 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         raise GeometryError(f"resting poses need points spanning {what}: at least "
                             f"{X.shape[1] + 1}, and this body has {len(X)}")
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
-    tol = contact_tolerance(size, tolerance)
+    if tolerance is None:
+        tol = max(CONTACT * size, _FLOAT32_ULPS * float(np.abs(X).max()))
+    else:
+        tol = float(tolerance)
     if not (size > 0 and tol > 0):
         raise GeometryError("the points have no extent, or the tolerance is not positive")
     X = X - com
     land = landscape2(X, tol) if X.shape[1] == 2 else landscape3(X, tol, samples)
-    return assemble(land, com, float(mass), float(g), float(neutral_height), list(notes),
-                    X if neutral_height > 0 else None)
+    return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
+                    float(neutral_height), list(notes))
 
 
 def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None = None,
-                  hull_tolerance: float | None = None, neutral_height: float | None = None,
+                  sampling_tolerance: float | None = None,
+                  roll_angle_deg: float = ROLL_ANGLE_DEG,
                   props=None) -> Poses:
     """All stable resting poses of a body and how likely a random drop lands in each.
 
@@ -197,14 +218,17 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     g : float, optional
         Gravitational acceleration, m/s², for the energy barriers.
     tolerance : float, optional
-        Faces coplanar within it are one physical face, m (default 1e-6 of the body's
-        size).
-    hull_tolerance : float, optional
-        How closely curved surfaces are sampled, m (default 1e-4 of the size).
-    neutral_height : float, optional
-        Poses joined by saddles at most this high above them are merged into one neutral
-        (rolling) pose, m. Default: for a body with curved surfaces, twice the hull
-        tolerance (the ridges sampling leaves on a rolling surface); for a polytope, 0.
+        Faces whose corners lie within it of a stable face's plane are one physical face,
+        m (default 1e-6 of the body's size, and at least 8 float32 round-offs of its
+        largest coordinate).
+    sampling_tolerance : float, optional
+        How closely curved surfaces of shapes (primitives, specs) are sampled, m (default
+        1e-4 of the size). A mesh's hull is its own vertices: this does not change it.
+    roll_angle_deg : float, optional
+        Stable faces a tilt of at most this many degrees rolls the body between are one
+        pose (default 10°): ``"rolling"`` when they lie level (a cylinder's side, a
+        tessellated cone, a ball), ``"rocking"`` when they are a bowl's bottom. 0 merges
+        nothing.
     props : MassProperties, optional
         The body's mass properties, when already computed.
 
@@ -227,30 +251,35 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     >>> [round(p.probability, 4) for p in resting_poses(box(1, 1, 4))]
     [0.2406, 0.2406, 0.2406, 0.2406, 0.0187, 0.0187]
 
-    A curved surface that rolls is one neutral pose, with no critical tilt: a
-    cylinder lies on its side or stands on an end.
+    A curved surface that rolls is one rolling pose, with its axis and no critical
+    tilt: a cylinder lies on its side or stands on an end. Every pose carries the
+    rigid transform that sets the body down in it, on z = 0.
 
     >>> from plumbob.bodies.primitives import cylinder
     >>> side, *ends = resting_poses(cylinder(1.0, 2.0))
-    >>> side.neutral, side.critical_tilt_deg, len(ends)
-    (True, 0.0, 2)
+    >>> side.kind, side.axis.tolist(), side.critical_tilt_deg, len(ends)
+    ('rolling', [0.0, 0.0, 1.0], 0.0, 2)
+    >>> ends[0].transform.shape
+    (4, 4)
     """
     body, g = answering(body, "body", "mass_properties"), positive(g, "g", error=StabilityError)
     tolerance = optional(positive, tolerance, "tolerance", error=StabilityError)
-    hull_tolerance = optional(positive, hull_tolerance, "hull_tolerance", error=StabilityError)
-    neutral_height = optional(non_negative, neutral_height, "neutral_height", error=StabilityError)
+    sampling_tolerance = optional(positive, sampling_tolerance, "sampling_tolerance",
+                                  error=StabilityError)
+    roll_angle_deg = non_negative(roll_angle_deg, "roll_angle_deg", error=StabilityError)
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     finite_result(props.mass * g, "the weight M g", error=StabilityError)
     dim = body_dim(body, props)
     size = body_size(body)
-    htol = sampling_tolerance(size, hull_tolerance)
+    htol = sampling(size, sampling_tolerance)
     pts = hull_points(body, htol)
-    if neutral_height is None:  # only sampled (curved) surfaces have rolling families
-        neutral_height = 0.0 if is_polytope(body, size) else 2.0 * htol
+    # sampled (curved) surfaces leave ridges up to the sampling tolerance: below them is one
+    # family whatever the roll angle; a mesh's or a polytope's hull is exact
+    neutral_height = 0.0 if is_polytope(body, size) else 2.0 * htol
     com = np.asarray(props.center_of_mass, dtype=float)
     if com.size < dim:
         com = np.pad(com, (0, dim - com.size))
     if pts.shape[1] != dim:
         pts = pts[:, :dim]
     return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
-                             neutral_height=float(neutral_height))
+                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height)

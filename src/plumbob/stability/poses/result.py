@@ -40,20 +40,30 @@ class Pose:
     com_height : float
         Height of the centre of mass above the ground, m.
     probability : float
-        Quasi-static probability of landing in this pose from a random drop.
+        Quasi-static probability of landing in this pose from a random drop (for a
+        family, the sum over its faces).
     critical_tilt_deg : float
         Least tilt of the ground, over every direction, that topples it out of this
-        pose, degrees (0 for a neutral pose: it rolls).
+        pose, degrees (0 for a rolling pose).
     energy_barrier : float or None
         Energy to leave the pose over the lowest saddle of its basin's boundary, J;
         None when it is the only pose.
     face : numpy.ndarray
-        (k, dim) the vertices of the face it rests on, m, body frame.
-    neutral : bool
-        True when the pose is a rolling family (a cylinder on its side, a sphere)
-        merged from neighbouring sampled facets.
+        (k, dim) the corners of the face it rests on, m, body frame.
+    kind : str
+        ``"face"`` (it rests on one physical face), ``"rolling"`` (a family of faces a
+        small tilt rolls it between: a cylinder's side, a cone's, a ball; ``down`` and
+        ``transform`` are one representative face of it) or ``"rocking"`` (the bottom of
+        a bowl: it rocks back to its lowest face, the one given).
     members : int
-        How many hull faces the pose stands for.
+        How many physical faces the pose stands for.
+    axis : numpy.ndarray or None
+        (3,) for a rolling pose whose faces turn about one axis (body frame, unit): the
+        axis it rolls about; None otherwise (a ball rolls every way).
+    transform : numpy.ndarray
+        (4, 4) rigid transform, row-major, that rests the body in this pose on the
+        ground plane z = 0, up +z, its centre of mass straight above the origin
+        (see :func:`~.placement.placement`).
     """
 
     down: np.ndarray
@@ -62,26 +72,36 @@ class Pose:
     critical_tilt_deg: float
     energy_barrier: float | None
     face: np.ndarray
-    neutral: bool = False
+    kind: str = "face"
     members: int = 1
+    axis: np.ndarray | None = None
+    transform: np.ndarray = field(default_factory=lambda: np.eye(4))
+
+    @property
+    def neutral(self) -> bool:
+        """True for a rolling pose (it rolls: neutral, critical tilt 0)."""
+        return self.kind == "rolling"
 
     def as_dict(self) -> dict:
         """The pose's JSON object in ``plumbob poses --json`` (SI units).
 
         Keys: ``down``, ``com_height`` (m), ``probability``, ``critical_tilt_deg``,
-        ``energy_barrier`` (J or None), ``neutral``, ``face`` (m).
+        ``energy_barrier`` (J or None), ``kind``, ``neutral``, ``members``, ``axis``
+        (or None), ``face`` (m), ``transform`` (4 rows of 4).
         """
         return {"down": self.down, "com_height": self.com_height,
                 "probability": self.probability, "critical_tilt_deg": self.critical_tilt_deg,
-                "energy_barrier": self.energy_barrier, "neutral": self.neutral,
-                "face": self.face}
+                "energy_barrier": self.energy_barrier, "kind": self.kind,
+                "neutral": self.neutral, "members": self.members, "axis": self.axis,
+                "face": self.face, "transform": self.transform}
 
     def __repr__(self) -> str:
         barrier = "None" if self.energy_barrier is None else f"{_short(self.energy_barrier)} J"
         kind = ""
-        if self.neutral:
-            kind = f", neutral ({self.members} faces)"
-        elif self.members > 1:
+        if self.kind == "rolling":
+            about = "" if self.axis is None else f" about {_vector(self.axis)}"
+            kind = f", rolling{about} ({self.members} faces)"
+        elif self.kind == "rocking":
             kind = f", rocking ({self.members} faces)"
         return (f"Pose(probability={_short(self.probability)}, down={_vector(self.down)}, "
                 f"com_height={_short(self.com_height)} m, "
@@ -109,7 +129,7 @@ class Poses:
         ``"exact"`` (basin areas traced exactly) or ``"sampled"`` (the fallback: a
         descent from a Fibonacci lattice of directions).
     hull_faces : int
-        Faces of the hull after merging coplanar triangles.
+        Faces of the exact hull (its triangles merged where coplanar to round-off).
     saddles : int
         How many saddles (3D) or maxima (2D) bound the basins.
     area_error : float
@@ -138,6 +158,27 @@ class Poses:
     def probabilities(self) -> np.ndarray:
         """(len,) the poses' probabilities, most probable first."""
         return np.array([p.probability for p in self.poses])
+
+    def shown(self, top: int | None = None, min_probability: float | None = None
+              ) -> tuple[tuple[Pose, ...], int, float]:
+        """The poses worth showing: at most ``top`` of them, each at least
+        ``min_probability`` likely (the most probable pose is always shown). Returns the
+        shown poses, and how many are left out and their total probability.
+
+        >>> from plumbob.bodies.primitives import box
+        >>> from plumbob.stability import resting_poses
+        >>> shown, rest, p = resting_poses(box(1, 1, 4)).shown(top=4)
+        >>> len(shown), rest, round(p, 4)
+        (4, 2, 0.0375)
+        """
+        keep = list(self.poses)
+        if min_probability is not None:
+            keep = keep[:1] + [q for q in keep[1:] if q.probability >= min_probability]
+        if top is not None:
+            keep = keep[:max(int(top), 1)]
+        kept = {id(q) for q in keep}
+        rest = [q for q in self.poses if id(q) not in kept]
+        return tuple(keep), len(rest), float(sum(q.probability for q in rest))
 
     def plot(self, fig=None, *, body=None, **options):
         """Draw the pose gallery (the body in each pose if given); returns the matplotlib

@@ -30,8 +30,12 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise dot products of (…, 3) arrays."""
-    return (a * b).sum(axis=-1)
+    """Row-wise dot products of (…, dim) arrays, summed component by component (faster
+    than a reduction over the last axis, and always in the same order)."""
+    out = a[..., 0] * b[..., 0]
+    for k in range(1, a.shape[-1]):
+        out = out + a[..., k] * b[..., k]
+    return out
 
 
 def group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:

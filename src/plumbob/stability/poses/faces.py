@@ -1,0 +1,125 @@
+"""Physical faces: around each stable face of the exact hull, the faces a reader calls one.
+
+The exact hull keeps faces apart that are coplanar only to within a hair — a flat
+face of a float32 STL is a handful of triangles tilted by 10⁻⁷ rad, each its own
+exact face. A pose rests on a *physical* face: for a stable exact face ``s``, the
+exact faces reached from ``s`` through neighbours whose corners all lie within the
+tolerance of ``s``'s own plane. Measuring every corner against the plane of ``s``
+(not against a neighbour's) means a chain of slivers cannot bend a curved surface
+into one face, and a larger tolerance only ever adds faces: the grouping is
+monotone in the tolerance, so more tolerance never gives more poses.
+
+:func:`physical_faces` grows every stable face's physical face at once (a
+breadth-first flood over all of them together, one vectorised step per ring of
+neighbours) and measures, per stable face, how far the foot of the centre of mass
+lies inside its physical face. Everything is relative to the centre of mass, at
+the origin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .hull import Hull3
+from .vectors import cross, dot, expand, unit
+
+__all__ = ["PhysicalFaces", "physical_faces"]
+
+
+@dataclass(frozen=True)
+class PhysicalFaces:
+    """The physical face of every stable exact face.
+
+    sinks: (S,) the stable exact faces. owner, face: (K,) pairs — exact face ``face[k]``
+    belongs to the physical face of ``sinks[owner[k]]`` (each sink owns itself), sorted by
+    owner. margin: (S,) signed distance, m, from the foot of the centre of mass (square
+    below it on the sink's plane) to the physical face's boundary, positive inside.
+    same: (2, L) pairs of sink indices whose physical faces take in each other's sink.
+    """
+
+    sinks: np.ndarray
+    owner: np.ndarray
+    face: np.ndarray
+    margin: np.ndarray
+    same: np.ndarray
+    boundary: np.ndarray  # (B,) edge ids on the boundary of a physical face
+    boundary_owner: np.ndarray  # (B,) the sink index each boundary edge belongs to
+
+    def corners(self, h: Hull3, k: int) -> np.ndarray:
+        """The corners (m, relative to the centre) of sink ``k``'s physical face,
+        counter-clockwise about its outward normal."""
+        pts = h.X[np.unique(h.ea[self.boundary[self.boundary_owner == k]])]
+        n = h.normals[self.sinks[k]]
+        seed = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+        e1 = unit(seed - (seed @ n) * n)
+        e2 = cross(n, e1)
+        rel = pts - pts.mean(axis=0)
+        return pts[np.argsort(np.arctan2(rel @ e2, rel @ e1), kind="stable")]
+
+
+def _face_edges(h: Hull3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Directed edges grouped by their left face: (edge ids ordered by face, start, count)."""
+    nF = len(h.normals)
+    order = np.argsort(h.ef, kind="stable")
+    count = np.bincount(h.ef, minlength=nF)
+    return order, np.cumsum(count) - count, count
+
+
+def _distinct(keys: np.ndarray) -> np.ndarray:
+    """The distinct values of an integer array, sorted (a sort, no hashing)."""
+    keys = np.sort(keys)
+    return keys[np.concatenate(([True], keys[1:] != keys[:-1]))] if len(keys) else keys
+
+
+def _member(keys: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """Which of ``keys`` are in the sorted array ``known``."""
+    pos = np.minimum(np.searchsorted(known, keys), max(len(known) - 1, 0))
+    return (known[pos] == keys) if len(known) else np.zeros(len(keys), dtype=bool)
+
+
+def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
+    """The physical face of each of ``sinks`` (exact face ids): the exact faces reached
+    through neighbours whose corners all lie within ``tol`` (m) of the sink's plane."""
+    nF = len(h.normals)
+    sinks = np.asarray(sinks, dtype=np.int64)
+    order, start, count = _face_edges(h)
+    n_s, h_s = h.normals[sinks], h.heights[sinks]
+    owner = np.arange(len(sinks), dtype=np.int64)
+    known = owner * nF + sinks  # sorted: owner-major keys of (owner, face)
+    f_owner, f_face = owner, sinks
+    while len(f_owner):
+        rows, idx = expand(count[f_face], start[f_face])
+        key = _distinct(f_owner[rows] * nF + h.eg[order[idx]])
+        key = key[~_member(key, known)]
+        o, g = key // nF, key % nF
+        rows, idx = expand(count[g], start[g])
+        corner = h.ea[order[idx]]
+        off = h_s[o[rows]] - dot(h.X[corner], n_s[o[rows]])  # ≥ 0: the hull is convex
+        worst = np.zeros(len(o))
+        np.maximum.at(worst, rows, off)
+        ok = (worst <= tol) & (dot(h.normals[g], n_s[o]) > 0)
+        f_owner, f_face = o[ok], g[ok]
+        known = np.sort(np.concatenate((known, key[ok])))
+    owner, face = known // nF, known % nF
+
+    # the boundary: edges of a member face whose other side is not a member
+    rows, idx = expand(count[face], start[face])
+    edge = order[idx]
+    o = owner[rows]
+    outside = ~_member(o * nF + h.eg[edge], known)
+    edge, o = edge[outside], o[outside]
+    A, D = h.X[h.ea[edge]], h.X[h.eb[edge]] - h.X[h.ea[edge]]
+    foot = (h_s[o])[:, None] * n_s[o]
+    dist = dot(cross(D, foot - A), n_s[o]) / np.linalg.norm(D, axis=1)
+    margin = np.full(len(sinks), np.inf)
+    np.minimum.at(margin, o, dist)
+
+    # sinks lying in one another's physical faces are one pose
+    where = np.full(nF, -1, dtype=np.int64)
+    where[sinks] = np.arange(len(sinks))
+    other = where[face]
+    pair = (other >= 0) & (other != owner)
+    return PhysicalFaces(sinks, owner, face, margin, np.stack((owner[pair], other[pair])),
+                         edge, o)

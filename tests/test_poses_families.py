@@ -1,0 +1,187 @@
+"""Poses a person can use: physical faces that float32 noise never splits, rolling
+families of tessellated surfaces of revolution, and monotone tolerances (issue 11)."""
+
+import numpy as np
+import pytest
+import trimesh
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from plumbob.bodies.primitives import box
+from plumbob.bodies.solid import MeshSolid
+from plumbob.loading import read
+from plumbob.stability import poses_from_points, resting_poses
+
+
+def mesh_body(mesh: trimesh.Trimesh) -> MeshSolid:
+    return MeshSolid(np.asarray(mesh.triangles, dtype=float))
+
+
+def float32_stl(tmp_path, mesh: trimesh.Trimesh, name: str = "part.stl") -> str:
+    """``mesh`` written by trimesh as a binary STL: float32 coordinates."""
+    path = str(tmp_path / name)
+    mesh.export(path)
+    return path
+
+
+def rigid(angles, offset) -> np.ndarray:
+    T = trimesh.transformations.euler_matrix(*angles)
+    T[:3, 3] = offset
+    return T
+
+
+# ------------------------------------------------------------ acceptance meshes
+def test_a_64_sided_cylinder_rests_on_two_ends_or_rolls_on_its_side():
+    ps = resting_poses(mesh_body(trimesh.creation.cylinder(0.5, 2.0, sections=64)))
+    assert len(ps) == 3 and ps.probabilities.sum() == pytest.approx(1.0, abs=1e-12)
+    side = [p for p in ps.poses if p.kind == "rolling"]
+    ends = [p for p in ps.poses if p.kind == "face"]
+    assert len(side) == 1 and len(ends) == 2 and side[0].members == 64
+    assert np.allclose(np.abs(side[0].axis), [0, 0, 1], atol=1e-9)
+    assert side[0].critical_tilt_deg == 0 and side[0].neutral
+    # the side's probability is the sum of its 64 facets' (the exact basins, unmerged)
+    exact = resting_poses(mesh_body(trimesh.creation.cylinder(0.5, 2.0, sections=64)),
+                          roll_angle_deg=0)
+    assert len(exact) == 66
+    flat = [p.probability for p in exact.poses if abs(p.down[2]) < 1e-9]
+    assert side[0].probability == pytest.approx(sum(flat), rel=1e-12)
+
+
+def test_a_cone_rolls_round_its_apex_about_its_axis():
+    ps = resting_poses(mesh_body(trimesh.creation.cone(1.0, 2.0, sections=48)))
+    kinds = sorted(p.kind for p in ps.poses)
+    assert kinds == ["face", "rolling"]
+    rolling = [p for p in ps.poses if p.kind == "rolling"][0]
+    assert np.allclose(np.abs(rolling.axis), [0, 0, 1], atol=1e-9)
+
+
+def test_a_capsule_is_its_rolling_side_and_at_most_its_two_ends():
+    ps = resting_poses(mesh_body(trimesh.creation.capsule(height=2.0, radius=0.5,
+                                                          count=[32, 32])))
+    rolling = [p for p in ps.poses if p.kind == "rolling"]
+    assert len(rolling) == 1 and len(ps) <= 3
+    assert np.allclose(np.abs(rolling[0].axis), [0, 0, 1], atol=1e-6)
+    assert ps.probabilities.sum() == pytest.approx(1.0, abs=1e-12)
+
+
+def test_a_tessellated_ball_is_one_rolling_pose_without_an_axis():
+    ps = resting_poses(mesh_body(trimesh.creation.icosphere(subdivisions=4)))
+    assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].axis is None
+    assert ps[0].probability == 1.0 and ps[0].critical_tilt_deg == 0
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.tuples(*[st.floats(-np.pi, np.pi)] * 3), st.tuples(*[st.floats(-50, 50)] * 3))
+def test_a_rotated_1x2x3_box_stored_as_float32_has_exactly_six_poses(tmp_path_factory,
+                                                                       angles, offset):
+    mesh = trimesh.creation.box((1.0, 2.0, 3.0))
+    mesh.apply_transform(rigid(angles, offset))
+    path = float32_stl(tmp_path_factory.mktemp("box"), mesh)
+    ps = resting_poses(read(path).body)
+    assert len(ps) == 6 and all(p.kind == "face" for p in ps.poses)
+    reference = resting_poses(box(1, 2, 3)).probabilities
+    assert np.allclose(ps.probabilities, reference, atol=1e-6)
+
+
+def test_quasi_static_values_of_a_cube_and_a_tetrahedron_stay():
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    assert np.allclose(poses_from_points(cube, [0.5] * 3).probabilities, 1 / 6, atol=1e-13)
+    tetra = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    assert np.allclose(poses_from_points(tetra, [0, 0, 0]).probabilities, 0.25, atol=1e-13)
+
+
+# ----------------------------------------------------------------- monotone
+def irregular_prism(seed: int, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
+    """A 64-sided prism with irregular sides (angles and radii jittered) and a centre of
+    mass off its axis: its sides merge into physical faces as the tolerance grows past
+    their few-millimetre bends, and into families as the roll angle grows, a few at a
+    time."""
+    rng = np.random.default_rng(seed)
+    k = (np.arange(n) + rng.uniform(-0.2, 0.2, n)) * 2 * np.pi / n
+    r = 0.5 * (1 + rng.uniform(-1e-3, 1e-3, n))
+    ring = np.stack((r * np.cos(k), r * np.sin(k)), axis=1)
+    X = np.vstack([np.column_stack((ring, np.full(n, z))) for z in (-1.0, 1.0)])
+    return X, rng.normal(size=3) * [0.02, 0.02, 0.1]
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.lists(st.floats(1e-8, 5e-2), min_size=2, max_size=6),
+       st.sampled_from([0.0, 15.0]))
+def test_more_tolerance_never_gives_more_poses(seed, tolerances, roll):
+    X, com = irregular_prism(seed)
+    counts = [len(poses_from_points(X, com, tolerance=t, roll_angle_deg=roll))
+              for t in sorted(tolerances)]
+    assert counts == sorted(counts, reverse=True)
+    if roll == 0 and min(tolerances) < 1e-4 and max(tolerances) > 3e-2:
+        assert counts[-1] * 3 <= counts[0]  # the test is not vacuous: sides do merge
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.lists(st.floats(0.0, 40.0), min_size=2, max_size=5),
+       st.booleans())
+def test_a_larger_roll_angle_never_gives_more_poses(seed, angles, prism):
+    if prism:
+        X, com = irregular_prism(seed)
+    else:
+        rng = np.random.default_rng(seed)
+        X = rng.normal(size=(40, 3)) * [1.0, 0.8, 0.6]
+        com = rng.dirichlet(np.full(40, 4.0)) @ X
+    results = [poses_from_points(X, com, roll_angle_deg=a) for a in sorted(angles)]
+    counts = [len(r) for r in results]
+    assert counts == sorted(counts, reverse=True)
+    for r in results:
+        assert r.probabilities.sum() == pytest.approx(1.0, abs=1e-12)
+    if prism and min(angles) == 0 and max(angles) > 20:
+        assert counts[-1] * 4 <= counts[0]  # the test is not vacuous: the sides join
+
+
+def test_float32_noise_never_splits_a_face(tmp_path):
+    """A faceted body far from the origin, stored as float32: each flat face stays one
+    pose (the exact hull sees each of its triangles apart, 1e-7 rad off)."""
+    mesh = trimesh.creation.cylinder(0.5, 2.0, sections=10)  # a decagonal prism
+    mesh.apply_transform(rigid((0.3, -1.2, 0.7), (300.0, -120.0, 45.0)))
+    body = read(float32_stl(tmp_path, mesh)).body
+    ps = resting_poses(body, roll_angle_deg=0)
+    assert len(ps) == 12 and all(p.kind == "face" for p in ps.poses)
+    # every side is its whole rectangle (not one of its two triangles), every end its
+    # decagon, so the tilts are the exact prism's: atan(apothem·tan 18° / apothem) = 18°
+    sides = [p for p in ps.poses if len(p.face) == 4]
+    assert len(sides) == 10 and len([p for p in ps.poses if len(p.face) == 10]) == 2
+    assert all(p.critical_tilt_deg == pytest.approx(18.0, abs=0.01) for p in sides)
+
+
+def test_a_fine_sphere_is_fast_and_rolls():
+    """Issue 10: a 360k-triangle sphere took over 120 s (a pose per facet); a fine ball
+    is one rolling pose, and the work after the hull is linear-ish."""
+    import time
+
+    mesh = trimesh.creation.icosphere(subdivisions=6)  # 81 920 triangles
+    body = mesh_body(mesh)
+    start = time.perf_counter()
+    ps = resting_poses(body)
+    assert time.perf_counter() - start < 20.0  # seconds, on a loaded 2-core machine
+    assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].members > 80_000
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1))
+def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
+    """rocking() sweeps only the points its exact filter keeps (those near the rim of the
+    projected hull): the same heights and tilts as sweeping every point."""
+    import plumbob.stability.rocking as rocking_module
+
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(3000, 3))
+    X /= np.linalg.norm(X, axis=1)[:, None]
+    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
+    down = rng.normal(size=3)
+    down /= np.linalg.norm(down)
+    fast = rocking_module.rocking(X, down, eps, azimuths=6)
+    keep = rocking_module._candidates
+    try:
+        rocking_module._candidates = lambda a, b, alpha, eps, coarse: np.arange(len(a))
+        slow = rocking_module.rocking(X, down, eps, azimuths=6)
+    finally:
+        rocking_module._candidates = keep
+    assert np.array_equal(fast.heights, slow.heights)
+    assert np.allclose(fast.tilts_deg, slow.tilts_deg, rtol=0, atol=1e-9)
