@@ -67,9 +67,12 @@ def _manifold_hull(X: np.ndarray, eps: float):
     tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(tri) < 4 or len(P) < 4:
         return None
-    tn, off, _ = _planes(P, tri)
+    tn, off, cr = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
+    area = 0.5 * np.linalg.norm(cr, axis=1)
+    if not float(np.dot(off, area)) / 3 > eps * area.sum():
+        return None  # no volume: flat points make a two-sided polygon, not a solid
     twin = half_edge_twins(tri, len(P))
     if twin is None:
         return None
