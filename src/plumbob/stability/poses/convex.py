@@ -120,7 +120,12 @@ def hull_triangles(X: np.ndarray, eps: float
     (12, [0.0, 1.0])
     """
     found = _manifold_hull(X, eps)
-    return found if found is not None else _qhull(X)
+    P, tri, tn, off = found if found is not None else _qhull(X)
+    # triangles in an order of their own geometry (by normal), not the hull library's: so
+    # faces, and poses of equal probability, come out in the same order from either path
+    key = np.round(tn, 9)
+    order = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
+    return P, tri[order], tn[order], off[order]
 
 
 def hull_ring2(q: np.ndarray) -> np.ndarray | None:
