@@ -11,8 +11,6 @@ still moving at the time limit is counted as unsettled, not guessed.
 from __future__ import annotations
 
 import math
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
@@ -87,6 +85,9 @@ def _simulate(engine: eng.Engine, quats: np.ndarray, heights: np.ndarray, jobs: 
     """Run every drop, on ``jobs`` processes; the answer is the same for any ``jobs``."""
     if jobs <= 1 or len(quats) < 2:
         return eng.run_drops(engine, quats, heights)
+    import multiprocessing  # here, not at the top: `plumbob poses` without --dynamic
+    from concurrent.futures import ProcessPoolExecutor  # starts faster without them
+
     parts = np.array_split(np.arange(len(quats)), min(len(quats), jobs * _CHUNKS_PER_JOB))
     # fork where there is one: a spawned worker would re-run a user's script that has no
     # ``if __name__ == "__main__"`` guard; the parent has built no MuJoCo model to share
