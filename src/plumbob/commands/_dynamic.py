@@ -21,13 +21,10 @@ DYNAMIC_OPTIONS = ("drops", "seed", "drop_height", "restitution", "friction", "o
 
 def _seed(text: str) -> int:
     """A whole number ≥ 0 (a random seed)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must not be negative, not {value}")
-    return value
+    value = non_negative(text)
+    if not value.is_integer():
+        raise argparse.ArgumentTypeError(f"a seed is a whole number, not {text}")
+    return int(value)
 
 
 def add_dynamic_arguments(parser: argparse.ArgumentParser) -> None:
