@@ -24,7 +24,7 @@ from ..verdict import STANDARD_GRAVITY
 from . import engine as eng
 from .result import DropPose, Drops, wilson_interval
 
-__all__ = ["drop_poses", "classify", "MATCH_DEG"]
+__all__ = ["drop_poses", "classify", "check_settings", "MATCH_DEG"]
 
 MATCH_DEG = 2.0  # a body at rest on a face has its down within contact compliance of it
 _CHUNKS_PER_JOB = 4  # chunks per process: the slow drops (long rolls) spread evenly
@@ -60,8 +60,10 @@ def classify(downs: np.ndarray, poses: Poses, match_deg: float = MATCH_DEG) -> n
     return np.where(near, best, -1)
 
 
-def _check(drops: int, drop_height: float, restitution: float, friction: float,
-           jobs: int, overdamped: bool) -> int:
+def check_settings(drops: int, drop_height: float, restitution: float, friction: float,
+                   jobs: int, overdamped: bool) -> int:
+    """The number of drops, once every setting is in range; else a LimitError (too many
+    drops) or StabilityError naming the setting. Cheap: called before any work."""
     drops = check_count("drops", drops, MAX_SAMPLES, hint="ask for fewer drops")
     if drops < 1:
         raise StabilityError("dynamic drops need at least one drop")
@@ -151,7 +153,7 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     LimitError
         More drops than :data:`plumbob.limits.MAX_SAMPLES`.
     """
-    drops = _check(drops, drop_height, restitution, friction, jobs, overdamped)
+    drops = check_settings(drops, drop_height, restitution, friction, jobs, overdamped)
     mujoco = eng.require_mujoco()
     props = body.mass_properties() if props is None else props
     if getattr(body, "dim", props.dim) != 3:
