@@ -20,7 +20,7 @@ The meshes: a box with a cylinder boss (manifold3d, finely tessellated), a capsu
 (manifold3d), and real CAD files from ``/work/trimesh_models/models`` when present
 (no closed scan is there: the Stanford bunny is open and non-manifold).
 
-Run: ``python bench/poses.py [--repeat 3] [--quick] [--profile] [--no-trimesh]``.
+Run: ``python bench/poses.py [--repeat 3] [--quick] [--profile] [--hulls] [--no-trimesh]``.
 """
 
 from __future__ import annotations
@@ -136,8 +136,39 @@ def profile(path: str, top: int = 14) -> None:
     print("\n".join("      " + ln for ln in lines))
 
 
+def hull_times(path: str) -> str:
+    """In-process, best of 3: manifold3d's quickhull and scipy's qhull on the welded points
+    of ``path``, and each library's import time (in a fresh process): the measurement
+    behind the choice in ``stability/poses/convex.py``."""
+    import manifold3d
+    from scipy.spatial import ConvexHull
+
+    records = np.fromfile(path, dtype=[("n", "<f4", 3), ("t", "<f4", (3, 3)), ("a", "<u2")],
+                          offset=84)
+    points = np.unique(records["t"].reshape(-1, 3).astype(np.float64), axis=0)
+
+    def best(fn) -> float:
+        times = []
+        for _ in range(3):
+            start = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - start)
+        return min(times)
+
+    quick = best(lambda: manifold3d.Manifold.hull_points(points).to_mesh64())
+    qhull = best(lambda: ConvexHull(points))
+    imports = {}
+    for module in ("manifold3d", "scipy.spatial"):
+        code = f"import time; t = time.perf_counter(); import {module}; print(time.perf_counter() - t)"
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        imports[module] = float(out.stdout)
+    return (f"      hull of {len(points):,} points: manifold3d {quick * 1e3:.0f} ms, qhull "
+            f"{qhull * 1e3:.0f} ms; import manifold3d {imports['manifold3d'] * 1e3:.0f} ms, "
+            f"scipy.spatial {imports['scipy.spatial'] * 1e3:.0f} ms")
+
+
 def run_case(name: str, path: str, faces: int, repeat: int, trimesh: bool,
-             prof: bool) -> dict:
+             prof: bool, hulls: bool = False) -> dict:
     plumbob = median_process([sys.executable, "-m", "plumbob", "poses", path, "--units", "mm"],
                              repeat)
     floor = median_process([sys.executable, "-c", FLOOR, path], repeat)
@@ -146,6 +177,8 @@ def run_case(name: str, path: str, faces: int, repeat: int, trimesh: bool,
     tm_text = f"{tm:7.2f}" if tm else "     — "
     print(f"{name:<28}{faces:>8,}  {plumbob:7.2f}  {tm_text}  {floor:6.2f}   {ratio_tm}"
           f"   {plumbob / floor:5.2f}×")
+    if hulls:
+        print(hull_times(path))
     if prof:
         profile(path)
     return {"faces": faces, "plumbob": plumbob, "trimesh": tm, "floor": floor}
@@ -157,6 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="only the 10k-face meshes")
     parser.add_argument("--profile", action="store_true", help="profile plumbob on each mesh")
     parser.add_argument("--no-trimesh", action="store_true", help="skip trimesh (slow)")
+    parser.add_argument("--hulls", action="store_true",
+                        help="also time manifold3d's hull against qhull on each mesh")
     args = parser.parse_args(argv)
     sizes = [10_000] if args.quick else [10_000, 100_000]
     print(f"whole process, median of {args.repeat}, wall s; ratios trimesh/plumbob and "
@@ -172,7 +207,7 @@ def main(argv: list[str] | None = None) -> int:
                 path = os.path.join(tmp, f"{name.replace(' ', '_')}_{size}.stl")
                 write_binary_stl(path, triangles)
                 results.append(run_case(name, path, len(triangles), args.repeat,
-                                        not args.no_trimesh, args.profile))
+                                        not args.no_trimesh, args.profile, args.hulls))
             if os.path.exists(real):  # as binary STL, which the floor's reader reads
                 import trimesh
 
@@ -180,7 +215,8 @@ def main(argv: list[str] | None = None) -> int:
                 path = os.path.join(tmp, f"real_{size}.stl")
                 write_binary_stl(path, np.asarray(mesh.triangles))
                 results.append(run_case(f"{REAL[size]} (CAD)", path, len(mesh.faces),
-                                        args.repeat, not args.no_trimesh, args.profile))
+                                        args.repeat, not args.no_trimesh, args.profile,
+                                        args.hulls))
     met = True
     for r in results:
         want = 5 if r["faces"] < 50_000 else 30
