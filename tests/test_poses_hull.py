@@ -33,10 +33,10 @@ def test_quickhull_is_qhulls_hull(seed):
     X = rng.normal(size=(400, 3)) * [1.0, 2.0, 0.5]
     if seed % 2:  # rounded to a grid: many coplanar and duplicate points
         X = np.round(X * 4) / 4
-    P, tri, normals, offsets = hull_triangles(X, 1e-12 * np.ptp(X))
+    P, tri, normals, offsets, twins = hull_triangles(X, 1e-12 * np.ptp(X))
     qh = ConvexHull(X)
     assert hull_volume(P, tri) == pytest.approx(qh.volume, rel=1e-12)
-    assert half_edge_twins(tri, len(P)) is not None  # closed
+    assert np.array_equal(twins, half_edge_twins(tri, len(P)))  # closed, and paired right
     # every input point under every facet plane, to rounding error
     assert (X @ normals.T - offsets).max() <= 1e-12 * np.ptp(X)
     # the corners are qhull's vertices (points on an edge or inside a face are not)
@@ -72,7 +72,7 @@ def test_a_fine_float32_circle_needs_no_qhull(monkeypatch):
     ring = np.stack((np.cos(t), np.sin(t)), axis=1) * 0.008
     X = np.concatenate((np.c_[ring, np.zeros(len(t))], np.c_[ring, np.full(len(t), 0.03)]))
     X = X.astype(np.float32).astype(float)
-    P, tri, _, _ = hull_triangles(X - X.mean(axis=0), 1e-12 * 0.03)
+    P, tri, *_ = hull_triangles(X - X.mean(axis=0), 1e-12 * 0.03)
     assert hull_volume(P, tri) == pytest.approx(np.pi * 0.008 ** 2 * 0.03, rel=1e-6)
 
 

@@ -161,8 +161,8 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     poses = resting_poses(body, g=g, props=props) if poses is None else poses
     com = np.asarray(props.center_of_mass, dtype=float)
     size = body_size(body)
-    pts, _, _, _ = hull_triangles(hull_points(body, sampling_tolerance(size, None)) - com,
-                                  1e-12 * size)
+    pts = hull_triangles(hull_points(body, sampling_tolerance(size, None)) - com,
+                         1e-12 * size)[0]
     radius = float(np.linalg.norm(pts, axis=1).max())
     t0 = math.sqrt(radius / g)
     scaled = pts / radius

@@ -58,8 +58,8 @@ def _planes(P: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def _manifold_hull(X: np.ndarray, eps: float):
-    """manifold3d's hull as (points, outward triangles, normals, offsets), or None when
-    its answer fails the checks (then qhull decides)."""
+    """manifold3d's hull as (points, outward triangles, normals, offsets, twins), or None
+    when its answer fails the checks (then qhull decides)."""
     import manifold3d
 
     mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
@@ -81,11 +81,11 @@ def _manifold_hull(X: np.ndarray, eps: float):
     far = tri[across, (twin + 2) % 3]
     if np.max(dot(P[far], tn[np.repeat(np.arange(len(tri)), 3)]) - np.repeat(off, 3)) > eps:
         return None
-    return P, tri, tn, off
+    return P, tri, tn, off, twin
 
 
 def _qhull(X: np.ndarray):
-    """scipy's qhull: (points, outward triangles, normals, offsets)."""
+    """scipy's qhull: (points, outward triangles, normals, offsets, twins)."""
     from scipy.spatial import ConvexHull, QhullError
 
     try:
@@ -100,32 +100,39 @@ def _qhull(X: np.ndarray):
     off = -eq[:, 3] / scale
     flip = dot(cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]]), tn) < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
-    return X, tri, tn, off
+    twin = half_edge_twins(tri, len(X))
+    if twin is None:
+        raise GeometryError("the convex hull is not a closed surface (qhull failure)")
+    return X, tri, tn, off, twin
 
 
 def hull_triangles(X: np.ndarray, eps: float
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The convex hull of ``X`` (n, 3) as triangles.
 
-    Returns ``(P, tri, normals, offsets)``: points (m, 3) that ``tri`` (F, 3) indexes,
-    wound counter-clockwise seen from outside, and each triangle's outward unit normal
-    and plane offset (n·x = offset). ``eps`` (m) is the rounding error within which an
-    edge may look concave.
+    Returns ``(P, tri, normals, offsets, twins)``: points (m, 3) that ``tri`` (F, 3)
+    indexes, wound counter-clockwise seen from outside, each triangle's outward unit
+    normal and plane offset (n·x = offset), and for each half-edge ``3 t + k`` (from
+    ``tri[t, k]`` to ``tri[t, (k + 1) % 3]``) its reversed twin. ``eps`` (m) is the
+    rounding error within which an edge may look concave.
 
     Raises GeometryError when the points span no volume.
 
     >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
-    >>> P, tri, normals, offsets = hull_triangles(cube, 1e-12)
+    >>> P, tri, normals, offsets, twins = hull_triangles(cube, 1e-12)
     >>> len(tri), sorted(set(np.round(offsets, 12).tolist()))
     (12, [0.0, 1.0])
     """
     found = _manifold_hull(X, eps)
-    P, tri, tn, off = found if found is not None else _qhull(X)
+    P, tri, tn, off, twin = found if found is not None else _qhull(X)
     # triangles in an order of their own geometry (by normal), not the hull library's: so
     # faces, and poses of equal probability, come out in the same order from either path
     key = np.round(tn, 9)
     order = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
-    return P, tri[order], tn[order], off[order]
+    old = (3 * order[:, None] + np.arange(3)).ravel()  # new half-edge i was old[i]
+    new = np.empty_like(old)
+    new[old] = np.arange(len(old))
+    return P, tri[order], tn[order], off[order], new[twin[old]]
 
 
 def hull_ring2(q: np.ndarray) -> np.ndarray | None:
