@@ -1,13 +1,23 @@
 """Convex hulls for the pose code, chosen by measurement: manifold3d first, qhull as fallback.
 
-Measured on this project's 2-core machine (``bench/poses.py``): on a 100 000-triangle
-box-with-cylinder stored as float32, manifold3d's quickhull (``Manifold.hull_points``)
-takes 15–50 ms where scipy's qhull takes 0.2 s to 30 s (qhull slows badly on the many
-nearly co-circular points of a finely tessellated circle), and manifold3d imports in
-~7 ms where ``scipy.spatial`` takes 250–600 ms — which alone would be most of the
-start-up of ``plumbob poses``. So :func:`hull_triangles` asks manifold3d, checks its
-answer (a closed surface of non-degenerate triangles, every edge convex to rounding
-error) and falls back to qhull only when that check fails.
+Measured on this project's 2-core machine (``python bench/poses.py --hulls``), welded
+points of float32 STL files:
+
+=============================  =======  ==========  ===========
+mesh                           points   manifold3d  scipy qhull
+=============================  =======  ==========  ===========
+box with cylinder, 10k faces     5 002       12 ms       381 ms
+box with cylinder, 100k faces   50 008       12 ms    18 194 ms
+capsule, 100k faces             49 730      151 ms       443 ms
+counter.unitsmm.STL, 84k        41 837        2 ms        12 ms
+=============================  =======  ==========  ===========
+
+(qhull slows badly on the nearly co-circular points of a finely tessellated circle),
+and manifold3d imports in 3–11 ms where ``scipy.spatial`` takes 300–850 ms, which
+alone would be a large part of the start-up of ``plumbob poses``. So
+:func:`hull_triangles` asks manifold3d, checks its answer (a closed surface of
+non-degenerate triangles, every edge convex to rounding error, a volume) and falls
+back to qhull only when that check fails.
 
 manifold3d returns the hull's vertices as exact copies of input points
 (``to_mesh64``), so the facet planes are planes through input points, as qhull's are.
