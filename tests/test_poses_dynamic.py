@@ -52,8 +52,14 @@ def write_stl(path, body: MeshSolid) -> str:
 @pytest.mark.parametrize(("name", "body", "seed"), [("1x2x3 box", box(1, 2, 3), 11),
                                                     ("L-block", l_block(), 12)])
 def test_overdamped_drops_reproduce_the_quasi_static_probabilities(name, body, seed):
-    """Every pose within 2 standard errors (of the quasi-static p and the drop count).
-    300 drops on 2 processes: a few seconds each on two shared cores."""
+    """Every pose within 2 standard errors (of the quasi-static p and the drop count), and
+    the counts as a whole consistent with the quasi-static probabilities (Pearson's
+    chi-square, p > 0.01: with six poses, one beyond 2 SE by chance is not rare, so the
+    global test says more). 300 drops on 2 processes: a few seconds each on two shared
+    cores. At 3000 drops the L-block's slanted face comes out 2.1 SE high (0.149
+    against 0.136; docs/stability.md): the engine's soft contact, within the noise here."""
+    from scipy.stats import chisquare
+
     quasi = resting_poses(body)
     result = drop_poses(body, drops=300, seed=seed, overdamped=True, jobs=2, poses=quasi)
     assert result.landed >= 297, result  # a drop may end balanced; no more than 1 %
@@ -65,6 +71,9 @@ def test_overdamped_drops_reproduce_the_quasi_static_probabilities(name, body, s
         assert abs(pose.probability - p0) <= 2 * se0, (name, pose, se0)
         low, high = pose.interval
         assert low <= pose.probability <= high
+    counts = [p.drops for p in result]
+    expected = [p.quasi_static * result.landed for p in result]
+    assert chisquare(counts, expected).pvalue > 0.01, (name, counts, expected)
 
 
 def test_the_same_seed_gives_the_same_drops_on_any_number_of_processes():

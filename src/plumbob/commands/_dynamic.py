@@ -21,13 +21,10 @@ DYNAMIC_OPTIONS = ("drops", "seed", "drop_height", "restitution", "friction", "o
 
 def _seed(text: str) -> int:
     """A whole number ≥ 0 (a random seed)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must not be negative, not {value}")
-    return value
+    value = non_negative(text)
+    if not value.is_integer():
+        raise argparse.ArgumentTypeError(f"a seed is a whole number, not {text}")
+    return int(value)
 
 
 def add_dynamic_arguments(parser: argparse.ArgumentParser) -> None:
@@ -63,8 +60,13 @@ def check_dynamic(args: argparse.Namespace) -> None:
     from ..errors import PlumbobError
 
     if getattr(args, "dynamic", False):
-        from ..stability.drops import require_mujoco
+        from ..stability.drops import check_settings, require_mujoco
 
+        if getattr(args, "plot", None):
+            raise PlumbobError("--plot draws the quasi-static poses: leave out --dynamic")
+        _settings(args)
+        check_settings(args.drops, args.drop_height, args.restitution, args.friction,
+                       args.jobs, args.overdamped)
         require_mujoco()
         return
     for dest in DYNAMIC_OPTIONS:
@@ -73,20 +75,31 @@ def check_dynamic(args: argparse.Namespace) -> None:
             raise PlumbobError(f"{option} is a setting of the dynamic drops: add --dynamic")
 
 
+def _settings(args: argparse.Namespace) -> None:
+    """Fill in the defaults of the dynamic settings not given (in place)."""
+    if args.jobs is None:
+        from ..batch.runner import default_jobs
+
+        args.jobs = default_jobs()
+    for dest, default in (("drops", 1000), ("seed", 0), ("drop_height", 0.0),
+                          ("restitution", 0.0), ("friction", 1.0), ("overdamped", False)):
+        if getattr(args, dest) is None:
+            setattr(args, dest, default)
+
+
 def run_dynamic(args: argparse.Namespace, reading, props, poses, notes: list[str]) -> int:
     """Run the drops and print their report (text or ``--json``); returns the exit status.
-    ``poses`` are the quasi-static poses the landings are matched to."""
-    from ..batch.runner import default_jobs
+    ``poses`` are the quasi-static poses the landings are matched to; ``args`` went
+    through :func:`check_dynamic` first."""
     from ..report import format_number as num
     from ..report import format_vector
     from ..stability.drops import drop_poses
 
     body = reading.body
     result = drop_poses(
-        body, drops=args.drops or 1000, seed=args.seed or 0,
-        drop_height=args.drop_height or 0.0, restitution=args.restitution or 0.0,
-        friction=args.friction or 1.0, overdamped=bool(args.overdamped),
-        jobs=args.jobs or default_jobs(), g=args.g, poses=poses, props=props)
+        body, drops=args.drops, seed=args.seed, drop_height=args.drop_height,
+        restitution=args.restitution, friction=args.friction, overdamped=args.overdamped,
+        jobs=args.jobs, g=args.g, poses=poses, props=props)  # settings: check_dynamic
     notes = notes + list(result.notes)
     if args.json:
         print_json({**header(reading, getattr(body, "kind", "solid")), **result.as_dict()},

@@ -19,7 +19,7 @@ MuJoCo is imported only when drops run; without it the error names the extra.
 
 from .engine import EXTRA, require_mujoco
 from .result import DropPose, Drops, wilson_interval
-from .run import classify, drop_poses
+from .run import check_settings, classify, drop_poses
 
 __all__ = ["drop_poses", "DropPose", "Drops", "wilson_interval", "classify",
-           "require_mujoco", "EXTRA"]
+           "check_settings", "require_mujoco", "EXTRA"]

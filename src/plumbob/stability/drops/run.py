@@ -11,8 +11,6 @@ still moving at the time limit is counted as unsettled, not guessed.
 from __future__ import annotations
 
 import math
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
@@ -26,7 +24,7 @@ from ..verdict import STANDARD_GRAVITY
 from . import engine as eng
 from .result import DropPose, Drops, wilson_interval
 
-__all__ = ["drop_poses", "classify", "MATCH_DEG"]
+__all__ = ["drop_poses", "classify", "check_settings", "MATCH_DEG"]
 
 MATCH_DEG = 2.0  # a body at rest on a face has its down within contact compliance of it
 _CHUNKS_PER_JOB = 4  # chunks per process: the slow drops (long rolls) spread evenly
@@ -62,8 +60,10 @@ def classify(downs: np.ndarray, poses: Poses, match_deg: float = MATCH_DEG) -> n
     return np.where(near, best, -1)
 
 
-def _check(drops: int, drop_height: float, restitution: float, friction: float,
-           jobs: int, overdamped: bool) -> int:
+def check_settings(drops: int, drop_height: float, restitution: float, friction: float,
+                   jobs: int, overdamped: bool) -> int:
+    """The number of drops, once every setting is in range; else a LimitError (too many
+    drops) or StabilityError naming the setting. Cheap: called before any work."""
     drops = check_count("drops", drops, MAX_SAMPLES, hint="ask for fewer drops")
     if drops < 1:
         raise StabilityError("dynamic drops need at least one drop")
@@ -87,6 +87,9 @@ def _simulate(engine: eng.Engine, quats: np.ndarray, heights: np.ndarray, jobs: 
     """Run every drop, on ``jobs`` processes; the answer is the same for any ``jobs``."""
     if jobs <= 1 or len(quats) < 2:
         return eng.run_drops(engine, quats, heights)
+    import multiprocessing  # here, not at the top: `plumbob poses` without --dynamic
+    from concurrent.futures import ProcessPoolExecutor  # starts faster without them
+
     parts = np.array_split(np.arange(len(quats)), min(len(quats), jobs * _CHUNKS_PER_JOB))
     # fork where there is one: a spawned worker would re-run a user's script that has no
     # ``if __name__ == "__main__"`` guard; the parent has built no MuJoCo model to share
@@ -150,7 +153,7 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     LimitError
         More drops than :data:`plumbob.limits.MAX_SAMPLES`.
     """
-    drops = _check(drops, drop_height, restitution, friction, jobs, overdamped)
+    drops = check_settings(drops, drop_height, restitution, friction, jobs, overdamped)
     mujoco = eng.require_mujoco()
     props = body.mass_properties() if props is None else props
     if getattr(body, "dim", props.dim) != 3:
@@ -158,8 +161,8 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     poses = resting_poses(body, g=g, props=props) if poses is None else poses
     com = np.asarray(props.center_of_mass, dtype=float)
     size = body_size(body)
-    pts, _, _, _ = hull_triangles(hull_points(body, sampling_tolerance(size, None)) - com,
-                                  1e-12 * size)
+    pts = hull_triangles(hull_points(body, sampling_tolerance(size, None)) - com,
+                         1e-12 * size)[0]
     radius = float(np.linalg.norm(pts, axis=1).max())
     t0 = math.sqrt(radius / g)
     scaled = pts / radius

@@ -1,13 +1,23 @@
 """Convex hulls for the pose code, chosen by measurement: manifold3d first, qhull as fallback.
 
-Measured on this project's 2-core machine (``bench/poses.py``): on a 100 000-triangle
-box-with-cylinder stored as float32, manifold3d's quickhull (``Manifold.hull_points``)
-takes 15–50 ms where scipy's qhull takes 0.2 s to 30 s (qhull slows badly on the many
-nearly co-circular points of a finely tessellated circle), and manifold3d imports in
-~7 ms where ``scipy.spatial`` takes 250–600 ms — which alone would be most of the
-start-up of ``plumbob poses``. So :func:`hull_triangles` asks manifold3d, checks its
-answer (a closed surface of non-degenerate triangles, every edge convex to rounding
-error) and falls back to qhull only when that check fails.
+Measured on this project's 2-core machine (``python bench/poses.py --hulls``), welded
+points of float32 STL files:
+
+=============================  =======  ==========  ===========
+mesh                           points   manifold3d  scipy qhull
+=============================  =======  ==========  ===========
+box with cylinder, 10k faces     5 002       12 ms       381 ms
+box with cylinder, 100k faces   50 008       12 ms    18 194 ms
+capsule, 100k faces             49 730      151 ms       443 ms
+counter.unitsmm.STL, 84k        41 837        2 ms        12 ms
+=============================  =======  ==========  ===========
+
+(qhull slows badly on the nearly co-circular points of a finely tessellated circle),
+and manifold3d imports in 3–11 ms where ``scipy.spatial`` takes 300–850 ms, which
+alone would be a large part of the start-up of ``plumbob poses``. So
+:func:`hull_triangles` asks manifold3d, checks its answer (a closed surface of
+non-degenerate triangles, every edge convex to rounding error, a volume) and falls
+back to qhull only when that check fails.
 
 manifold3d returns the hull's vertices as exact copies of input points
 (``to_mesh64``), so the facet planes are planes through input points, as qhull's are.
@@ -58,8 +68,8 @@ def _planes(P: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def _manifold_hull(X: np.ndarray, eps: float):
-    """manifold3d's hull as (points, outward triangles, normals, offsets), or None when
-    its answer fails the checks (then qhull decides)."""
+    """manifold3d's hull as (points, outward triangles, normals, offsets, twins), or None
+    when its answer fails the checks (then qhull decides)."""
     import manifold3d
 
     mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
@@ -67,9 +77,12 @@ def _manifold_hull(X: np.ndarray, eps: float):
     tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(tri) < 4 or len(P) < 4:
         return None
-    tn, off, _ = _planes(P, tri)
+    tn, off, cr = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
+    area = 0.5 * np.linalg.norm(cr, axis=1)
+    if not float(np.dot(off, area)) / 3 > eps * area.sum():
+        return None  # no volume: flat points make a two-sided polygon, not a solid
     twin = half_edge_twins(tri, len(P))
     if twin is None:
         return None
@@ -78,11 +91,11 @@ def _manifold_hull(X: np.ndarray, eps: float):
     far = tri[across, (twin + 2) % 3]
     if np.max(dot(P[far], tn[np.repeat(np.arange(len(tri)), 3)]) - np.repeat(off, 3)) > eps:
         return None
-    return P, tri, tn, off
+    return P, tri, tn, off, twin
 
 
 def _qhull(X: np.ndarray):
-    """scipy's qhull: (points, outward triangles, normals, offsets)."""
+    """scipy's qhull: (points, outward triangles, normals, offsets, twins)."""
     from scipy.spatial import ConvexHull, QhullError
 
     try:
@@ -97,27 +110,39 @@ def _qhull(X: np.ndarray):
     off = -eq[:, 3] / scale
     flip = dot(cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]]), tn) < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
-    return X, tri, tn, off
+    twin = half_edge_twins(tri, len(X))
+    if twin is None:
+        raise GeometryError("the convex hull is not a closed surface (qhull failure)")
+    return X, tri, tn, off, twin
 
 
 def hull_triangles(X: np.ndarray, eps: float
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The convex hull of ``X`` (n, 3) as triangles.
 
-    Returns ``(P, tri, normals, offsets)``: points (m, 3) that ``tri`` (F, 3) indexes,
-    wound counter-clockwise seen from outside, and each triangle's outward unit normal
-    and plane offset (n·x = offset). ``eps`` (m) is the rounding error within which an
-    edge may look concave.
+    Returns ``(P, tri, normals, offsets, twins)``: points (m, 3) that ``tri`` (F, 3)
+    indexes, wound counter-clockwise seen from outside, each triangle's outward unit
+    normal and plane offset (n·x = offset), and for each half-edge ``3 t + k`` (from
+    ``tri[t, k]`` to ``tri[t, (k + 1) % 3]``) its reversed twin. ``eps`` (m) is the
+    rounding error within which an edge may look concave.
 
     Raises GeometryError when the points span no volume.
 
     >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
-    >>> P, tri, normals, offsets = hull_triangles(cube, 1e-12)
+    >>> P, tri, normals, offsets, twins = hull_triangles(cube, 1e-12)
     >>> len(tri), sorted(set(np.round(offsets, 12).tolist()))
     (12, [0.0, 1.0])
     """
     found = _manifold_hull(X, eps)
-    return found if found is not None else _qhull(X)
+    P, tri, tn, off, twin = found if found is not None else _qhull(X)
+    # triangles in an order of their own geometry (by normal), not the hull library's: so
+    # faces, and poses of equal probability, come out in the same order from either path
+    key = np.round(tn, 9)
+    order = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
+    old = (3 * order[:, None] + np.arange(3)).ravel()  # new half-edge i was old[i]
+    new = np.empty_like(old)
+    new[old] = np.arange(len(old))
+    return P, tri[order], tn[order], off[order], new[twin[old]]
 
 
 def hull_ring2(q: np.ndarray) -> np.ndarray | None:

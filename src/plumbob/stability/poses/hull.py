@@ -19,7 +19,7 @@ import numpy as np
 
 from ...errors import GeometryError
 from ...mesh.topology import connected_components
-from .convex import half_edge_twins, hull_triangles
+from .convex import hull_triangles
 from .vectors import cross, dot, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
@@ -95,18 +95,15 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     >>> len(h.normals), len(h.ea), h.heights.tolist()
     (6, 24, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
     """
-    X, tri, tn, toff = hull_triangles(X, eps)  # manifold3d, or qhull as fallback
+    X, tri, tn, toff, twin = hull_triangles(X, eps)  # manifold3d, or qhull as fallback
     cr = cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]])
     area = 0.5 * np.linalg.norm(cr, axis=1)
     m = len(tri)
 
-    # --- half-edges: a → b of triangle t (numbered 3 t + k), each with its reversed twin
+    # --- half-edges: a → b of triangle t (numbered 3 t + k); twin: the reversed one
     n = len(X)
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
-    twin = half_edge_twins(tri, n)
-    if twin is None:
-        raise GeometryError("the convex hull is not a closed surface (hull failure)")
     across = twin // 3  # the triangle beyond each half-edge
     tri_of = np.repeat(np.arange(m), 3)
 
