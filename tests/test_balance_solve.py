@@ -98,5 +98,5 @@ def test_parameters_override_and_recompute():
         [-4 / 21, 19 * np.sqrt(3) / 21], rel=1e-12)
     with pytest.raises(PlumbobError, match="no parameter 'b' to set; known: a, h, foot"):
         read(SCULPTURE, parameters={"b": 1.0})
-    with pytest.raises(PlumbobError, match="only a spec"):
+    with pytest.raises(PlumbobError, match="apply only to a TOML spec"):
         read(os.path.join(SHAPES, "..", "docs", "models", "missing.stl"), parameters={"a": 1})

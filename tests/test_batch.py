@@ -173,14 +173,38 @@ def test_killed_run_resumes_to_the_same_table(tmp_path, corpus, full):
         assert f"{len(done)} of them done before, kept" in stderr
 
 
+#: a valid spec that takes tens of seconds: two overlapping spheres faceted at the
+#: finest segment count plumbob allows (plumbob.limits.MAX_SEGMENTS)
+SLOW_SPEC = """[shape]
+segments = 2048
+[[part]]
+type = "sphere"
+radius = 1
+[[part]]
+type = "sphere"
+radius = 1
+at = [0.5, 0, 0]
+"""
+
+
 def test_a_file_over_the_time_limit_is_a_row(tmp_path, corpus):
     folder, _ = corpus
+    slow = tmp_path / "slow.toml"
+    slow.write_text(SLOW_SPEC)
+    good = os.path.join(folder, "stepped_cylinder.toml")
+    result = plumbob.batch.run([str(slow), good], jobs=1, timeout=3)
+    assert [r["status"] for r in result.rows] == ["timeout", "ok"]
+    assert "time limit of 3 s" in result.rows[0]["reason"]
+
+
+def test_a_pipe_is_a_failed_row_at_once(tmp_path, corpus):
+    folder, _ = corpus
     fifo = str(tmp_path / "hangs.stl")
-    os.mkfifo(fifo)  # reading it blocks for ever
+    os.mkfifo(fifo)  # reading it would block for ever: it is refused before any read
     good = os.path.join(folder, "stepped_cylinder.toml")
     result = plumbob.batch.run([fifo, good], jobs=1, timeout=5)
-    assert [r["status"] for r in result.rows] == ["timeout", "ok"]
-    assert "time limit of 5 s" in result.rows[0]["reason"]
+    assert [r["status"] for r in result.rows] == ["failed", "ok"]
+    assert "not a regular file" in result.rows[0]["reason"]
 
 
 def test_inputs_folders_globs_and_names(tmp_path, corpus):

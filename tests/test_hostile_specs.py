@@ -58,7 +58,7 @@ REFUSED = {
     "sides_1e8": ('[[part]]\ntype = "regular_polygon"\nsides = 1e8\nradius = 1\n', [],
                   ["MAX_SIDES", "100000000"]),
     "sides_not_whole": ('[[part]]\ntype = "regular_polygon"\nsides = 6.5\nradius = 1\n', [],
-                        ["whole number of sides"]),
+                        ["sides must be a whole number"]),
     "90000_cubes": ("".join(f'[[part]]\ntype="cube"\nside=1\nat=[{i % 300},{i // 300},0]\n'
                             for i in range(90_000)), [], ["MAX_PARTS", "90000"]),
     "90000_inline_cubes": ("part = [" + ",".join(
@@ -108,7 +108,7 @@ REFUSED = {
                                           ["--material steel does not apply", "5 kg/m²"]),
     "density_on_particles": ("[[particle]]\nmass = 1\nposition = [0, 0]\n",
                              ["--density", "3"], ["--density does not apply", "particles"]),
-    "material_empty": (DISC + "radius = 1\n", ["--material", ""], ["unknown material ''"]),
+    "material_empty": (DISC + "radius = 1\n", ["--material", ""], ["--material", "must not be empty"]),
     "set_unknown_name": ("[parameters]\nr = 1\n" + DISC + 'radius = "r"\n', ["--set", "q=2"],
                          ["'q'", "known: r"]),
     "set_twice": ("[parameters]\nr = 1\n" + DISC + 'radius = "r"\n',

@@ -61,9 +61,9 @@ FOREIGN = [
      lambda b: b.mass_properties().inertia_about(np.zeros((3, 5))), "point"),
     ("box('a')", lambda b: primitives.box("a", 1, 1), "length"),
     ("regular_polygon(1e8 sides)", lambda b: primitives.regular_polygon(10**8, 1), "sides"),
-    ("polygon([])", lambda b: primitives.polygon([]), "vertices"),
-    ("polygon(1-D)", lambda b: primitives.polygon([1, 2, 3]), "vertices"),
-    ("pyramid(base 1)", lambda b: primitives.pyramid(1, 1), "vertices"),
+    ("polygon([])", lambda b: primitives.polygon([]), "points"),
+    ("polygon(1-D)", lambda b: primitives.polygon([1, 2, 3]), "points"),
+    ("pyramid(base 1)", lambda b: primitives.pyramid(1, 1), "base"),
     ("revolve(list)", lambda b: primitives.revolve([[0, 0]]), "profile"),
     ("box.translated('a')", lambda b: b.translated("a"), "offset"),
 ]
@@ -119,8 +119,9 @@ SILENT = [
     ("poses(g=1e308) overflows", lambda b: plumbob.poses(b, g=1e308), "overflows"),
     ("poses(g=0)", lambda b: plumbob.poses(b, g=0), "g"),
     ("poses(g=-1)", lambda b: plumbob.poses(b, g=-1), "g"),
-    ("poses(hull_tolerance=-1)", lambda b: plumbob.poses(b, hull_tolerance=-1), "hull"),
-    ("poses(neutral_height=nan)", lambda b: plumbob.poses(b, neutral_height=NAN), "neutral"),
+    ("poses(sampling_tolerance=-1)", lambda b: plumbob.poses(b, sampling_tolerance=-1),
+     "sampling"),
+    ("poses(roll_angle_deg=nan)", lambda b: plumbob.poses(b, roll_angle_deg=NAN), "roll"),
     ("lift(datum=nan)", lambda b: plumbob.lift(b, datum=NAN), "datum"),
     ("lift(datum=inf)", lambda b: plumbob.lift(b, datum=INF), "datum"),
     ("lift(g=1e308) overflows", lambda b: plumbob.lift(b, g=1e308), "overflow"),
@@ -184,7 +185,7 @@ def test_the_good_calls_next_to_the_bad_ones_still_answer(block):
     assert after.v1_after[0] == pytest.approx(1.0) and after.v2_after[0] == pytest.approx(4.0)
     one = plumbob.ParticleSystem([2.0], [1.0, 2.0, 3.0], velocities=[0.0, 0.0, 1.0])
     assert one.positions.shape == (1, 3) and one.velocities.shape == (1, 3)
-    assert plumbob.poses(block, neutral_height=0.0)[0].probability == pytest.approx(0.2406,
+    assert plumbob.poses(block, roll_angle_deg=0.0)[0].probability == pytest.approx(0.2406,
                                                                                    abs=1e-4)
 
 

@@ -35,8 +35,11 @@ WITH_PARAMETERS = [
 
 
 def _edited_value(value):
-    """A new value for a parameter: 1.25 times its own (by expression when it is one)."""
-    return 1.25 * value if isinstance(value, (int, float)) else f"1.25*({value})"
+    """A new value for a parameter: 1.25 times its own (by expression when it is one);
+    a parameter that is 0 (a what-if offset such as the sculpture's foot) becomes 0.1."""
+    if isinstance(value, (int, float)):
+        return 1.25 * value if value else 0.1
+    return f"1.25*({value})"
 
 
 def _numbers(props):

@@ -26,15 +26,8 @@ from ..massprops import MassProperties, combine
 from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
 from .overlaps import Facets, bounding_boxes, boxes_meet, candidate_pairs, connected_groups, local_origin
 
-__all__ = [
-    "Composite",
-    "Assembly",
-    "union",
-    "difference",
-    "intersection",
-    "leaf_densities",
-    "DEFAULT_SEGMENTS",
-]
+__all__ = ["Composite", "Assembly", "union", "difference", "intersection", "leaf_densities",
+           "DEFAULT_SEGMENTS"]
 
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
 
