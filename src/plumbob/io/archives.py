@@ -32,7 +32,6 @@ import gzip
 import lzma
 import os
 import shutil
-import stat
 import tarfile
 import tempfile
 import zipfile
@@ -120,7 +119,7 @@ def _safe_name(name: str, archive: str) -> str | None:
     macOS resource forks and folders; a :class:`FormatError` for a name reaching
     outside (absolute, a drive, ``..``) or holding control characters."""
     parts = name.replace("\\", "/").split("/")
-    if name.startswith(("/", "\\")) or (len(name) > 1 and name[1] == ":") or ".." in parts \
+    if name.startswith(("/", "\\")) or (name[:1].isalpha() and name[1:2] == ":") or ".." in parts \
             or any(ord(c) < 32 or ord(c) == 127 for c in name):
         raise FormatError(f"holds a member named '{printable(name)}', which points outside "
                           "the archive (absolute, a drive or '..'): refused unread", path=archive)
@@ -218,7 +217,6 @@ def read_archive(path: str, read_member: Callable[[str], Reading],
     """
     folder = tempfile.mkdtemp(prefix="plumbob-")  # private: mode 0700
     try:
-        os.chmod(folder, stat.S_IRWXU)
         names, kind = _unpack(path, folder)
         chosen = [n for n in names if readable(n)]
         if len(chosen) != 1:
@@ -236,11 +234,9 @@ def read_archive(path: str, read_member: Callable[[str], Reading],
         try:
             reading = read_member(inner)
         except PlumbobError as error:
-            if error.path and error.path.startswith(folder):
-                renamed = type(error)(error.message.replace(inner, shown), path=shown)
-                renamed.__dict__.update({k: v for k, v in error.__dict__.items()
-                                         if k not in ("message", "path")})
-                raise renamed from None
+            if error.path and error.path.startswith(folder):  # never show the temp folder
+                error.path, error.message = None, error.message.replace(inner, shown)
+                raise error.within(path=shown) from None
             raise
         notices = tuple(n.replace(inner, shown) for n in reading.notices)
         note = f"{kind}: read {printable(member)} from the archive"
