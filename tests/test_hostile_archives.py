@@ -11,6 +11,7 @@ import gzip
 import io
 import json
 import lzma
+import os
 import tarfile
 import zipfile
 import zlib
@@ -18,11 +19,14 @@ import zlib
 import numpy as np
 import pytest
 from hostile import assert_bad_input, run_limited
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from test_hostile_meshes import CUBE_F, CUBE_V, binary_stl, obj_text
 
 from plumbob import limits
-from plumbob.errors import LimitError, PlumbobError
+from plumbob.errors import FormatError, LimitError, PlumbobError
 from plumbob.io import read
+from plumbob.io.archives import _safe_name
 
 CUBE_STL = binary_stl(CUBE_V[CUBE_F])
 OPEN_STL = binary_stl(CUBE_V[CUBE_F[:-2]])  # a cube without one side
@@ -177,3 +181,19 @@ def test_a_gltf_in_a_zip_finds_its_buffer_beside_it(tmp_path):
     reading = read(str(path), units="m")
     assert reading.body.mass_properties().volume == pytest.approx(6.0, rel=1e-12)
     assert reading.path == str(path)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(["..", ".", "", "a", "b.stl", "/", "\\", "C:", "__MACOSX",
+                                 "._x", "é", "\x00", "\n"]), max_size=6).map("/".join))
+def test_a_member_name_is_refused_or_lands_inside_the_folder(name):
+    # the invariant that keeps unpacking inside plumbob's temporary folder, for any name
+    try:
+        relative = _safe_name(name, "a.zip")
+    except FormatError:
+        return
+    if relative is not None:
+        folder = os.path.realpath("/unpack")
+        target = os.path.realpath(os.path.join(folder, relative))
+        assert os.path.commonpath([folder, target]) == folder and target != folder
+        assert relative.isprintable() and not os.path.isabs(relative)
