@@ -125,6 +125,7 @@ BAD = {
     "open mesh inside": ("open.zip", lambda: zipped({"open.stl": OPEN_STL}),
                          ("open.zip:open.stl", "open")),
     "no inner extension": ("part.gz", lambda: gzip.compress(CUBE_STL), ("name it like",)),
+    "dots for a name": ("..stl.gz", lambda: gzip.compress(CUBE_STL), ("name it like",)),
     # corrupt streams
     "not gzip": ("junk.stl.gz", lambda: b"this is not gzip at all", ("not a readable gzip",)),
     "truncated gzip": ("cut.stl.gz", lambda: gzip.compress(CUBE_STL)[:-20],

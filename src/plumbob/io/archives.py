@@ -191,8 +191,8 @@ def _unpack(path: str, folder: str) -> tuple[list[str], str]:
         with opener(path, "rb") as stream:
             if container == "tar":
                 return _unpack_tar(stream, path, folder, budget), kind
-            inner = os.path.basename(path)[: -len(ending)]
-            if not inner or os.path.splitext(inner)[1] == "":
+            inner = _safe_name(os.path.basename(path)[: -len(ending)], path)
+            if inner is None or os.path.splitext(inner)[1] == "":
                 raise FormatError(f"is a {compression} file whose name does not say what it "
                                   "holds: name it like part.stl.gz", path=path)
             _copy(stream, os.path.join(folder, inner), budget)
