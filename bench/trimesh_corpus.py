@@ -14,9 +14,10 @@ the file in this one. Each file ends in one of:
               has one, is shown for comparison;
 * ``refused`` exit 2 with one line naming the defect;
 * ``foreign`` exit 2 with one line: a format plumbob does not read (COLLADA, 3DXML,
-              archives, …);
-* ``WRONG``   anything else: a refusal of a trimesh volume, a disagreement, a
-              traceback, an exit status other than 0 or 2, or more than one line.
+              STEP, …);
+* ``WRONG``   anything else: a refusal of a trimesh volume (for its format too), a
+              disagreement, a traceback, an exit status other than 0 or 2, or more
+              than one line.
 
 Run: python bench/trimesh_corpus.py [FOLDER]   (default /work/trimesh_models/models)
 """
@@ -107,10 +108,10 @@ def judge(path: str) -> tuple[str, str, str]:
         if len(lines) != 1 or "Traceback" in stderr:
             return "WRONG", verdict, f"exit 2 but {len(lines)} lines"
         reason = lines[0].split(": ", 2)[-1]
-        if "unknown file type" in reason:
-            return "foreign", verdict, reason.split(";")[0]
-        if verdict in ("volume", "bodies"):
+        if verdict in ("volume", "bodies"):  # whatever the reason, a format included
             return "WRONG", verdict, "refused a trimesh volume: " + lines[0]
+        if "unknown file type" in reason or "unsupported file type" in reason:
+            return "foreign", verdict, reason.split(";")[0]
         return "refused", verdict, reason
     if status != 0 or data is None:
         return "WRONG", verdict, f"exit {status}: {(lines or [''])[-1][:120]}"

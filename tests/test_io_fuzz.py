@@ -40,7 +40,9 @@ def _seeds() -> dict[str, bytes]:
     doc.modelspace().add_circle((5, 5), 1)
     stream = io.StringIO()
     doc.write(stream)
+    stl = binary_stl(cube())
     return {
+        **_archive_seeds(stl),
         ".stl": binary_stl(cube()),
         ".stl ascii": ascii_stl(cube()),
         ".obj": box.export(file_type="obj").encode(),
@@ -62,6 +64,33 @@ def _seeds() -> dict[str, bytes]:
     }
 
 
+def _archive_seeds(stl: bytes) -> dict[str, bytes]:
+    """A cube STL compressed, zipped and tarred (the member is named ``cube.stl``)."""
+    import bz2
+    import gzip
+    import io
+    import lzma
+    import tarfile
+    import zipfile
+
+    packed = io.BytesIO()
+    with zipfile.ZipFile(packed, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("cube.stl", stl)
+    tarred = io.BytesIO()
+    with tarfile.open(fileobj=tarred, mode="w") as archive:
+        member = tarfile.TarInfo("cube.stl")
+        member.size = len(stl)
+        archive.addfile(member, io.BytesIO(stl))
+    return {".zip": packed.getvalue(), ".gz": gzip.compress(stl), ".bz2": bz2.compress(stl),
+            ".xz": lzma.compress(stl), ".tar": tarred.getvalue(),
+            ".tgz": gzip.compress(tarred.getvalue())}
+
+
+def _name(suffix: str) -> str:
+    """A file name for ``suffix``: a compressed file is named for what it holds."""
+    return ("fuzz.stl" if suffix in (".gz", ".bz2", ".xz") else "fuzz") + suffix
+
+
 SEEDS = _seeds()
 READERS = sorted(s for s in SUFFIXES if s != ".toml")
 
@@ -69,7 +98,7 @@ READERS = sorted(s for s in SUFFIXES if s != ".toml")
 def _outcome(suffix: str, data: bytes) -> None:
     """Read ``data`` as a ``suffix`` file; only a PlumbobError may escape."""
     with tempfile.TemporaryDirectory() as folder:
-        path = os.path.join(folder, "fuzz" + suffix)
+        path = os.path.join(folder, _name(suffix))
         with open(path, "wb") as f:
             f.write(data)
         try:
@@ -83,7 +112,7 @@ def test_every_reader_has_a_seed():
     assert {s.split()[0] for s in SEEDS} == set(READERS)
     for suffix in READERS:  # and every seed reads
         with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "seed" + suffix)
+            path = os.path.join(folder, _name(suffix))
             with open(path, "wb") as f:
                 f.write(SEEDS[suffix])
             if suffix == ".gltf":

@@ -19,7 +19,9 @@ import pytest
 from hostile import assert_bad_input, run_in_process, run_limited
 
 DATA = Path(__file__).parent / "data" / "trimesh_models"
-SUFFIXES = {".stl", ".obj", ".ply", ".off", ".3mf", ".glb", ".gltf"}
+SUFFIXES = {".stl", ".obj", ".ply", ".off", ".3mf", ".glb", ".gltf",
+            ".zip", ".bz2", ".gz",  # archives holding one of the above
+            ".dae", ".3dxml", ".xaml", ".msh"}  # formats refused by name
 FILES = sorted((p for p in DATA.iterdir() if p.suffix.lower() in SUFFIXES),
                key=lambda p: p.name.lower())
 
@@ -104,3 +106,23 @@ def test_a_real_cad_file_with_a_triangle_deleted_is_refused_for_its_hole(tmp_pat
     line = assert_bad_input(run_limited("mass", "broken.stl", cwd=tmp_path), "is open",
                             "3 boundary edges (1 hole)", "near")
     assert "overlapping" not in line
+
+
+@pytest.mark.parametrize("name, member", [("ascii.stl.zip", "fuji_obj.stl"),
+                                          ("rock.obj.bz2", "rock.obj"), ("cap.zip", "cap.glb")])
+def test_a_packed_trimesh_volume_is_read_naming_its_member(name, member, capsys):
+    verdict, mesh = trimesh_verdict(DATA / name)
+    assert verdict in ("volume", "bodies")  # trimesh reads each as a watertight volume
+    outcome = run_in_process(capsys, "mass", name, "--json", "--units", "m", cwd=DATA)
+    assert outcome.status == 0, outcome.stderr
+    data = json.loads(outcome.stdout)
+    assert disagreement(data, mesh) <= 1e-9
+    assert f"read {member} from the archive" in data["notices"][0]
+
+
+@pytest.mark.parametrize("name, format_name", [("blue_cube.dae", "COLLADA"),
+                                               ("cube1.3dxml", "3DXML"), ("plane.xaml", "XAML"),
+                                               ("insulated.msh", "Gmsh")])
+def test_a_format_plumbob_does_not_read_is_refused_by_name(name, format_name, capsys):
+    outcome = run_in_process(capsys, "mass", name, cwd=DATA)
+    assert_bad_input(outcome, name, "unsupported file type", format_name, "STL, 3MF, OBJ or PLY")

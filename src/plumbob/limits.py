@@ -15,6 +15,7 @@ from .errors import LimitError
 
 __all__ = [
     "MAX_ARCHIVE_BYTES",
+    "MAX_ARCHIVE_MEMBERS",
     "MAX_ARCHIVE_RATIO",
     "MAX_DENSITY_DEGREE",
     "MAX_EXPRESSION_NODES",
@@ -36,6 +37,8 @@ __all__ = [
 MAX_FILE_BYTES = 2 * 1024**3
 #: Bytes an archive (3MF, zipped input) may expand to, all members together.
 MAX_ARCHIVE_BYTES = 1024**3
+#: Members (files, folders) in one archive (3MF, zipped or tarred input).
+MAX_ARCHIVE_MEMBERS = 10_000
 #: How many times larger than its compressed size an archive member may expand.
 MAX_ARCHIVE_RATIO = 200
 #: Triangles in one mesh.

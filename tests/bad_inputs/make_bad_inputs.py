@@ -10,6 +10,7 @@ notice containing a fragment. ``tests/test_io_bad_inputs.py`` checks them all.
 
 from __future__ import annotations
 
+import gzip
 import io
 import os
 import struct
@@ -106,6 +107,14 @@ CASES: tuple[Case, ...] = (
          why="a vertex list with 'nan'"),
     Case("bad_row.csv", "FormatError", "line 3", why="a vertex list row with three numbers"),
     Case("bad.wkb", "FormatError", "is not valid WKB", why="truncated WKB"),
+    Case("unsupported.dae", "InputFileError", "unsupported file type '.dae' (COLLADA)",
+         why="a 3D format plumbob knows of but does not read"),
+    Case("cube.stl.gz", None, "gzip: read cube.stl from the archive", measure=1.0,
+         why="a gzipped binary STL reads as the STL it holds"),
+    Case("slip.zip", "FormatError", "points outside the archive",
+         why="a zip member named ../evil.stl (zip slip)"),
+    Case("two.zip", "FormatError", "holds 2 files plumbob reads (a.stl, b.stl)",
+         why="a zip of two meshes: which one is meant?"),
 )
 
 
@@ -279,6 +288,10 @@ def contents() -> dict[str, bytes | None]:
         "nan.csv": b"x,y\n0,0\n1,nan\n1,1\n",
         "bad_row.csv": b"x,y\n0,0\n1,0,5\n1,1\n",
         "bad.wkb": bytes.fromhex("0103000000010000000500000000"),
+        "unsupported.dae": b'<?xml version="1.0"?><COLLADA/>',
+        "cube.stl.gz": gzip.compress(binary_stl(box), mtime=0),
+        "slip.zip": zip_bytes({"../evil.stl": binary_stl(box)}),
+        "two.zip": zip_bytes({"a.stl": binary_stl(box), "b.stl": binary_stl(box)}),
     }
 
 

@@ -9,7 +9,12 @@ Formats (see ``docs/formats.md``):
 
 * solids — STL (binary and ASCII, plumbob's own fast reader), OBJ, PLY, OFF,
   3MF, GLB and glTF (through trimesh);
-* laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines.
+* laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines;
+* any of these compressed (``.gz``, ``.bz2``, ``.xz``) or alone in an archive
+  (``.zip``, ``.tar``, ``.tgz``, ``.tar.gz``, …; :mod:`plumbob.io.archives`).
+
+Formats plumbob knows of but does not read (COLLADA, 3DXML, STEP, …: see
+:data:`FOREIGN`) are refused in one line naming the format and what to convert to.
 
 TOML specs are not read here: :func:`plumbob.loading.read` sends them to
 :mod:`plumbob.spec` (which reads its mesh and outline files through this package),
@@ -28,7 +33,7 @@ from ..errors import InputFileError, PlumbobError
 from ..files import require_regular_file
 from ..reading import Reading
 
-__all__ = ["read", "read_checked", "file_family", "SUFFIXES"]
+__all__ = ["read", "read_checked", "file_family", "SUFFIXES", "FOREIGN"]
 
 
 _Read = TypeVar("_Read")
@@ -39,6 +44,20 @@ SUFFIXES = {
     ".obj": "mesh", ".ply": "mesh", ".off": "mesh", ".3mf": "mesh", ".glb": "mesh", ".gltf": "mesh",
     ".geojson": "outline", ".json": "outline", ".wkt": "outline", ".wkb": "outline",
     ".csv": "outline", ".svg": "outline", ".dxf": "outline",
+    ".zip": "archive", ".gz": "archive", ".bz2": "archive", ".xz": "archive", ".tgz": "archive",
+    ".tar": "archive",
+}
+
+#: extensions of 3D formats plumbob does not read → the format's name. None of them is
+#: read as a watertight volume here (trimesh's COLLADA, 3DXML and XAML loaders split
+#: every face group into an open sheet; OpenCTM, Gmsh, binvox and STEP need libraries
+#: plumbob does not use), so each is refused, saying what to convert it to.
+FOREIGN = {
+    ".dae": "COLLADA", ".zae": "zipped COLLADA", ".3dxml": "3DXML", ".xaml": "XAML",
+    ".ctm": "OpenCTM", ".msh": "Gmsh mesh", ".binvox": "binvox voxels", ".step": "STEP CAD",
+    ".stp": "STEP CAD", ".iges": "IGES CAD", ".igs": "IGES CAD", ".brep": "OpenCASCADE B-rep",
+    ".fbx": "FBX", ".blend": "Blender", ".3ds": "3D Studio", ".x3d": "X3D", ".wrl": "VRML",
+    ".dwg": "DWG", ".amf": "AMF", ".vtk": "VTK",
 }
 
 
@@ -63,6 +82,10 @@ def file_family(path: str, suffixes: Mapping[str, str]) -> str:
     extension is an :class:`InputFileError` listing the ones known."""
     suffix = os.path.splitext(path)[1].lower()
     kind = suffixes.get(suffix)
+    if kind is None and suffix in FOREIGN:
+        raise InputFileError(
+            f"unsupported file type {suffix!r} ({FOREIGN[suffix]}): plumbob does not read it; "
+            "export or convert it to STL, 3MF, OBJ or PLY (one closed mesh)", path=path)
     if kind is None:
         known = ", ".join(sorted(suffixes))
         raise InputFileError(
@@ -91,6 +114,14 @@ def read_checked(path: str, reader: Callable[[], _Read]) -> _Read:
 
 
 def _dispatch(kind: str, path: str, units: str | None, repair: bool) -> Reading:
+    if kind == "archive":
+        from .archives import read_archive
+
+        def member(inner: str) -> Reading:
+            family = file_family(inner, SUFFIXES)
+            return read_checked(inner, lambda: _dispatch(family, inner, units, repair))
+
+        return read_archive(path, member, _readable)
     if kind == "stl":
         from .stl import read_stl
 
@@ -102,3 +133,8 @@ def _dispatch(kind: str, path: str, units: str | None, repair: bool) -> Reading:
     from .outlines import read_outline
 
     return read_outline(path, units=units)
+
+
+def _readable(name: str) -> bool:
+    """Whether ``name`` is a file plumbob reads inside an archive (not another archive)."""
+    return SUFFIXES.get(os.path.splitext(name)[1].lower(), "archive") != "archive"

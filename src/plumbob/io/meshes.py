@@ -39,8 +39,6 @@ __all__ = ["MESH_SUFFIXES", "read_mesh", "check_3mf_archive", "check_obj_indices
 
 MESH_SUFFIXES = {".obj": "obj", ".ply": "ply", ".off": "off", ".3mf": "3mf", ".glb": "glb",
                  ".gltf": "gltf"}
-#: a 3MF with more parts than this is refused
-MAX_ARCHIVE_MEMBERS = 10_000
 
 
 def check_3mf_archive(path: str) -> str | None:
@@ -66,7 +64,7 @@ def check_3mf_archive(path: str) -> str | None:
     except Exception as error:  # noqa: BLE001 - zipfile raises many kinds on corrupt input
         raise FormatError(f"is not a readable 3MF (zip) archive: {error}", path=path) from None
     with archive:
-        check_count("archive parts", len(members), MAX_ARCHIVE_MEMBERS, path=path)
+        check_count("archive parts", len(members), limits.MAX_ARCHIVE_MEMBERS, path=path)
         packed = max(os.path.getsize(path), 1)
         expanded = sum(m.file_size for m in members)
         if expanded > limits.MAX_ARCHIVE_BYTES:
