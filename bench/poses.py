@@ -121,6 +121,7 @@ def profile(path: str, top: int = 14) -> None:
     import pstats
     from contextlib import redirect_stderr, redirect_stdout
 
+    sys.path.insert(0, os.path.join(ROOT, "src"))  # the tree under test, installed or not
     from plumbob.cli import main
 
     with redirect_stdout(io.StringIO()), redirect_stderr(io.StringIO()):

@@ -180,3 +180,16 @@ def test_a_mesh_solid_needs_real_triangles():
         MeshSolid(cube()[:, :2])
     whole = MeshSolid(np.rint(cube(2) * 2).astype(int))  # whole numbers are coordinates too
     assert whole.mass_properties().volume == pytest.approx(8.0)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_point_keys_separate_mirrored_points(dtype):
+    """A circle's points come in antipodal pairs and a box's in mirror images: each
+    distinct point must get its own key (a collision is still merged exactly, but by a
+    slow fallback: this is what kept welding a tessellated cylinder at 0.3 s)."""
+    from plumbob.mesh.weld import point_keys
+
+    q = np.random.default_rng(5).normal(size=(20_000, 3))
+    mirrored = np.concatenate([q, -q, q * [1, -1, 1], q * [-1, 1, 1], q * [1, 1, -1]])
+    keys = point_keys(mirrored.astype(dtype))
+    assert len(np.unique(keys)) == len(mirrored)
