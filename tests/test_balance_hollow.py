@@ -222,3 +222,22 @@ def test_manifold_rows_are_exactly_well_composedness():
         manifold = (built.status() == manifold3d.Error.NoError and _welded_is_2_manifold(built)
                     and abs(built.volume() - volume) < 1e-12)  # not "repaired" into another shape
         assert rows_hold == manifold, bits
+
+
+def test_the_acceptance_runs_from_the_command_line(carved_files, tmp_path, capsys):
+    """Issue 14's acceptance as a user types it: `plumbob balance --wall 2mm --margin 3mm
+    --out carved.stl`, then `plumbob check carved.stl` stands with a margin of 3 mm."""
+    from plumbob.cli import main
+
+    source = str(carved_files[0])
+    carved, void = tmp_path / "carved.stl", tmp_path / "void.stl"
+    density = str(RHO)
+    assert main(["balance", source, "--units", "mm", "--density", density, "--wall", "2mm",
+                 "--margin", "3mm", "--out", str(carved), "--void", str(void)]) == 0
+    report = capsys.readouterr().out
+    assert "hollowing" in report and str(carved) in report
+    out = _cli_json(capsys, "check", str(carved), "--units", "mm", "--density", density,
+                    "--json")
+    assert out["verdict"] == "stands" and out["margin"] >= 3 * MM
+    assert main(["check", str(carved), "--units", "mm", "--margin", "3mm"]) == 0
+    assert void.stat().st_size > 0
