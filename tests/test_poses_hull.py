@@ -11,14 +11,12 @@ import sys
 import numpy as np
 import pytest
 from conftest import ROOT
-from hypothesis import given, settings
-from hypothesis import strategies as st
 from scipy.spatial import ConvexHull
 
 from plumbob.bodies.primitives import box
 from plumbob.errors import GeometryError
 from plumbob.stability.poses import convex, poses_from_points
-from plumbob.stability.poses.convex import half_edge_twins, hull_ring2, hull_triangles
+from plumbob.stability.poses.convex import half_edge_twins, hull_triangles
 
 
 def hull_volume(P: np.ndarray, tri: np.ndarray) -> float:
@@ -76,26 +74,6 @@ def test_a_fine_float32_circle_needs_no_qhull(monkeypatch):
     assert hull_volume(P, tri) == pytest.approx(np.pi * 0.008 ** 2 * 0.03, rel=1e-6)
 
 
-points2 = st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=3, max_size=60)
-
-
-@settings(max_examples=200, deadline=None)
-@given(points2)
-def test_planar_ring_is_qhulls(pts):
-    q = np.array(pts, dtype=float)  # integer grid: duplicates and collinear points abound
-    ring = hull_ring2(q)
-    try:
-        qh = ConvexHull(q)
-    except Exception:  # qhull: collinear or too few distinct points
-        assert ring is None
-        return
-    assert ring is not None
-    # the same corners, in the same counter-clockwise cyclic order
-    expect = q[qh.vertices]
-    got = q[ring]
-    assert len(got) == len(expect)
-    start = int(np.flatnonzero((expect == got[0]).all(axis=1))[0])
-    assert np.array_equal(np.roll(expect, -start, axis=0), got)
 
 
 def test_poses_start_up_imports_no_scipy(tmp_path):

@@ -24,9 +24,6 @@ manifold3d returns the hull's vertices as exact copies of input points
 Its quickhull leaves out points within its own epsilon (about 1e-7 of the size) of a
 facet, an order of magnitude below the contact tolerance (1e-6 of the size) at which
 faces are merged, so no pose can change.
-
-:func:`hull_ring2` is the planar hull the margin of a face needs, vectorised quickhull
-in numpy (no scipy import for it).
 """
 
 from __future__ import annotations
@@ -36,7 +33,7 @@ import numpy as np
 from ...errors import GeometryError
 from .vectors import cross, dot
 
-__all__ = ["hull_triangles", "half_edge_twins", "hull_ring2"]
+__all__ = ["hull_triangles", "half_edge_twins"]
 
 
 def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
@@ -143,62 +140,3 @@ def hull_triangles(X: np.ndarray, eps: float
     new = np.empty_like(old)
     new[old] = np.arange(len(old))
     return P, tri[order], tn[order], off[order], new[twin[old]]
-
-
-def hull_ring2(q: np.ndarray) -> np.ndarray | None:
-    """Indices of the corners of the planar convex hull of ``q`` (k, 2), counter-clockwise
-    from the lowest-leftmost; None when the points span no area. Points on an edge are
-    not corners.
-
-    Quickhull, one round for all segments at once: each round adds to every segment
-    the candidate farthest outside it and drops the candidates inside the new triangle.
-
-    >>> hull_ring2(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 0.5], [0.5, 0]])).tolist()
-    [0, 1, 2, 3]
-    """
-    q = np.asarray(q, dtype=float)
-    if len(q) < 3:
-        return None
-    order = np.lexsort((q[:, 1], q[:, 0]))
-    lo, hi = int(order[0]), int(order[-1])
-
-    def outside(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """How far p lies right of a → b (outside a counter-clockwise ring), times |b − a|."""
-        d, r = q[b] - q[a], q[p] - q[a]
-        return d[:, 1] * r[:, 0] - d[:, 0] * r[:, 1]
-
-    cand = np.arange(len(q))
-    below = outside(np.full(len(q), lo), np.full(len(q), hi), cand)
-    if not (below > 0).any() and not (below < 0).any():
-        return None  # collinear
-    corners = [np.array([lo, hi])]
-    # candidates and the segment (a → b) each lies outside of
-    side = below > 0
-    pa = np.where(side, lo, hi)
-    pb = np.where(side, hi, lo)
-    keep = below != 0
-    cand, pa, pb = cand[keep], pa[keep], pb[keep]
-    n = len(q)
-    while len(cand):
-        dist = outside(pa, pb, cand)
-        seg = pa * n + pb
-        by = np.lexsort((-dist, seg))
-        first = np.ones(len(by), dtype=bool)
-        first[1:] = seg[by][1:] != seg[by][:-1]
-        apex_seg, apex = seg[by][first], cand[by][first]
-        corners.append(apex)
-        f = apex[np.searchsorted(apex_seg, seg)]
-        left = outside(pa, f, cand)
-        right = outside(f, pb, cand)
-        go_left, go_right = left > 0, (right > 0) & ~(left > 0)
-        live = (go_left | go_right) & (cand != f)
-        pa = np.where(go_left, pa, f)[live]
-        pb = np.where(go_left, f, pb)[live]
-        cand = cand[live]
-    ring = np.unique(np.concatenate(corners))
-    rel = outside(np.full(len(ring), lo), np.full(len(ring), hi), ring)
-    lower = ring[(rel >= 0) & (ring != hi)]  # lo … before hi, by x then y
-    upper = ring[(rel < 0) | (ring == hi)]  # hi … before lo, by −x then −y
-    lower = lower[np.lexsort((q[lower, 1], q[lower, 0]))]
-    upper = upper[np.lexsort((-q[upper, 1], -q[upper, 0]))]
-    return np.concatenate((lower, upper))
