@@ -8,7 +8,6 @@ from typing import Any
 
 import numpy as np
 
-from ..bodies.csg import Assembly
 from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
@@ -41,6 +40,8 @@ class MassReport(Result):
         """The report on the body of ``reading``."""
         body = reading.body
         parts = ()
+        from ..bodies.csg import Assembly  # only an assembly's parts need it
+
         if isinstance(body, Assembly):
             parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
                           for i, p in enumerate(body.parts))

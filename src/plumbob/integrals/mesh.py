@@ -25,11 +25,12 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .adaptive import FieldIntegral, InvalidSamples, sample_density
-from .rules import tetrahedron_rule
+if TYPE_CHECKING:
+    from .adaptive import FieldIntegral
 
 __all__ = ["VolumeMoments", "triangle_soup_moments", "mesh_field_moments", "CHUNK"]
 
@@ -257,6 +258,10 @@ def mesh_field_moments(
     """
     triangles = _as_triangles(triangles)
     origin = np.asarray(origin, dtype=float)
+    # density fields only: `plumbob mass part.stl` need not load the quadrature rooms
+    from .adaptive import FieldIntegral, InvalidSamples, sample_density
+    from .rules import tetrahedron_rule
+
     bary, w = tetrahedron_rule(int(degree) + 2)
     lam = np.ascontiguousarray(bary[:, 1:])  # (q, 3): weights of a, b, c (the apex is 0)
     q = len(w)
