@@ -7,7 +7,12 @@ from hypothesis import strategies as st
 
 from plumbob.bodies import primitives as P
 from plumbob.bodies.region import Region, Ring
-from plumbob.integrals.polygon import arc_cap_moments, cubic_cap_moments, polygon_moments
+from plumbob.integrals.polygon import (
+    arc_cap_moments,
+    cubic_cap_moments,
+    polygon_moments,
+    rings_moments,
+)
 
 
 def shapely_moments(vertices):
@@ -142,3 +147,25 @@ def test_region_rigid_motion(seed, angle):
     assert b.m0 == pytest.approx(a.m0, rel=1e-12)
     mirrored = region.transformed(np.diag([1.0, -1.0]))
     assert mirrored.moments().m0 == pytest.approx(a.m0, rel=1e-12)
+
+
+@pytest.mark.parametrize("degree", [2, 3])
+@pytest.mark.parametrize("far", [0.0, 1e6])
+def test_rings_moments_is_the_sum_of_polygon_moments(degree, far):
+    """The one-pass sum over many rings (a drawing's holes) equals ring-by-ring sums,
+    also far from the origin, and a degenerate ring adds nothing."""
+    rng = np.random.default_rng(11)
+    rings = [star_polygon(rng, int(rng.integers(3, 12)), centre=rng.normal(size=2) * 5 + far)
+             for _ in range(40)]
+    rings = [r if k % 3 else r[::-1] for k, r in enumerate(rings)]  # holes wind the other way
+    origin = rings[0][0]
+    one = rings_moments(rings + [rings[0][:2]], origin, degree)
+    each = polygon_moments(rings[0], origin, degree)
+    for ring in rings[1:]:
+        each = each + polygon_moments(ring, origin, degree)
+    scale = max(abs(each.m0), 1.0)
+    assert abs(one.m0 - each.m0) <= 1e-12 * scale
+    np.testing.assert_allclose(one.m1, each.m1, rtol=1e-12, atol=1e-12 * np.abs(each.m1).max())
+    np.testing.assert_allclose(one.m2, each.m2, rtol=1e-12, atol=1e-12 * np.abs(each.m2).max())
+    if degree == 3:
+        np.testing.assert_allclose(one.m3, each.m3, rtol=1e-11, atol=1e-12 * np.abs(each.m3).max())

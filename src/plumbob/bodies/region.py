@@ -25,6 +25,7 @@ from ..integrals.polygon import (
     bulge_arc_geometry,
     cubic_cap_moments,
     polygon_moments,
+    rings_moments,
 )
 from ..tolerances import sampling_tolerance
 
@@ -246,9 +247,11 @@ class Region:
     def moments(self, origin: np.ndarray | None = None, degree: int = 2) -> AreaMoments:
         """Signed moments of the region about ``origin`` (default: a local origin)."""
         origin = self.local_origin() if origin is None else np.asarray(origin, dtype=float)
-        total = AreaMoments.zero(degree)
+        straight = [r.vertices for r in self.rings if not r.is_curved]
+        total = rings_moments(straight, origin, degree)
         for ring in self.rings:
-            total = total + ring.moments(origin, degree)
+            if ring.is_curved:
+                total = total + ring.moments(origin, degree)
         return total
 
     def transformed(

@@ -27,6 +27,7 @@ import numpy as np
 __all__ = [
     "AreaMoments",
     "polygon_moments",
+    "rings_moments",
     "arc_cap_moments",
     "cubic_cap_moments",
     "bulge_arc_geometry",
@@ -107,6 +108,31 @@ def polygon_moments(vertices: np.ndarray, origin: np.ndarray, degree: int = 2) -
         m0, m1, m2, m3 = _simplex_tensors(cross / 2, [a, b], 3)
         return AreaMoments(m0, m1, m2, m3)
     return _polygon_moments_2(v, np.asarray(origin, dtype=float))
+
+
+def rings_moments(rings: list[np.ndarray], origin: np.ndarray, degree: int = 2) -> AreaMoments:
+    """The summed signed moments of many straight-edged rings (each (n_i, 2), closed
+    implicitly) about ``origin``, in one vectorised pass: a drawing of 100,000 holes is
+    one fan of edges, not 100,000 calls of :func:`polygon_moments`.
+
+    >>> square = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], dtype=float)
+    >>> hole = square[::-1] * 0.5 + 0.25
+    >>> m = rings_moments([square, hole, square[:2]], np.zeros(2))
+    >>> m.m0, m.m0 == (polygon_moments(square, np.zeros(2)) + polygon_moments(hole, np.zeros(2))).m0
+    (1.5, True)
+    """
+    rings = [r for r in rings if len(r) >= 3]  # a degenerate ring has no area
+    if not rings:
+        return AreaMoments.zero(degree)
+    lengths = np.fromiter((len(r) for r in rings), dtype=np.int64, count=len(rings))
+    a = np.concatenate(rings).astype(float, copy=False) - np.asarray(origin, dtype=float)
+    following = np.arange(1, len(a) + 1)
+    ends = np.cumsum(lengths) - 1
+    following[ends] = ends - lengths + 1  # each ring's last edge closes to its first vertex
+    b = a[following]
+    cross = a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]
+    m0, m1, m2, m3 = _simplex_tensors(cross / 2, [a, b], degree)
+    return AreaMoments(m0, m1, m2, m3)
 
 
 _CHUNK = 1 << 14  # vertices per pass: the temporaries stay in cache
