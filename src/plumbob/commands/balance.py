@@ -16,10 +16,10 @@ from ._common import (
     clean,
     header,
     length,
-    non_negative,
     open_body,
     pose_down,
     print_json,
+    tilt_limit,
 )
 
 __all__ = ["register", "run"]
@@ -45,7 +45,7 @@ def register(subparsers) -> None:
                                         "--toward, else in every direction)")
     parser.add_argument("--margin", type=length, metavar="M",
                         help="static stability margin to reach, m (or with a unit: 3mm)")
-    parser.add_argument("--require-tilt", type=non_negative, metavar="DEG",
+    parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="critical tilt to reach in every direction, degrees (IEC 62368-1: "
                              "10)")
     parser.add_argument("--ballast-region", metavar="FILE",
