@@ -18,6 +18,7 @@ import numpy as np
 
 from ...errors import StabilityError
 from ...mesh.winding import solid_angle
+from .fans import FAN_CORNERS, Fans
 from .hull import Hull3
 from .rolling import Edges3, Roller, edge_geometry, step
 from .vectors import cross, dot, fibonacci_sphere, unit
@@ -45,14 +46,29 @@ class Basins(NamedTuple):
     error: float
 
 
+def _crossing_face(h: Hull3, before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """The face two successively crossed directed edges share (−1: none, or no edge
+    before): a separatrix circling it."""
+    b = np.maximum(before, 0)
+    f, g = h.ef[after], h.eg[after]
+    share_f = (before >= 0) & ((h.ef[b] == f) | (h.eg[b] == f))
+    share_g = (before >= 0) & ((h.ef[b] == g) | (h.eg[b] == g))
+    return np.where(share_f, f, np.where(share_g, g, -1))
+
+
 def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
                   ) -> tuple[np.ndarray, bool]:
-    """Basin areas (per face, sr) from the separatrices traced back from every saddle."""
+    """Basin areas (per face, sr) from the separatrices traced back from every saddle.
+
+    Every trace's path is kept as segments; each segment adds the signed spherical
+    triangle from the left basin's face normal to the left basin and takes it from the
+    right one, all summed in one pass at the end. Around a face of many corners the
+    traces move in runs (:mod:`.fans`), one vectorised move per run.
+    """
     nF = len(h.normals)
-    area = np.zeros(nF)
     sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
     if len(sad) == 0:
-        return area, False
+        return np.zeros(nF), False
     s = eg3.spoint[sad]
     # two traces per saddle: into the regions of both its ends
     v = np.concatenate((h.ea[sad], h.eb[sad]))
@@ -61,13 +77,15 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
     exclude = h.und[edge]
     ends = roller.sinks(np.concatenate((h.ef[edge], h.eg[edge])))
     f, g = ends[:len(edge)], ends[len(edge):]
-    w0 = W[v]
-    side = dot(cross(p, w0), h.normals[h.ef[edge]]) > 0
+    side = dot(cross(p, W[v]), h.normals[h.ef[edge]]) > 0
     left, right = np.where(side, f, g), np.where(side, g, f)
-    nl, nr = h.normals[left], h.normals[right]
     near = eg3.t < -_FLAT  # arcs a region's flow leaves: traced back through them
     ismax = np.ones(len(h.X), dtype=bool)  # balanced on the tip: no region flows into it
     np.logical_and.at(ismax, h.ea, ~near)
+    fans = Fans(h, eg3, W, ismax, near)
+    last = np.full(len(v), -1, dtype=np.int64)  # the edge each trace crossed last
+    no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
+    seg_trace, seg_from, seg_to = [], [], []  # the path segments, kept for the areas
     alive = np.arange(len(v))
     ok = True
     for _ in range(len(h.X) + 8):
@@ -75,34 +93,51 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
             break
         va, pa = v[alive], p[alive]
         w = W[va]
-        done = ismax[va] | (dot(pa, w) >= 1.0 - 1e-24)  # at its maximum already
+        wp = dot(pa, w)
+        done = ismax[va] | (wp >= 1.0 - 1e-24)  # at its maximum already
         if done.any():
-            d = alive[done]
-            area_l = solid_angle(nl[d], pa[done], w[done], unit=True)
-            area_r = solid_angle(nr[d], w[done], pa[done], unit=True)
-            np.add.at(area, left[d], area_l)
-            np.add.at(area, right[d], area_r)
-            alive, va, pa, w = alive[~done], va[~done], pa[~done], w[~done]
+            seg_trace.append(alive[done])
+            seg_from.append(pa[done])
+            seg_to.append(w[done])
+            keep = ~done
+            alive, va, pa, w, wp = alive[keep], va[keep], pa[keep], w[keep], wp[keep]
             if len(alive) == 0:
                 break
-        tang = unit(w - dot(w, pa)[:, None] * pa)
-        limit = np.arccos(np.clip(dot(pa, w), -1.0, 1.0))
+        tang = unit(w - wp[:, None] * pa)
+        limit = np.arccos(np.clip(wp, -1.0, 1.0))
         e, q = step(h, eg3, va, pa, tang, limit, exclude[alive], near,
                     np.full(len(alive), -1))
-        lost = e < 0
-        if lost.any():  # passes through a corner, or numerically lost: end it at w
-            ok = False
-            d = alive[lost]
-            np.add.at(area, left[d], solid_angle(nl[d], pa[lost], w[lost], unit=True))
-            np.add.at(area, right[d], solid_angle(nr[d], w[lost], pa[lost], unit=True))
+        lost = e < 0  # passes through a corner, or numerically lost: end it at w
+        ok = ok and not lost.any()
+        seg_trace.append(alive)
+        seg_from.append(pa)
+        seg_to.append(np.where(lost[:, None], w, q))
         go = ~lost
-        d = alive[go]
-        np.add.at(area, left[d], solid_angle(nl[d], pa[go], q[go], unit=True))
-        np.add.at(area, right[d], solid_angle(nr[d], q[go], pa[go], unit=True))
-        v[d], p[d], exclude[d] = h.eb[e[go]], q[go], h.und[e[go]]
+        d, e = alive[go], e[go]
+        v[d], p[d], exclude[d] = h.eb[e], q[go], h.und[e]
+        circling = _crossing_face(h, last[d], e)
+        last[d] = e
+        runs = (circling >= 0) & (circling != no_fan[d])
+        runs &= fans.corner_count[np.maximum(circling, 0)] >= FAN_CORNERS
+        for t, face in zip(d[runs].tolist(), circling[runs].tolist()):
+            moved = fans.advance(int(v[t]), p[t], int(last[t]), face)
+            if moved is None:
+                no_fan[t] = face
+                continue
+            path, v[t], last[t] = moved
+            p[t], exclude[t] = path[-1], h.und[last[t]]
+            seg_trace.append(np.full(len(path) - 1, t))
+            seg_from.append(path[:-1])
+            seg_to.append(path[1:])
         alive = d
     else:
         ok = False
+    trace = np.concatenate(seg_trace)
+    a, b = np.concatenate(seg_from), np.concatenate(seg_to)
+    area = np.bincount(left[trace], solid_angle(h.normals[left[trace]], a, b, unit=True),
+                       minlength=nF)
+    area -= np.bincount(right[trace], solid_angle(h.normals[right[trace]], a, b, unit=True),
+                        minlength=nF)
     return np.mod(area, 4 * np.pi), ok
 
 
