@@ -23,10 +23,11 @@ from ...errors import StabilityError
 from .hull import Hull3
 from .vectors import cross, dot, expand, group_first, unit
 
-__all__ = ["Edges3", "edge_geometry", "step", "Roller"]
+__all__ = ["Edges3", "edge_geometry", "first_least_sorted", "step", "Roller"]
 
 _THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are its own arc
 _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
+_CORNER = 5e-19  # 1 − cos of the angle (1e-9 rad) within which a roll is at an arc's end
 
 
 @dataclass(frozen=True)
@@ -82,6 +83,27 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     return np.where(ok, theta, np.inf), miss, q
 
 
+def first_least_sorted(rows: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    """For group keys ``rows`` in ascending order: per group ``0..n-1`` the index (into
+    ``rows``) of its least value, the first on ties; −1 for a group with no members or
+    only infinite values. Segment reductions over the sorted keys, not ``ufunc.at``.
+
+    >>> first_least_sorted(np.array([0, 0, 2, 2]), np.array([3.0, 1.0, np.inf, 5.0]), 3).tolist()
+    [1, -1, 3]
+    """
+    out = np.full(n, -1, dtype=np.int64)
+    if len(rows) == 0:
+        return out
+    starts = np.flatnonzero(np.concatenate(([True], rows[1:] != rows[:-1])))
+    least = np.minimum.reduceat(values, starts)
+    segment = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(rows))))
+    at = np.where(values == least[segment], np.arange(len(rows)), len(rows))
+    first = np.minimum.reduceat(at, starts)
+    finite = np.isfinite(least)
+    out[rows[starts[finite]]] = first[finite]
+    return out
+
+
 def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
           limit: np.ndarray, exclude: np.ndarray, want: np.ndarray, face: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray]:
@@ -91,18 +113,22 @@ def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
     (≥ 0 for a trace starting at that face's normal, a corner of the region);
     returns (edge id or −1, meeting point)."""
     rows, cand = expand(h.degree[v], h.start[v])
-    theta, miss, q = _arc_hits(h, eg3, rows, cand, p, tang, limit)
     fr = face[rows]
-    keep = want[cand] & (h.und[cand] != exclude[rows]) & np.isfinite(theta)
+    keep = want[cand] & (h.und[cand] != exclude[rows])
     keep &= (fr < 0) | ((h.ef[cand] != fr) & (h.eg[cand] != fr))
+    rows, cand = rows[keep], cand[keep]
+    theta, miss, q = _arc_hits(h, eg3, rows, cand, p, tang, limit)
     # the first arc met inside; failing that (a point a rounding error outside its
     # region), the arc met least far outside
-    score = np.where(keep & (miss <= 1e-12), theta,
-                     np.where(keep & (miss <= _RELAXED), 10.0 + miss, np.inf))
-    best = group_first(rows, score, len(v))
-    found = (best >= 0) & np.isfinite(score[np.maximum(best, 0)])
-    edge = np.where(found, cand[np.maximum(best, 0)], -1)
-    point = np.where(found[:, None], q[np.maximum(best, 0)], p)
+    met = np.isfinite(theta)
+    score = np.where(miss <= 1e-12, theta, np.where(met & (miss <= _RELAXED), 10.0 + miss, np.inf))
+    best = first_least_sorted(rows, score, len(v))
+    found = best >= 0
+    if not found.any():
+        return np.full(len(v), -1, dtype=np.int64), unit(p)
+    b = np.maximum(best, 0)
+    edge = np.where(found, cand[b], -1)
+    point = np.where(found[:, None], q[b], p)
     return edge, unit(point)
 
 
@@ -221,6 +247,14 @@ class Roller:
             cur[slid] = np.where(towards_f, fa, ga)[sliding]
             in_region[slid] = False
             crossing = ~lost & ~sliding
+            # a crossing at the arc's very end lands on that face's normal: the body now
+            # rests on the face (a symmetric body rolls exactly through it)
+            on_f = crossing & (1.0 - dot(q, h.normals[fa]) <= _CORNER)
+            on_g = crossing & ~on_f & (1.0 - dot(q, h.normals[ga]) <= _CORNER)
+            landed = on_f | on_g
+            cur[rolling[landed]] = np.where(on_f, fa, ga)[landed]
+            in_region[rolling[landed]] = False
+            crossing &= ~landed
             cr = rolling[crossing]
             v[cr], p[cr], exclude[cr] = h.eb[e[crossing]], q[crossing], h.und[e[crossing]]
             start_face[rolling[~lost]] = -1
