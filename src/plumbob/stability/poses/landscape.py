@@ -19,10 +19,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import GeometryError, StabilityError
+from ...errors import StabilityError
 from .basins import basins3
 from .faces import physical_faces
 from .hull import build_hull3, shifted
+from .planar import planar_hull
 from .rolling import Roller, edge_geometry
 from .vectors import dot, pointer_sinks, unit
 
@@ -129,13 +130,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:
     """2D: hull edges are the poses; basins are arcs of the circle of directions."""
-    from scipy.spatial import ConvexHull, QhullError
-
-    try:
-        hull = ConvexHull(X)
-    except QhullError as exc:
-        raise GeometryError("the lamina is degenerate: its points span no area") from exc
-    V = X[hull.vertices]  # counter-clockwise
+    V = X[planar_hull(X)]  # counter-clockwise
     for _ in range(len(V)):  # drop corners lying on the line between their neighbours
         prev, nxt = np.roll(V, 1, axis=0), np.roll(V, -1, axis=0)
         d = nxt - prev
