@@ -1,0 +1,132 @@
+"""Start-up: what a command loads, judged in a real ``python -m plumbob`` process.
+
+A whole ``plumbob poses part.stl`` takes ~0.12 s, of which python and numpy are
+~0.09 s: every module loaded that the command does not use shows in that budget
+(numpy.ma alone ~10 ms, the MuJoCo drops room and the verdict ~5 ms, tomllib and
+difflib ~6 ms). ``python -X importtime`` names every module a process imports, so
+these tests read it from the very command a user runs.
+"""
+
+from __future__ import annotations
+
+import gc
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from _batch_corpus import write_stl
+from conftest import ROOT
+from hypothesis import given
+from hypothesis import strategies as st
+
+import plumbob.stability as stability
+from plumbob.bodies.primitives import box, pyramid
+from plumbob.stability.poses.vectors import unique
+
+#: Never needed by a command on a mesh: other commands' libraries, plots, the
+#: MuJoCo drops, the outline and quadrature code, numpy's masked arrays and series.
+NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy.ma",
+         "numpy.polynomial", "tomllib", "difflib", "plumbob.stability.drops",
+         "plumbob.bodies.region", "plumbob.bodies.tiling", "plumbob.bodies.containment",
+         "plumbob.bodies.csg", "plumbob.integrals.polygon", "plumbob.integrals.cells",
+         "plumbob.integrals.rules", "plumbob.spec", "plumbob.energy", "plumbob.batch",
+         "plumbob.export", "plumbob.balance", "plumbob.dynamics")
+
+
+def _rotated(triangles: np.ndarray, seed: int) -> np.ndarray:
+    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    q *= np.sign(np.diag(r))
+    return triangles @ (q if np.linalg.det(q) > 0 else -q).T
+
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory) -> dict[str, str]:
+    """A 1×2×3 box turned at random, and a 48-sided pyramid (many small faces)."""
+    folder = tmp_path_factory.mktemp("startup")
+    angles = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    ring = np.stack((np.cos(angles), np.sin(angles)), axis=1)
+    bodies = {"box": _rotated(box(1, 2, 3).triangles, 3),
+              "pyramid": _rotated(pyramid(ring, 0.8).triangles, 4)}
+    paths = {}
+    for name, triangles in bodies.items():
+        paths[name] = str(folder / f"{name}.stl")
+        write_stl(paths[name], triangles)
+    return paths
+
+
+def imported(*cli_args: str) -> set[str]:
+    """The modules a ``python -m plumbob`` process imports (it must succeed)."""
+    result = subprocess.run([sys.executable, "-X", "importtime", "-m", "plumbob", *cli_args],
+                            capture_output=True, text=True, timeout=120,
+                            env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
+    assert result.returncode == 0, result.stderr[-2000:]
+    names = set(re.findall(r"^import time:\s+\d+ \|\s+\d+ \|\s+(\S+)$", result.stderr, re.M))
+    assert "numpy" in names and "plumbob.cli" in names  # the report was read
+    return names
+
+
+def _loaded(names: set[str], prefixes) -> list[str]:
+    return sorted(n for n in names if any(n == p or n.startswith(p + ".") for p in prefixes))
+
+
+@pytest.mark.parametrize("body", ["box", "pyramid"])
+@pytest.mark.parametrize("extra", [(), ("--json",)])
+def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
+    names = imported("poses", meshes[body], "--units", "mm", *extra)
+    assert not _loaded(names, NEVER + ("plumbob.stability.verdict", "plumbob.report" if extra
+                                       else "plumbob.stability.drops")), body
+    assert "manifold3d" in names  # the hull: the one heavy library poses needs
+    assert ("json" in names) == bool(extra)
+
+
+@pytest.mark.parametrize("extra", [(), ("--json",)])
+def test_mass_of_a_mesh_loads_only_numpy(meshes, extra):
+    names = imported("mass", meshes["pyramid"], "--units", "mm", *extra)
+    assert not _loaded(names, NEVER + ("manifold3d", "plumbob.stability")), extra
+
+
+def test_check_of_a_mesh_loads_neither_poses_nor_drops(meshes):
+    names = imported("check", meshes["box"], "--units", "mm")
+    assert not _loaded(names, ("plumbob.stability.poses", "plumbob.stability.drops", "mujoco",
+                               "matplotlib", "trimesh", "shapely", "tomllib"))
+
+
+def test_stability_names_load_on_first_use():
+    """``plumbob.stability`` shows its public names as before, each loaded when asked."""
+    assert set(stability.__all__) <= set(dir(stability))
+    from plumbob.stability.drops import drop_poses
+    from plumbob.stability.poses import resting_poses
+    from plumbob.stability.verdict import check
+
+    assert stability.drop_poses is drop_poses and stability.check is check
+    assert stability.resting_poses is resting_poses
+    for name in stability.__all__:
+        assert getattr(stability, name) is not None
+    with pytest.raises(AttributeError, match="no attribute 'no_such_name'"):
+        stability.no_such_name  # noqa: B018
+    assert not hasattr(stability, "__wrapped__")
+
+
+def test_the_entry_point_resumes_the_collector(monkeypatch, capsys):
+    """The console script pauses garbage collection only while the modules load."""
+    from plumbob.__main__ import entry
+
+    monkeypatch.setattr(sys, "argv", ["plumbob", "--version"])
+    try:
+        with pytest.raises(SystemExit) as stop:
+            entry()
+        assert stop.value.code == 0 and capsys.readouterr().out.startswith("plumbob ")
+        assert gc.isenabled()
+    finally:
+        gc.unfreeze()  # give this test process's objects back to the collector
+
+
+@given(st.lists(st.integers(-5, 5), max_size=30))
+def test_unique_is_numpys_unique(values):
+    array = np.array(values, dtype=np.int64)
+    expect = np.unique(array)
+    got = unique(array)
+    assert got.dtype == expect.dtype and got.tolist() == expect.tolist()
