@@ -130,3 +130,45 @@ def test_unique_is_numpys_unique(values):
     expect = np.unique(array)
     got = unique(array)
     assert got.dtype == expect.dtype and got.tolist() == expect.tolist()
+
+
+def _checked_meshes():
+    """Triangle soups for check_solid, with whether its vertices can be reused."""
+    cube = box(1.0, 1.0, 1.0).triangles
+    flipped = cube.copy()
+    flipped[3] = flipped[3, ::-1]
+    nudged = cube.copy()  # one corner copy 1e-12 m off: welded (a near copy, not exact)
+    corner = np.all(nudged == nudged[0, 0], axis=-1)
+    nudged[np.flatnonzero(corner.any(axis=1))[0], np.argmax(corner.any(axis=0))] += 1e-12
+    flat = np.array([[[3, 0, 0], [4, 0, 0], [3, 1, 0]], [[3, 0, 0], [3, 1, 0], [4, 0, 0]]],
+                    dtype=float)  # a flat shell: dropped
+    return [
+        ("cube", cube, True),
+        ("float32 cube", cube.astype(np.float32), True),
+        ("inside out", cube[:, ::-1], True),
+        ("one face flipped", flipped, True),
+        ("two cubes apart", np.concatenate((cube, cube + 2.0)), True),
+        ("a near copy welded", nudged, False),
+        ("a flat shell dropped", np.concatenate((cube, flat)), False),
+        ("overlapping cubes united", np.concatenate((cube, cube + 0.5)), False),
+    ]
+
+
+@pytest.mark.parametrize(("name", "triangles", "reused"), _checked_meshes(),
+                         ids=[case[0] for case in _checked_meshes()])
+def test_check_solid_vertices_are_those_a_body_would_weld(name, triangles, reused):
+    """A mesh read from a file is welded once: check_solid hands its vertices to the body
+    only when they are exactly the distinct corners of the triangles it returns."""
+    from plumbob.bodies.solid import MeshSolid
+    from plumbob.mesh.solid import check_solid
+    from plumbob.mesh.weld import merge_vertices
+
+    checked = check_solid(triangles)
+    assert (checked.vertices is not None) == reused, name
+    expect = merge_vertices(checked.triangles.reshape(-1, 3))[0]
+    body = MeshSolid(checked.triangles, checked=True, vertices=checked.vertices)
+    got = body.hull_points()
+    assert got.dtype == expect.dtype and np.array_equal(got, expect), name
+    moved = body.transformed(np.eye(3), np.array([1.0, 0.0, 0.0]))
+    moved_expect = merge_vertices(moved.triangles.reshape(-1, 3))[0]  # not carried over
+    assert np.array_equal(moved.hull_points(), moved_expect)

@@ -8,7 +8,7 @@ and a solid of revolution from the exact area moments of their profile
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, replace
 from functools import cached_property, partial
 from typing import TYPE_CHECKING
 
@@ -93,6 +93,9 @@ class MeshSolid(_UniformSolid):
         them so, or they are a closed mesh moved); otherwise the constructor checks
         (:func:`plumbob.mesh.closure.require_closed`) and an open mesh raises
         :class:`GeometryError` naming its holes.
+    vertices: (init only) the triangles' distinct corners as
+        :func:`~plumbob.mesh.weld.merge_vertices` gives them, when a reader's check has
+        them already (:attr:`plumbob.mesh.CheckedSolid.vertices`): not welded again.
     """
 
     triangles: np.ndarray
@@ -103,8 +106,9 @@ class MeshSolid(_UniformSolid):
     note: str | None = None
     moments: VolumeMoments | None = field(default=None, repr=False)
     checked: bool = field(default=False, repr=False)
+    vertices: InitVar[np.ndarray | None] = None
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, vertices: np.ndarray | None) -> None:
         tri = np.asarray(self.triangles)
         if tri.dtype.kind in "iu":
             tri = tri.astype(float)
@@ -122,6 +126,9 @@ class MeshSolid(_UniformSolid):
             object.__setattr__(self, "checked", True)
         object.__setattr__(self, "triangles", tri)
         object.__setattr__(self, "density", check_density(self.density))
+        if vertices is not None:  # welded already (by check_solid): not again
+            vertices.setflags(write=False)
+            self.__dict__["_distinct_vertices"] = vertices
 
     def mass_properties(self) -> MassProperties:
         m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)
