@@ -13,12 +13,10 @@ of the names below only when first used: ``plumbob poses`` loads neither the ver
 nor the drops room, ``plumbob check`` not the poses.
 """
 
-from __future__ import annotations
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
 
-from importlib import import_module
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:  # for readers and type checkers; at run time see __getattr__
+if _TYPE_CHECKING:  # for readers and type checkers; at run time see __getattr__
     from .drops import DropPose, Drops, drop_poses
     from .poses import Pose, Poses, poses_from_points, resting_poses
     from .support import Support, default_down, ground_frame, support_polygon
@@ -54,7 +52,7 @@ _LAZY = {
 def __getattr__(name: str):
     if name not in _LAZY:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(import_module(_LAZY[name], __name__), name)
+    value = getattr(_import_module(_LAZY[name], __name__), name)
     globals()[name] = value  # looked up once
     return value
 
