@@ -172,3 +172,40 @@ def test_check_solid_vertices_are_those_a_body_would_weld(name, triangles, reuse
     moved = body.transformed(np.eye(3), np.array([1.0, 0.0, 0.0]))
     moved_expect = merge_vertices(moved.triangles.reshape(-1, 3))[0]  # not carried over
     assert np.array_equal(moved.hull_points(), moved_expect)
+
+
+def _arc_runs_by_labels(starts, ends, normals):
+    """The grouping of the support's edges as it was computed before (a label per run,
+    then np.unique of the labels, which loaded numpy.ma): the oracle for the split."""
+    from plumbob.stability import verdict
+
+    n = len(starts)
+    lengths = np.linalg.norm(ends - starts, axis=1)
+    short = lengths < verdict._ARC_EDGE_SHARE * lengths.sum()
+    cos = np.einsum("ij,ij->i", normals, np.roll(normals, -1, axis=0))
+    link = short & np.roll(short, -1) & (cos > np.cos(np.radians(verdict._ARC_TURN_DEG)))
+    if link.all():
+        return [np.arange(n)]
+    order = (np.arange(n) + int(np.argmin(link)) + 1) % n
+    labels = np.cumsum(~link[np.roll(order, 1)])
+    split = []
+    for run in [order[labels == label] for label in np.unique(labels)]:
+        split += [run] if len(run) >= verdict._ARC_MIN_EDGES else [np.array([i]) for i in run]
+    return split
+
+
+@given(st.lists(st.one_of(st.just(0.01), st.floats(0.005, 1.5)), min_size=3, max_size=60))
+def test_support_edges_group_into_the_same_arcs(gaps):
+    """Round bases (many equal short edges) and broken ones: runs of short edges group
+    into arcs exactly as before."""
+    from plumbob.stability.verdict import _arc_runs
+
+    angles = np.cumsum(gaps)
+    angles = 2 * np.pi * angles / angles[-1]
+    corners = np.stack((np.cos(angles), np.sin(angles)), axis=1)
+    starts, ends = corners, np.roll(corners, -1, axis=0)
+    d = ends - starts
+    normals = np.stack((d[:, 1], -d[:, 0]), axis=1) / np.linalg.norm(d, axis=1)[:, None]
+    got = _arc_runs(starts, ends, normals)
+    expect = _arc_runs_by_labels(starts, ends, normals)
+    assert [r.tolist() for r in got] == [r.tolist() for r in expect]
