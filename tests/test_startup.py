@@ -209,3 +209,40 @@ def test_support_edges_group_into_the_same_arcs(gaps):
     got = _arc_runs(starts, ends, normals)
     expect = _arc_runs_by_labels(starts, ends, normals)
     assert [r.tolist() for r in got] == [r.tolist() for r in expect]
+
+
+def _unique_by_stable_sort(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """merge_vertices' answer as it was computed before: np.unique of the keys with the
+    first index of each (a stable sort) and the inverse."""
+    from plumbob.mesh.weld import point_keys
+
+    p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0
+    _, first, inverse = np.unique(point_keys(p), return_index=True, return_inverse=True)
+    if not np.array_equal(p[first][inverse], p):
+        return np.unique(p, axis=0, return_inverse=True)
+    return p[first], inverse.reshape(-1)
+
+
+@given(st.integers(0, 40), st.integers(0, 10**6), st.booleans())
+def test_welding_by_an_unstable_sort_gives_the_same_vertices(n, seed, single):
+    """Welding (every mesh read is welded) sorts its keys with numpy's fast unstable
+    argsort: the vertices and the index of every corner are exactly as before."""
+    from plumbob.mesh.weld import merge_vertices
+
+    rng = np.random.default_rng(seed)
+    distinct = rng.normal(size=(n, 3)).astype(np.float32 if single else float)
+    distinct[rng.random((n, 3)) < 0.3] = -0.0  # signed zeros weld with zeros
+    corners = distinct[rng.integers(0, max(n, 1), 3 * n)] if n else distinct
+    vertices, index = merge_vertices(corners)
+    expect_vertices, expect_index = _unique_by_stable_sort(corners)
+    assert vertices.dtype == expect_vertices.dtype and index.dtype == expect_index.dtype
+    assert np.array_equal(vertices, expect_vertices) and np.array_equal(index, expect_index)
+
+
+def test_welding_survives_a_hash_collision(monkeypatch):
+    from plumbob.mesh import weld
+
+    corners = np.random.default_rng(5).normal(size=(8, 3))[[0, 1, 2, 1, 0, 7, 3, 3]]
+    monkeypatch.setattr(weld, "point_keys", lambda p: np.zeros(len(p), dtype=np.uint64))
+    vertices, index = weld.merge_vertices(corners)
+    assert len(vertices) == 5 and np.array_equal(vertices[index], corners)
