@@ -6,7 +6,12 @@ Targets (issue 2):
   process that merely reads the file into numpy; ≥ 20× for the library call alone;
 * a 1M-vertex lamina: full second moments within 3× of shapely's centroid.
 
-Run: python bench/mass.py [--triangles N]
+plumbob's bytecode is compiled first (``compileall`` on the plumbob package the
+benchmark imports), as an installed package has it, like trimesh and shapely: with
+``PYTHONDONTWRITEBYTECODE`` set each plumbob process would otherwise recompile every
+module it loads. All processes run with the same environment.
+
+Run: PYTHONPATH=src python bench/mass.py [--triangles N]
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ import os
 import tempfile
 
 import numpy as np
-from _common import PYTHON, time_call, time_process, torus_triangles, write_binary_stl
+from _common import PYTHON, compile_bytecode, time_call, time_process, torus_triangles, write_binary_stl
 
 
 def main() -> None:
@@ -28,10 +33,12 @@ def main() -> None:
     import shapely
     import trimesh
 
+    import plumbob
     from plumbob.bodies.lamina import Lamina
     from plumbob.bodies.region import Region, Ring
     from plumbob.io import read
 
+    print(compile_bytecode(os.path.dirname(plumbob.__file__)))
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.stl")
         triangles = torus_triangles(args.triangles)
@@ -42,7 +49,7 @@ def main() -> None:
         read_only = time_process(
             [PYTHON, "-c", f"import numpy; numpy.fromfile({path!r}, dtype=numpy.uint8)"]
         )
-        ours = time_process([PYTHON, "-m", "plumbob.cli", "mass", path, "--json"])
+        ours = time_process([PYTHON, "-m", "plumbob", "mass", path, "--json"])
         theirs = time_process(
             [PYTHON, "-c", f"import trimesh; m = trimesh.load({path!r}); m.mass_properties"],
             repeat=2,

@@ -1,7 +1,11 @@
 """Benchmark: ``plumbob poses`` as a whole process, against trimesh and against the floor.
 
 Per mesh (binary STL, about 10 000 and 100 000 triangles), the median of 3
-whole-process wall times of:
+whole-process wall times of the processes below. plumbob's bytecode is compiled
+first (``compileall`` on ``src/plumbob``), as an installed package has it, like the
+installed libraries the other processes import: with ``PYTHONDONTWRITEBYTECODE`` set
+(as in this project's sandbox) each plumbob process would otherwise recompile every
+module it loads. All processes run with the same environment.
 
 * **plumbob** — ``python -m plumbob poses FILE --units mm`` (read, weld, check,
   mass properties, hull, basins, report);
@@ -34,7 +38,7 @@ import tempfile
 import time
 
 import numpy as np
-from _common import write_binary_stl
+from _common import compile_bytecode, write_binary_stl
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = "/work/trimesh_models/models"
@@ -195,8 +199,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="also time manifold3d's hull against qhull on each mesh")
     args = parser.parse_args(argv)
     sizes = [10_000] if args.quick else [10_000, 100_000]
+    compiled = compile_bytecode(os.path.join(ROOT, "src", "plumbob"))
     print(f"whole process, median of {args.repeat}, wall s; ratios trimesh/plumbob and "
-          "plumbob/floor")
+          f"plumbob/floor; {compiled}")
     print(f"{'mesh':<28}{'faces':>8}  {'plumbob':>7}  {'trimesh':>7}  {'floor':>6}   "
           f"{'vs trimesh':>7}  {'vs floor':>7}")
     results = []

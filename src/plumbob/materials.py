@@ -8,19 +8,14 @@ looked up ignoring case, spaces and hyphens; a few common spellings are aliases.
 
 from __future__ import annotations
 
-import difflib
 import math
-import sys
 from dataclasses import dataclass
 from functools import lru_cache
-from importlib import resources
 
 from .errors import DensityError, MaterialError
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+# tomllib, importlib.resources and difflib load when the table is first read: every body
+# imports check_density from here, and reading a mesh never opens the table.
 
 __all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density",
            "check_density", "closest", "ALIASES", "CATEGORIES"]
@@ -90,6 +85,14 @@ def _normalise(name: str) -> str:
 
 @lru_cache(maxsize=1)
 def _table() -> tuple[dict[str, Material], dict[str, str]]:
+    import sys
+    from importlib import resources
+
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover
+        import tomli as tomllib
+
     text = resources.files(__package__).joinpath("data/materials.toml").read_text(encoding="utf-8")
     data = tomllib.loads(text)
     refs = {str(k): str(v) for k, v in data.get("sources", {}).items()}
@@ -194,6 +197,8 @@ def closest(word: str, n: int = 3) -> list[str]:
     >>> closest("granit")
     ['granite']
     """
+    import difflib
+
     table = _table()[0]
     close = difflib.get_close_matches(_normalise(word), list(table) + list(ALIASES), n=n)
     return list(dict.fromkeys(ALIASES.get(c, c) for c in close))

@@ -80,7 +80,8 @@ def lowest(points: np.ndarray, down: np.ndarray, tolerance: float) -> np.ndarray
     [[0.0, 0.0], [1.0, 1e-09]]
     """
     depth = points @ down
-    return np.unique(points[depth >= depth.max() - tolerance] + 0.0, axis=0)
+    # return_index: without it numpy 2.3 imports numpy.ma (~10 ms) to rule out a masked array
+    return np.unique(points[depth >= depth.max() - tolerance] + 0.0, axis=0, return_index=True)[0]
 
 
 class Body(ABC):

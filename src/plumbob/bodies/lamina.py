@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import GeometryError
-from ..integrals.polygon import bulge_arc_geometry
 from ..massprops import MassProperties
 from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import (
@@ -21,9 +21,12 @@ from .base import (
     lowest,
     measure_words,
 )
-from .containment import region_contains
-from .region import Region
-from .tiling import region_cells
+
+if TYPE_CHECKING:
+    from .region import Region
+
+# The region, containment and tiling modules (and numpy.polynomial under them) load when
+# a lamina is made or asked: a mesh solid uses only uniform_mass_properties from here.
 
 __all__ = ["Lamina", "lamina_mass_properties", "second_moments_to_inertia", "uniform_mass_properties"]
 
@@ -138,6 +141,8 @@ class Lamina(Body):
     dim = 2
 
     def __post_init__(self) -> None:
+        from .region import Region
+
         if not isinstance(self.region, Region):
             raise GeometryError(f"a lamina needs a Region (see plumbob.primitives."
                                 f"polygon_region), not {type(self.region).__name__}")
@@ -161,6 +166,8 @@ class Lamina(Body):
         return np.concatenate([r.flattened(tol) for r in self.region.rings])
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
+        from ..integrals.polygon import bulge_arc_geometry
+
         down = np.asarray(down, dtype=float)
         candidates = [self.hull_points(contact_sampling(tolerance, self.region.size))]
         for ring in self.region.rings:
@@ -190,6 +197,8 @@ class Lamina(Body):
 
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        from .containment import region_contains
+
         return region_contains(self.region, self._points(points), self._contains_tolerance(tolerance))
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
@@ -200,6 +209,8 @@ class Lamina(Body):
         return not self.region.is_curved
 
     def density_cells(self) -> DensityCells:
+        from .tiling import region_cells
+
         origin = self.region.local_origin()
         return DensityCells(origin, self.region.size, partial(region_cells, self.region, origin),
                             self.hull_points)

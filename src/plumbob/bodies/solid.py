@@ -8,8 +8,9 @@ and a solid of revolution from the exact area moments of their profile
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, replace
 from functools import cached_property, partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,10 +21,14 @@ from ..mesh.closure import require_closed, require_sums_close, surface_summary
 from ..mesh.weld import merge_vertices
 from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
-from .containment import mesh_contains, region_contains
 from .lamina import lamina_mass_properties, uniform_mass_properties
-from .region import Region
-from .tiling import mesh_cells, prism_cells, revolution_cells
+
+if TYPE_CHECKING:
+    from .region import Region
+
+# containment and tiling (and the region and polygon modules under them) load when a
+# solid is asked what contains a point or for its integration cells: reading a mesh and
+# its mass properties never need them.
 
 __all__ = ["MeshSolid", "Extrusion", "Revolution"]
 
@@ -38,6 +43,8 @@ def _closed_mesh_cells(triangles: np.ndarray, origin: np.ndarray) -> list:
         vector += normal.sum(axis=0)
         area += float(np.sqrt(np.einsum("ij,ij->i", normal, normal)).sum())
     require_sums_close(vector, area)
+    from .tiling import mesh_cells
+
     return mesh_cells(triangles, origin)
 
 
@@ -86,6 +93,9 @@ class MeshSolid(_UniformSolid):
         them so, or they are a closed mesh moved); otherwise the constructor checks
         (:func:`plumbob.mesh.closure.require_closed`) and an open mesh raises
         :class:`GeometryError` naming its holes.
+    vertices: (init only) the triangles' distinct corners as
+        :func:`~plumbob.mesh.weld.merge_vertices` gives them, when a reader's check has
+        them already (:attr:`plumbob.mesh.CheckedSolid.vertices`): not welded again.
     """
 
     triangles: np.ndarray
@@ -96,8 +106,9 @@ class MeshSolid(_UniformSolid):
     note: str | None = None
     moments: VolumeMoments | None = field(default=None, repr=False)
     checked: bool = field(default=False, repr=False)
+    vertices: InitVar[np.ndarray | None] = None
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, vertices: np.ndarray | None) -> None:
         tri = np.asarray(self.triangles)
         if tri.dtype.kind in "iu":
             tri = tri.astype(float)
@@ -115,6 +126,9 @@ class MeshSolid(_UniformSolid):
             object.__setattr__(self, "checked", True)
         object.__setattr__(self, "triangles", tri)
         object.__setattr__(self, "density", check_density(self.density))
+        if vertices is not None:  # welded already (by check_solid): not again
+            vertices.setflags(write=False)
+            self.__dict__["_distinct_vertices"] = vertices
 
     def mass_properties(self) -> MassProperties:
         m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)
@@ -161,6 +175,8 @@ class MeshSolid(_UniformSolid):
 
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        from .containment import mesh_contains
+
         return mesh_contains(self.triangles, self._points(points), self._contains_tolerance(tolerance))
 
     @property
@@ -245,6 +261,8 @@ class Extrusion(_UniformSolid):
 
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        from .containment import region_contains
+
         pts = self._points(points)
         tol = self._contains_tolerance(tolerance)
         z = pts[:, 2]
@@ -258,6 +276,8 @@ class Extrusion(_UniformSolid):
         return not self.profile.is_curved
 
     def density_cells(self) -> DensityCells:
+        from .tiling import prism_cells
+
         o2 = self.profile.local_origin()
         return DensityCells(np.append(o2, 0.0), float(np.hypot(self.profile.size, self.height)),
                             partial(prism_cells, self.profile, self.height, o2), self.hull_points)
@@ -348,6 +368,8 @@ class Revolution(_UniformSolid):
 
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
+        from .containment import region_contains
+
         pts = self._points(points)
         rz = np.stack((np.hypot(pts[:, 0], pts[:, 1]), pts[:, 2]), axis=1)
         return region_contains(self.profile, rz, self._contains_tolerance(tolerance))
@@ -360,6 +382,8 @@ class Revolution(_UniformSolid):
         return False
 
     def density_cells(self) -> DensityCells:
+        from .tiling import revolution_cells
+
         z0 = float(self.profile.local_origin()[1])
         return DensityCells(np.array([0.0, 0.0, z0]), 2 * self.profile.size,
                             partial(revolution_cells, self.profile, z0), self.hull_points)

@@ -8,7 +8,6 @@ energy and dynamics code load when a command runs.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from collections.abc import Mapping
@@ -386,6 +385,8 @@ def require_finite(out: Any, where: str = "") -> Any:
 
 def _json_text(obj: Any, indent: int = 0) -> str:
     """JSON text, indented, with short lists of numbers kept on one line."""
+    import json  # here: only --json output needs it
+
     pad = "  " * (indent + 1)
     if isinstance(obj, dict):
         if not obj:

@@ -40,11 +40,12 @@ class MassReport(Result):
         """The report on the body of ``reading``."""
         body = reading.body
         parts = ()
-        from ..bodies.csg import Assembly  # only an assembly's parts need it
+        if body.kind == "assembly":  # every Assembly's kind: csg loads only when it may be one
+            from ..bodies.csg import Assembly
 
-        if isinstance(body, Assembly):
-            parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
-                          for i, p in enumerate(body.parts))
+            if isinstance(body, Assembly):
+                parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
+                              for i, p in enumerate(body.parts))
         return cls(reading, body.mass_properties(), parts)
 
     @property

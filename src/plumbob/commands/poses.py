@@ -76,10 +76,7 @@ def probability(text: str) -> float:
 
 
 def run(args) -> int:
-    from ..report import format_number as num
-    from ..report import format_vector
     from ..stability.poses import resting_poses
-    from ..stability.support import body_size
 
     check_dynamic(args)  # before any work: --dynamic needs MuJoCo, its settings --dynamic
     reading, props, notes = open_body(args)
@@ -115,6 +112,10 @@ def run(args) -> int:
             out["notices"] = list(reading.notices)
         to_json(out)
         return 0
+    from ..report import format_number as num  # the text report's formatting (not --json's)
+    from ..report import format_vector
+    from ..stability.support import body_size
+
     size = body_size(body)
 
     def vec(values, digits: int = 6) -> str:

@@ -35,7 +35,8 @@ def mesh_solid(triangles: np.ndarray, *, path: str | None = None, name: str | No
     notices = check_extent(checked.surface.lo, checked.surface.hi, path=path,
                            assumed=assumed) if extent else ()
     try:
-        body = MeshSolid(checked.triangles, name=name, moments=checked.moments, checked=True)
+        body = MeshSolid(checked.triangles, name=name, moments=checked.moments, checked=True,
+                         vertices=checked.vertices)
     except PlumbobError as error:
         raise GeometryError(error.message, path=path) from None
     return body, notices + checked.notices

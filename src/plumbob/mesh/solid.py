@@ -42,12 +42,16 @@ class CheckedSolid:
     notices: what was assumed, turned, repaired or united, for the user.
     moments: the triangles' volume moments when the check already summed them, else None.
     surface: the one-pass summary of the triangles as given (bounding box, area, …).
+    vertices: the distinct corners of ``triangles`` (V, 3) float64, exactly as
+        :func:`~plumbob.mesh.weld.merge_vertices` gives them, when the check welded them
+        on the way (so a body need not weld them again), else None.
     """
 
     triangles: np.ndarray
     notices: tuple[str, ...]
     moments: VolumeMoments | None
     surface: SurfaceSummary
+    vertices: np.ndarray | None = None
 
 
 def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | None = None,
@@ -156,10 +160,13 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     notices.extend(more)
     if united is not None:
         return CheckedSolid(united, tuple(notices), None, summary)
+    # The topology's vertices are the input's distinct corners; they are the output's
+    # too unless a weld or a repair changed the corners or flat shells were dropped.
+    known = topo.vertices if not (topo.welded or found.loops or len(faces) != n) else None
     if not changed and faces is not before:
         # only whole shells turned: reuse the input's dtype (float32 stays float32)
         same_dtype = vertices[faces].astype(triangles.dtype, copy=False)
-        return CheckedSolid(same_dtype, tuple(notices), None, summary)
+        return CheckedSolid(same_dtype, tuple(notices), None, summary, known)
     if not changed:
-        return CheckedSolid(triangles, tuple(notices), summary.moments, summary)
-    return CheckedSolid(vertices[faces], tuple(notices), None, summary)
+        return CheckedSolid(triangles, tuple(notices), summary.moments, summary, known)
+    return CheckedSolid(vertices[faces], tuple(notices), None, summary, known)

@@ -83,9 +83,7 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
     2
     """
     p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
-    key = point_keys(p)
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    unique = p[first]
+    unique, inverse = _merge_keys(p, point_keys(p))
     if not np.array_equal(unique[inverse], p):  # a hash collision: merge exactly instead
         unique, inverse = np.unique(p, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
@@ -94,6 +92,22 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
         _, keep, relabel = np.unique(group, return_index=True, return_inverse=True)
         unique, inverse = unique[keep], relabel.reshape(-1)[inverse]
     return unique, inverse
+
+
+def _merge_keys(p: np.ndarray, key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Distinct points of ``p`` in the order of their keys, and each point's index among
+    them: ``np.unique(key, return_index=True, return_inverse=True)``'s answer, by numpy's
+    unstable (SIMD) argsort, ~6× faster than the stable one ``return_index`` asks for.
+    Which copy of a key stands for it is immaterial: equal keys are equal points, and a
+    collision shows in the caller's check of ``unique[inverse]``."""
+    order = np.argsort(key)
+    ordered = key[order]
+    new = np.empty(len(key), dtype=bool)
+    new[:1] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=new[1:])
+    inverse = np.empty(len(key), dtype=np.intp)
+    inverse[order] = np.cumsum(new) - 1
+    return p[order[new]], inverse
 
 
 def weld_near(points: np.ndarray, tolerance: float) -> np.ndarray:

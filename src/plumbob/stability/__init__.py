@@ -8,13 +8,19 @@
 * :func:`drop_poses` — how often Monte Carlo drops in MuJoCo (the ``dynamic`` extra)
   land in each pose.
 
-Heavy dependencies (scipy) are imported only when a function needs them.
+Heavy dependencies (scipy) are imported only when a function needs them, and each
+of the names below only when first used: ``plumbob poses`` loads neither the verdict
+nor the drops room, ``plumbob check`` not the poses.
 """
 
-from .drops import DropPose, Drops, drop_poses
-from .poses import Pose, Poses, poses_from_points, resting_poses
-from .support import Support, default_down, ground_frame, support_polygon
-from .verdict import SlopeCheck, TippingEdge, Verdict, check
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+
+if _TYPE_CHECKING:  # for readers and type checkers; at run time see __getattr__
+    from .drops import DropPose, Drops, drop_poses
+    from .poses import Pose, Poses, poses_from_points, resting_poses
+    from .support import Support, default_down, ground_frame, support_polygon
+    from .verdict import SlopeCheck, TippingEdge, Verdict, check
 
 __all__ = [
     "DropPose",
@@ -33,3 +39,24 @@ __all__ = [
     "resting_poses",
     "support_polygon",
 ]
+
+#: public name → the module (of this package) that defines it, imported on first use
+_LAZY = {
+    **dict.fromkeys(("DropPose", "Drops", "drop_poses"), ".drops"),
+    **dict.fromkeys(("Pose", "Poses", "poses_from_points", "resting_poses"), ".poses"),
+    **dict.fromkeys(("Support", "default_down", "ground_frame", "support_polygon"), ".support"),
+    **dict.fromkeys(("SlopeCheck", "TippingEdge", "Verdict", "check"), ".verdict"),
+}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(_import_module(_LAZY[name], __name__), name)
+    globals()[name] = value  # looked up once
+    return value
+
+
+def __dir__() -> list[str]:
+    """What the package shows: its public names as if imported, with its modules."""
+    return sorted(set(globals()) | set(__all__))

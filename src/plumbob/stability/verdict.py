@@ -118,8 +118,7 @@ def _arc_runs(starts: np.ndarray, ends: np.ndarray, normals: np.ndarray) -> list
     order = (np.arange(n) + first) % n
     # edge order[k] begins a new run unless the edge before it links to it
     begins = ~link[np.roll(order, 1)]
-    labels = np.cumsum(begins)
-    runs = [order[labels == label] for label in np.unique(labels)]
+    runs = np.split(order, np.flatnonzero(begins)[1:])  # begins[0]: order starts after a break
     split: list[np.ndarray] = []
     for run in runs:
         split += [run] if len(run) >= _ARC_MIN_EDGES else [np.array([i]) for i in run]

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .hull import Hull3
-from .vectors import cross, dot, expand, unit
+from .vectors import cross, dot, expand, unique, unit
 
 __all__ = ["PhysicalFaces", "physical_faces"]
 
@@ -50,7 +50,7 @@ class PhysicalFaces:
     def corners(self, h: Hull3, k: int) -> np.ndarray:
         """The corners (m, relative to the centre) of sink ``k``'s physical face,
         counter-clockwise about its outward normal."""
-        pts = h.X[np.unique(h.ea[self.boundary[self.boundary_owner == k]])]
+        pts = h.X[unique(h.ea[self.boundary[self.boundary_owner == k]])]
         n = h.normals[self.sinks[k]]
         seed = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
         e1 = unit(seed - (seed @ n) * n)

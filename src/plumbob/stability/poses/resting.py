@@ -18,9 +18,9 @@ from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_SAMPLING
 from ...tolerances import sampling_tolerance as sampling
+from ...units import STANDARD_GRAVITY
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
-from ..verdict import STANDARD_GRAVITY
 from .families import ROLL_ANGLE_DEG, Families, families
 from .landscape import Landscape, landscape2, landscape3
 from .placement import placement

@@ -21,7 +21,7 @@ import numpy as np
 
 from ...errors import StabilityError
 from .hull import Hull3
-from .vectors import cross, dot, expand, group_first, unit
+from .vectors import cross, dot, expand, group_first, unique, unit
 
 __all__ = ["Edges3", "edge_geometry", "first_least_sorted", "step", "Roller"]
 
@@ -264,7 +264,7 @@ class Roller:
     def sinks(self, faces: np.ndarray) -> np.ndarray:
         """The stable face each of ``faces`` ends up on (remembered once rolled)."""
         faces = np.asarray(faces, dtype=np.int64)
-        todo = np.unique(faces[self._memo[faces] < 0])
+        todo = unique(faces[self._memo[faces] < 0])
         if len(todo):
             out = self.roll(face=todo)
             if np.any(out < 0):

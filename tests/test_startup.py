@@ -1,0 +1,248 @@
+"""Start-up: what a command loads, judged in a real ``python -m plumbob`` process.
+
+A whole ``plumbob poses part.stl`` takes ~0.12 s, of which python and numpy are
+~0.09 s: every module loaded that the command does not use shows in that budget
+(numpy.ma alone ~10 ms, the MuJoCo drops room and the verdict ~5 ms, tomllib and
+difflib ~6 ms). ``python -X importtime`` names every module a process imports, so
+these tests read it from the very command a user runs.
+"""
+
+from __future__ import annotations
+
+import gc
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from _batch_corpus import write_stl
+from conftest import ROOT
+from hypothesis import given
+from hypothesis import strategies as st
+
+import plumbob.stability as stability
+from plumbob.bodies.primitives import box, pyramid
+from plumbob.stability.poses.vectors import unique
+
+#: Never needed by a command on a mesh: other commands' libraries, plots, the
+#: MuJoCo drops, the outline and quadrature code, numpy's masked arrays and series.
+NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy.ma",
+         "numpy.polynomial", "tomllib", "difflib", "plumbob.stability.drops",
+         "plumbob.bodies.region", "plumbob.bodies.tiling", "plumbob.bodies.containment",
+         "plumbob.bodies.csg", "plumbob.integrals.polygon", "plumbob.integrals.cells",
+         "plumbob.integrals.rules", "plumbob.spec", "plumbob.energy", "plumbob.batch",
+         "plumbob.export", "plumbob.balance", "plumbob.dynamics")
+
+
+def _rotated(triangles: np.ndarray, seed: int) -> np.ndarray:
+    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    q *= np.sign(np.diag(r))
+    return triangles @ (q if np.linalg.det(q) > 0 else -q).T
+
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory) -> dict[str, str]:
+    """A 1×2×3 box turned at random, and a 48-sided pyramid (many small faces)."""
+    folder = tmp_path_factory.mktemp("startup")
+    angles = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    ring = np.stack((np.cos(angles), np.sin(angles)), axis=1)
+    bodies = {"box": _rotated(box(1, 2, 3).triangles, 3),
+              "pyramid": _rotated(pyramid(ring, 0.8).triangles, 4)}
+    paths = {}
+    for name, triangles in bodies.items():
+        paths[name] = str(folder / f"{name}.stl")
+        write_stl(paths[name], triangles)
+    return paths
+
+
+def imported(*cli_args: str) -> set[str]:
+    """The modules a ``python -m plumbob`` process imports (it must succeed)."""
+    result = subprocess.run([sys.executable, "-X", "importtime", "-m", "plumbob", *cli_args],
+                            capture_output=True, text=True, timeout=120,
+                            env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
+    assert result.returncode == 0, result.stderr[-2000:]
+    names = set(re.findall(r"^import time:\s+\d+ \|\s+\d+ \|\s+(\S+)$", result.stderr, re.M))
+    assert "numpy" in names and "plumbob.cli" in names  # the report was read
+    return names
+
+
+def _loaded(names: set[str], prefixes) -> list[str]:
+    return sorted(n for n in names if any(n == p or n.startswith(p + ".") for p in prefixes))
+
+
+@pytest.mark.parametrize("body", ["box", "pyramid"])
+@pytest.mark.parametrize("extra", [(), ("--json",)])
+def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
+    names = imported("poses", meshes[body], "--units", "mm", *extra)
+    assert not _loaded(names, NEVER + ("plumbob.stability.verdict", "plumbob.report" if extra
+                                       else "plumbob.stability.drops")), body
+    assert "manifold3d" in names  # the hull: the one heavy library poses needs
+    assert ("json" in names) == bool(extra)
+
+
+@pytest.mark.parametrize("extra", [(), ("--json",)])
+def test_mass_of_a_mesh_loads_only_numpy(meshes, extra):
+    names = imported("mass", meshes["pyramid"], "--units", "mm", *extra)
+    assert not _loaded(names, NEVER + ("manifold3d", "plumbob.stability")), extra
+
+
+def test_check_of_a_mesh_loads_neither_poses_nor_drops(meshes):
+    names = imported("check", meshes["box"], "--units", "mm")
+    assert not _loaded(names, ("plumbob.stability.poses", "plumbob.stability.drops", "mujoco",
+                               "matplotlib", "trimesh", "shapely", "tomllib"))
+
+
+def test_stability_names_load_on_first_use():
+    """``plumbob.stability`` shows its public names as before, each loaded when asked."""
+    assert set(stability.__all__) <= set(dir(stability))
+    from plumbob.stability.drops import drop_poses
+    from plumbob.stability.poses import resting_poses
+    from plumbob.stability.verdict import check
+
+    assert stability.drop_poses is drop_poses and stability.check is check
+    assert stability.resting_poses is resting_poses
+    for name in stability.__all__:
+        assert getattr(stability, name) is not None
+    with pytest.raises(AttributeError, match="no attribute 'no_such_name'"):
+        stability.no_such_name  # noqa: B018
+    assert not hasattr(stability, "__wrapped__")
+
+
+def test_the_entry_point_resumes_the_collector(monkeypatch, capsys):
+    """The console script pauses garbage collection only while the modules load."""
+    from plumbob.__main__ import entry
+
+    monkeypatch.setattr(sys, "argv", ["plumbob", "--version"])
+    try:
+        with pytest.raises(SystemExit) as stop:
+            entry()
+        assert stop.value.code == 0 and capsys.readouterr().out.startswith("plumbob ")
+        assert gc.isenabled()
+    finally:
+        gc.unfreeze()  # give this test process's objects back to the collector
+
+
+@given(st.lists(st.integers(-5, 5), max_size=30))
+def test_unique_is_numpys_unique(values):
+    array = np.array(values, dtype=np.int64)
+    expect = np.unique(array)
+    got = unique(array)
+    assert got.dtype == expect.dtype and got.tolist() == expect.tolist()
+
+
+def _checked_meshes():
+    """Triangle soups for check_solid, with whether its vertices can be reused."""
+    cube = box(1.0, 1.0, 1.0).triangles
+    flipped = cube.copy()
+    flipped[3] = flipped[3, ::-1]
+    nudged = cube.copy()  # one corner copy 1e-12 m off: welded (a near copy, not exact)
+    corner = np.all(nudged == nudged[0, 0], axis=-1)
+    nudged[np.flatnonzero(corner.any(axis=1))[0], np.argmax(corner.any(axis=0))] += 1e-12
+    flat = np.array([[[3, 0, 0], [4, 0, 0], [3, 1, 0]], [[3, 0, 0], [3, 1, 0], [4, 0, 0]]],
+                    dtype=float)  # a flat shell: dropped
+    return [
+        ("cube", cube, True),
+        ("float32 cube", cube.astype(np.float32), True),
+        ("inside out", cube[:, ::-1], True),
+        ("one face flipped", flipped, True),
+        ("two cubes apart", np.concatenate((cube, cube + 2.0)), True),
+        ("a near copy welded", nudged, False),
+        ("a flat shell dropped", np.concatenate((cube, flat)), False),
+        ("overlapping cubes united", np.concatenate((cube, cube + 0.5)), False),
+    ]
+
+
+@pytest.mark.parametrize(("name", "triangles", "reused"), _checked_meshes(),
+                         ids=[case[0] for case in _checked_meshes()])
+def test_check_solid_vertices_are_those_a_body_would_weld(name, triangles, reused):
+    """A mesh read from a file is welded once: check_solid hands its vertices to the body
+    only when they are exactly the distinct corners of the triangles it returns."""
+    from plumbob.bodies.solid import MeshSolid
+    from plumbob.mesh.solid import check_solid
+    from plumbob.mesh.weld import merge_vertices
+
+    checked = check_solid(triangles)
+    assert (checked.vertices is not None) == reused, name
+    expect = merge_vertices(checked.triangles.reshape(-1, 3))[0]
+    body = MeshSolid(checked.triangles, checked=True, vertices=checked.vertices)
+    got = body.hull_points()
+    assert got.dtype == expect.dtype and np.array_equal(got, expect), name
+    moved = body.transformed(np.eye(3), np.array([1.0, 0.0, 0.0]))
+    moved_expect = merge_vertices(moved.triangles.reshape(-1, 3))[0]  # not carried over
+    assert np.array_equal(moved.hull_points(), moved_expect)
+
+
+def _arc_runs_by_labels(starts, ends, normals):
+    """The grouping of the support's edges as it was computed before (a label per run,
+    then np.unique of the labels, which loaded numpy.ma): the oracle for the split."""
+    from plumbob.stability import verdict
+
+    n = len(starts)
+    lengths = np.linalg.norm(ends - starts, axis=1)
+    short = lengths < verdict._ARC_EDGE_SHARE * lengths.sum()
+    cos = np.einsum("ij,ij->i", normals, np.roll(normals, -1, axis=0))
+    link = short & np.roll(short, -1) & (cos > np.cos(np.radians(verdict._ARC_TURN_DEG)))
+    if link.all():
+        return [np.arange(n)]
+    order = (np.arange(n) + int(np.argmin(link)) + 1) % n
+    labels = np.cumsum(~link[np.roll(order, 1)])
+    split = []
+    for run in [order[labels == label] for label in np.unique(labels)]:
+        split += [run] if len(run) >= verdict._ARC_MIN_EDGES else [np.array([i]) for i in run]
+    return split
+
+
+@given(st.lists(st.one_of(st.just(0.01), st.floats(0.005, 1.5)), min_size=3, max_size=60))
+def test_support_edges_group_into_the_same_arcs(gaps):
+    """Round bases (many equal short edges) and broken ones: runs of short edges group
+    into arcs exactly as before."""
+    from plumbob.stability.verdict import _arc_runs
+
+    angles = np.cumsum(gaps)
+    angles = 2 * np.pi * angles / angles[-1]
+    corners = np.stack((np.cos(angles), np.sin(angles)), axis=1)
+    starts, ends = corners, np.roll(corners, -1, axis=0)
+    d = ends - starts
+    normals = np.stack((d[:, 1], -d[:, 0]), axis=1) / np.linalg.norm(d, axis=1)[:, None]
+    got = _arc_runs(starts, ends, normals)
+    expect = _arc_runs_by_labels(starts, ends, normals)
+    assert [r.tolist() for r in got] == [r.tolist() for r in expect]
+
+
+def _unique_by_stable_sort(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """merge_vertices' answer as it was computed before: np.unique of the keys with the
+    first index of each (a stable sort) and the inverse."""
+    from plumbob.mesh.weld import point_keys
+
+    p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0
+    _, first, inverse = np.unique(point_keys(p), return_index=True, return_inverse=True)
+    if not np.array_equal(p[first][inverse], p):
+        return np.unique(p, axis=0, return_inverse=True)
+    return p[first], inverse.reshape(-1)
+
+
+@given(st.integers(0, 40), st.integers(0, 10**6), st.booleans())
+def test_welding_by_an_unstable_sort_gives_the_same_vertices(n, seed, single):
+    """Welding (every mesh read is welded) sorts its keys with numpy's fast unstable
+    argsort: the vertices and the index of every corner are exactly as before."""
+    from plumbob.mesh.weld import merge_vertices
+
+    rng = np.random.default_rng(seed)
+    distinct = rng.normal(size=(n, 3)).astype(np.float32 if single else float)
+    distinct[rng.random((n, 3)) < 0.3] = -0.0  # signed zeros weld with zeros
+    corners = distinct[rng.integers(0, max(n, 1), 3 * n)] if n else distinct
+    vertices, index = merge_vertices(corners)
+    expect_vertices, expect_index = _unique_by_stable_sort(corners)
+    assert vertices.dtype == expect_vertices.dtype and index.dtype == expect_index.dtype
+    assert np.array_equal(vertices, expect_vertices) and np.array_equal(index, expect_index)
+
+
+def test_welding_survives_a_hash_collision(monkeypatch):
+    from plumbob.mesh import weld
+
+    corners = np.random.default_rng(5).normal(size=(8, 3))[[0, 1, 2, 1, 0, 7, 3, 3]]
+    monkeypatch.setattr(weld, "point_keys", lambda p: np.zeros(len(p), dtype=np.uint64))
+    vertices, index = weld.merge_vertices(corners)
+    assert len(vertices) == 5 and np.array_equal(vertices[index], corners)
