@@ -1,4 +1,4 @@
-"""The lamina's planar hull (stability/poses/planar.py) against scipy's qhull, and the
+"""The lamina's planar hull (stability/planar.py) against scipy's qhull, and the
 start-up of ``plumbob poses`` on a lamina (no scipy)."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from scipy.spatial import ConvexHull
 
 from plumbob.errors import GeometryError
-from plumbob.stability.poses.planar import planar_hull
+from plumbob.stability.planar import planar_hull
 
 
 def signed_area(P: np.ndarray) -> float:

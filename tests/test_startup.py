@@ -91,7 +91,7 @@ def test_mass_of_a_mesh_loads_only_numpy(meshes, extra):
 def test_check_of_a_mesh_loads_neither_poses_nor_drops(meshes):
     names = imported("check", meshes["box"], "--units", "mm")
     assert not _loaded(names, ("plumbob.stability.poses", "plumbob.stability.drops", "mujoco",
-                               "matplotlib", "trimesh", "shapely", "tomllib"))
+                               "matplotlib", "trimesh", "shapely", "tomllib", "scipy"))
 
 
 def test_stability_names_load_on_first_use():

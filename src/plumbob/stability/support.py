@@ -37,6 +37,7 @@ import numpy as np
 from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
+from .planar import drop_collinear, planar_hull
 
 __all__ = [
     "DEFAULT_RELATIVE_TOLERANCE",
@@ -293,14 +294,14 @@ def _hull_2d(q: np.ndarray, tolerance: float) -> tuple[str, np.ndarray]:
     if np.ptp(across) <= tolerance or len(q) < 3:
         ends = q[[np.argmin(along), np.argmax(along)]]
         return "segment", ends
-    from scipy.spatial import ConvexHull, QhullError
-
     try:
-        hull = ConvexHull(q)
-    except QhullError:
+        corners = planar_hull(q)
+    except GeometryError:
         ends = q[[np.argmin(along), np.argmax(along)]]
         return "segment", ends
-    return "polygon", q[hull.vertices]  # counter-clockwise for 2-D input
+    # corners collinear to rounding error are not corners (qhull's hull dropped them too)
+    size = float(np.max(np.linalg.norm(spread, axis=1)))
+    return "polygon", drop_collinear(q[corners], 1e-12 * size)  # counter-clockwise
 
 
 def _edges(kind: str, v: np.ndarray, dim: int):

@@ -20,10 +20,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import StabilityError
+from ..planar import drop_collinear, planar_hull
 from .basins import basins3
 from .faces import physical_faces
 from .hull import build_hull3, shifted
-from .planar import planar_hull
 from .rolling import Roller, edge_geometry
 from .vectors import dot, pointer_sinks, unit
 
@@ -130,16 +130,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:
     """2D: hull edges are the poses; basins are arcs of the circle of directions."""
-    V = X[planar_hull(X)]  # counter-clockwise
-    for _ in range(len(V)):  # drop corners lying on the line between their neighbours
-        prev, nxt = np.roll(V, 1, axis=0), np.roll(V, -1, axis=0)
-        d = nxt - prev
-        off = np.abs(d[:, 0] * (V - prev)[:, 1] - d[:, 1] * (V - prev)[:, 0])
-        off /= np.linalg.norm(d, axis=1)
-        flat = off <= tol
-        if not flat.any() or len(V) - flat.sum() < 3:
-            break
-        V = V[~(flat & ~np.roll(flat, 1))]  # the first of each run: neighbours change
+    V = drop_collinear(X[planar_hull(X)], tol)  # counter-clockwise
     m = len(V)
     A, B = V, np.roll(V, -1, axis=0)
     D = B - A

@@ -1,8 +1,9 @@
-"""The convex hull of a lamina's points, in numpy: quickhull with every edge split at once.
+"""Planar convex hulls in numpy: quickhull with every edge split at once.
 
-A lamina rests on the edges of its planar hull. scipy's qhull would do, but importing
-``scipy.spatial`` costs 0.3–0.6 s, many times the rest of ``plumbob poses`` on a
-lamina. Quickhull splits each hull edge at the point farthest outside it; here every
+A lamina rests on the edges of its planar hull, and a solid stands on the hull of
+its lowest points (the support polygon). scipy's qhull would do, but importing
+``scipy.spatial`` costs 0.3–0.6 s, many times the rest of ``plumbob poses`` or
+``plumbob check``. Quickhull splits each hull edge at the point farthest outside it; here every
 edge that has points outside is split in the same round, so the rounds number about
 ``log₂`` of the corners (a circle of 4 096 points: 12), each a handful of vectorised
 passes over the points still outside.
@@ -17,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import GeometryError
+from ..errors import GeometryError
 
-__all__ = ["planar_hull"]
+__all__ = ["planar_hull", "drop_collinear"]
 
 
 def _outside(X: np.ndarray, start: np.ndarray, end: np.ndarray, point: np.ndarray
@@ -91,3 +92,22 @@ def planar_hull(points: np.ndarray) -> np.ndarray:
         pts, owner, dist = pts[keep], owner[keep], dist[keep]
         start, end = new_start, new_end
     return start
+
+
+def drop_collinear(V: np.ndarray, tol: float) -> np.ndarray:
+    """The corners of the convex polygon ``V`` (k, 2), counter-clockwise, without those
+    lying within ``tol`` (m) of the line through their neighbours (at least 3 kept).
+
+    >>> drop_collinear(np.array([[0, 0], [1, 0], [2, 0], [2, 2], [0, 2]], float), 1e-9).tolist()
+    [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]
+    """
+    for _ in range(len(V)):
+        prev, nxt = np.roll(V, 1, axis=0), np.roll(V, -1, axis=0)
+        d = nxt - prev
+        off = np.abs(d[:, 0] * (V - prev)[:, 1] - d[:, 1] * (V - prev)[:, 0])
+        off /= np.linalg.norm(d, axis=1)
+        flat = off <= tol
+        if not flat.any() or len(V) - flat.sum() < 3:
+            break
+        V = V[~(flat & ~np.roll(flat, 1))]  # the first of each run: neighbours change
+    return V
