@@ -4,8 +4,6 @@ start-up of ``plumbob poses`` on a lamina (no scipy)."""
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -13,6 +11,7 @@ from conftest import ROOT
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial import ConvexHull
+from test_startup import imported
 
 from plumbob.errors import GeometryError
 from plumbob.stability.planar import planar_hull
@@ -74,10 +73,5 @@ def test_hull_moves_with_the_points(raw, angle, shift):
 
 
 def test_lamina_poses_import_no_scipy():
-    code = ("import sys; from plumbob.cli import main; "
-            f"status = main(['poses', {os.path.join(ROOT, 'shapes', 'l_shape.toml')!r}]); "
-            "print(status, sorted(m for m in sys.modules if m.split('.')[0] == 'scipy'))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")),
-                         check=True).stdout
-    assert out.strip().splitlines()[-1] == "0 []"
+    names = imported("poses", os.path.join(ROOT, "shapes", "l_shape.toml"))
+    assert not [n for n in names if n.split(".")[0] == "scipy"]
