@@ -43,9 +43,9 @@ class HullMesh(NamedTuple):
     :func:`~.hull.build_hull3` need not measure it again).
 
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
-    :func:`hull_triangles` returns them. cross: (F, 3) the raw cross products (twice the
-    area times the normal). corners: (F, 3, 3) each triangle's corners. level: (F, 3)
-    each corner's height along its own triangle's normal. beyond: (3F,) per half-edge,
+    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. corners:
+    (F, 3, 3) each triangle's corners. level: (F, 3) each corner's height along its own
+    triangle's normal. beyond: (3F,) per half-edge,
     the height of the far corner of the triangle across it over this triangle's plane
     (≤ 0 to rounding error on a convex hull).
     """
@@ -55,7 +55,7 @@ class HullMesh(NamedTuple):
     normals: np.ndarray
     offsets: np.ndarray
     twins: np.ndarray
-    cross: np.ndarray
+    area: np.ndarray
     corners: np.ndarray
     level: np.ndarray
     beyond: np.ndarray
@@ -128,32 +128,32 @@ def _normal_order(normals: np.ndarray) -> np.ndarray:
 
 
 def _planes(P: np.ndarray, tri: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Unit normals, offsets (the plane n·x = offset), the raw cross products, their
-    lengths and the corners (F, 3, 3)."""
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Unit normals, offsets (the plane n·x = offset), the lengths of the raw cross
+    products (twice the areas) and the corners (F, 3, 3)."""
     C = np.take(P, tri, axis=0)
     cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
     norm = np.sqrt(dot(cr, cr))  # = np.linalg.norm(cr, axis=1), bit for bit
     with np.errstate(invalid="ignore", divide="ignore"):
         tn = cr / norm[:, None]
-    off = dot(C.mean(axis=1), tn)
-    return tn, off, cr, norm, C
+    off = dot((C[:, 0] + C[:, 1] + C[:, 2]) / 3, tn)  # = C.mean(axis=1), bit for bit
+    return tn, off, norm, C
 
 
 def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
-            cr: np.ndarray, C: np.ndarray) -> HullMesh | None:
+            area: np.ndarray, C: np.ndarray) -> HullMesh | None:
     """The triangles in an order of their own geometry (by normal), not the hull
     library's — so faces, and poses of equal probability, come out in the same order
     from either library — with their twins and heights; None when not closed."""
     order = _normal_order(tn)
-    tri, tn, off, cr, C = tri[order], tn[order], off[order], cr[order], C[order]
+    tri, tn, off, area, C = (np.take(a, order, axis=0) for a in (tri, tn, off, area, C))
     twin = half_edge_twins(tri, len(P))
     if twin is None:
         return None
     far = tri[:, [2, 0, 1]].ravel()[twin]  # the corner across each half-edge
     beyond = (dot(np.take(P, far, axis=0).reshape(-1, 3, 3), tn[:, None, :])
               - off[:, None]).ravel()
-    return HullMesh(P, tri, tn, off, twin, cr, C, dot(C, tn[:, None, :]), beyond)
+    return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
 
 
 def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
@@ -165,13 +165,13 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
     tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(tri) < 4 or len(P) < 4:
         return None
-    tn, off, cr, norm, C = _planes(P, tri)
+    tn, off, norm, C = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
     area = 0.5 * norm
     if not float(np.dot(off, area)) / 3 > eps * area.sum():
         return None  # no volume: flat points make a two-sided polygon, not a solid
-    found = _finish(P, tri, tn, off, cr, C)
+    found = _finish(P, tri, tn, off, area, C)
     # every edge convex: the far corner of the triangle across it lies under this one's plane
     if found is None or np.max(found.beyond) > eps:
         return None
@@ -195,7 +195,8 @@ def _qhull(X: np.ndarray) -> HullMesh:
     flip = dot(cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]]), tn) < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
     C = np.take(X, tri, axis=0)
-    found = _finish(X, tri, tn, off, cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0]), C)
+    cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
+    found = _finish(X, tri, tn, off, 0.5 * np.sqrt(dot(cr, cr)), C)
     if found is None:
         raise GeometryError("the convex hull is not a closed surface (qhull failure)")
     return found

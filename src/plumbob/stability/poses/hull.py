@@ -158,7 +158,7 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     """
     hm = hull_mesh(X, eps)  # manifold3d, or qhull as fallback
     X, tri, tn, twin = hm.points, hm.tri, hm.normals, hm.twins
-    area = 0.5 * np.sqrt(dot(hm.cross, hm.cross))
+    area = hm.area
     m, n = len(tri), len(X)
 
     # --- exactly coplanar neighbours (the hull's triangulated facets) make one face
