@@ -15,7 +15,7 @@ import numpy as np
 
 from .graph import connected_components
 
-__all__ = ["merge_vertices", "point_keys", "weld_near"]
+__all__ = ["merge_vertices", "point_keys", "unique_first", "weld_near"]
 
 #: a cell of the welding grid is this many tolerances wide (more than twice, so that two
 #: points within the tolerance share a cell of at least one of the eight shifted grids)
@@ -53,6 +53,29 @@ def point_keys(points: np.ndarray) -> np.ndarray:
         return _mix(_mix(_mix(b[:, 0]) ^ b[:, 1]) ^ b[:, 2])
 
 
+def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(keys, return_index=True, return_inverse=True)[1:]`` — the first index
+    of each distinct key (in the order of the sorted keys) and each key's group — from
+    one unstable sort (the first index of a group is its least index, whichever order
+    the sort left it in), about twice as fast as the stable sort ``np.unique`` needs.
+
+    >>> [a.tolist() for a in unique_first(np.array([7, 3, 7, 5, 3]))]
+    [[1, 3, 0], [2, 0, 2, 1, 0]]
+    """
+    keys = np.asarray(keys).reshape(-1)
+    order = np.argsort(keys)
+    sk = keys[order]
+    new = np.empty(len(sk), dtype=bool)
+    new[:1] = True
+    np.not_equal(sk[1:], sk[:-1], out=new[1:])
+    group = np.cumsum(new) - 1
+    inverse = np.empty(len(keys), dtype=np.intp)
+    inverse[order] = group
+    first = np.full(int(group[-1]) + 1 if len(group) else 0, len(keys), dtype=np.intp)
+    np.minimum.at(first, group, order)
+    return first, inverse
+
+
 def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Distinct points and the index of each input point among them.
 
@@ -83,10 +106,10 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
     2
     """
     p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
-    key = point_keys(p)
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    unique = p[first]
-    if not np.array_equal(unique[inverse], p):  # a hash collision: merge exactly instead
+    first, inverse = unique_first(point_keys(p))
+    unique = np.take(p, first, axis=0)
+    # a hash collision (two points, one key): merge exactly instead
+    if not np.array_equal(np.take(unique, inverse, axis=0), p):
         unique, inverse = np.unique(p, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
     if tolerance > 0 and len(unique) > 1:

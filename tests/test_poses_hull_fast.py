@@ -1,0 +1,149 @@
+"""The fast paths of the pose hull pipeline give the answers of the plain ones they replace:
+the triangle order by integer ranks is ``np.lexsort`` of the rounded normals, twins by one
+sort of undirected keys are twins by search (closed or not), the weld's one-sort unique is
+``np.unique``'s, and ``build_hull3``'s faces and edges are those of a plain construction."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from plumbob.mesh.weld import merge_vertices, unique_first
+from plumbob.stability.poses.convex import (
+    _normal_order,
+    _twins_by_search,
+    half_edge_twins,
+    hull_mesh,
+)
+from plumbob.stability.poses.hull import build_hull3
+from plumbob.stability.poses.vectors import dot
+
+
+def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
+    """Unit vectors, many repeated and many sharing components to 1e-9 (ties)."""
+    v = rng.normal(size=(n, 3))
+    if quantum:
+        v = np.round(v / quantum) * quantum
+    v[rng.random(n) < 0.3] = [0.0, 0.0, 1.0]
+    v[rng.random(n) < 0.1] = [0.0, 0.0, -1.0]
+    v[rng.random(n) < 0.1, :2] = 0.0  # x and y equal, z of either sign
+    v[~np.any(v != 0, axis=1)] = [1.0, 0.0, 0.0]
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    v[rng.random(n) < 0.05] *= -1.0  # exact negatives, signed zeros
+    return v
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(1, 400), st.sampled_from([0.0, 0.5, 1e-9]))
+def test_normal_order_is_the_lexsort_of_rounded_normals(seed, n, quantum):
+    tn = _unit_rows(np.random.default_rng(seed), n, quantum)
+    key = np.round(tn, 9)
+    want = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
+    assert np.array_equal(_normal_order(tn), want)
+
+
+def _closed_surface(rng: np.random.Generator, n: int) -> np.ndarray:
+    """A random convex hull's triangles (a closed 2-manifold, wound outward), vertices
+    renumbered."""
+    from scipy.spatial import ConvexHull
+
+    X = rng.normal(size=(n, 3))
+    hull = ConvexHull(X)
+    tri = hull.simplices.copy()
+    a, b, c = (X[tri[:, k]] for k in range(3))
+    inward = np.einsum("ij,ij->i", np.cross(b - a, c - a), hull.equations[:, :3]) < 0
+    tri[inward] = tri[inward][:, ::-1]
+    perm = rng.permutation(len(X))
+    return perm[tri][rng.permutation(len(tri))]
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 60))
+def test_twins_by_undirected_keys_are_twins_by_search(seed, n):
+    rng = np.random.default_rng(seed)
+    tri = _closed_surface(rng, n)
+    twin = half_edge_twins(tri, n)
+    assert twin is not None and np.array_equal(twin, _twins_by_search(tri, n))
+    frm, to = tri.ravel(), tri[:, [1, 2, 0]].ravel()
+    assert np.array_equal(frm[twin], to) and np.array_equal(twin[twin], np.arange(len(twin)))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 40),
+       st.sampled_from(["drop", "flip", "duplicate", "loop", "random"]))
+def test_twins_of_broken_surfaces_agree_with_search(seed, n, how):
+    """Whatever the triangles, the fast twins are the searched ones (None alike)."""
+    rng = np.random.default_rng(seed)
+    tri = _closed_surface(rng, n)
+    k = int(rng.integers(len(tri)))
+    if how == "drop":
+        tri = np.delete(tri, k, axis=0)
+    elif how == "flip":
+        tri[k] = tri[k, ::-1]
+    elif how == "duplicate":
+        tri = np.concatenate((tri, tri[k:k + 1]))
+    elif how == "loop":
+        tri[k, 1] = tri[k, 0]
+    else:
+        tri = rng.integers(0, 5, size=(int(rng.integers(1, 8)), 3))
+        n = 5
+    fast, slow = half_edge_twins(tri, n), _twins_by_search(tri, n)
+    assert (fast is None) == (slow is None)
+    if fast is not None:
+        assert np.array_equal(fast, slow)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 500), st.integers(1, 50))
+def test_unique_first_is_numpys_unique(seed, n, spread):
+    keys = np.random.default_rng(seed).integers(0, spread, n).astype(np.uint64)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    mine = unique_first(keys)
+    assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))
+
+
+def test_merge_vertices_matches_the_exact_merge():
+    rng = np.random.default_rng(7)
+    pts = rng.normal(size=(300, 3))[rng.integers(0, 300, 2000)]
+    pts[rng.random(len(pts)) < 0.1] *= -0.0  # signed zeros... and plain sign flips
+    vertices, index = merge_vertices(pts)
+    assert np.array_equal(vertices[index], pts + 0.0)
+    assert len(vertices) == len(np.unique(pts + 0.0, axis=0))
+
+
+def _plain_faces(X: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Faces and heights the slow way: triangles joined across edges whose far corners lie
+    within eps of both planes, areas summed, the largest corner height per face."""
+    from plumbob.mesh.graph import connected_components
+
+    hm = hull_mesh(X, eps)
+    P, tri, tn, off, twin = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins
+    i = np.repeat(np.arange(len(tri)), 3)
+    j = twin // 3
+    dij = np.abs(np.einsum("kvc,kc->kv", P[tri[j]], tn[i]) - off[i][:, None]).max(axis=1)
+    dji = np.abs(np.einsum("kvc,kc->kv", P[tri[i]], tn[j]) - off[j][:, None]).max(axis=1)
+    same = (dij <= eps) & (dji <= eps) & (np.einsum("ij,ij->i", tn[i], tn[j]) > 0)
+    comp = connected_components(len(tri), i[same], j[same])
+    return comp, np.bincount(comp, weights=hm.area)
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_build_hull3_faces_are_the_plain_ones(seed, grid):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 200)), 3))
+    if grid:  # many coplanar triangles: merged faces with corners on their edges
+        X = np.round(X * 2) / 2
+    X = X - X.mean(axis=0)
+    eps = 1e-12 * float(np.ptp(X))
+    h = build_hull3(X, eps)
+    comp, areas = _plain_faces(X, eps)
+    assert np.allclose(np.sort(h.areas), np.sort(areas), rtol=1e-12, atol=0)
+    # edges: sorted by their start, twins reversed, faces on both sides, and every
+    # face's height that of its corners
+    assert np.all(np.diff(h.ea) >= 0)
+    assert np.array_equal(h.ea[h.twin], h.eb) and np.array_equal(h.eb[h.twin], h.ea)
+    assert np.array_equal(h.ef[h.twin], h.eg) and np.all(h.ef != h.eg)
+    assert np.array_equal(h.und, np.minimum(np.arange(len(h.ea)), h.twin))
+    top = np.full(len(h.normals), -np.inf)
+    np.maximum.at(top, h.ef, dot(h.X[h.ea], h.normals[h.ef]))
+    assert np.array_equal(top, h.heights)
+    assert np.array_equal(np.bincount(h.ea, minlength=len(h.X)), h.degree)
+    # every input point under every face's plane
+    assert (X @ h.normals.T - h.heights).max() <= 10 * eps
