@@ -17,7 +17,7 @@ from plumbob.stability.poses.convex import (
     hull_mesh,
 )
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.vectors import dot
+from plumbob.stability.poses.vectors import dot, row_max, row_min
 
 
 def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
@@ -147,3 +147,11 @@ def test_build_hull3_faces_are_the_plain_ones(seed, grid):
     assert np.array_equal(np.bincount(h.ea, minlength=len(h.X)), h.degree)
     # every input point under every face's plane
     assert (X @ h.normals.T - h.heights).max() <= 10 * eps
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 50), st.integers(1, 5))
+def test_row_max_and_min_are_numpys(seed, n, k):
+    a = np.random.default_rng(seed).normal(size=(n, k))
+    a[a > 1.5] = np.nan  # NaN propagates alike
+    assert np.array_equal(row_max(a), a.max(axis=1), equal_nan=True)
+    assert np.array_equal(row_min(a), a.min(axis=1), equal_nan=True)

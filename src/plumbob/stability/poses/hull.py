@@ -20,7 +20,7 @@ import numpy as np
 from ...errors import GeometryError
 from ...mesh.topology import connected_components
 from .convex import HullMesh, hull_mesh
-from .vectors import dot, unit
+from .vectors import dot, row_max, row_min, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
 
@@ -74,8 +74,8 @@ def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
     nfaces)."""
     hi = np.full(nfaces, -np.inf)
     lo = np.full(nfaces, np.inf)
-    np.maximum.at(hi, comp, level.max(axis=1))
-    np.minimum.at(lo, comp, level.min(axis=1))
+    np.maximum.at(hi, comp, row_max(level))
+    np.minimum.at(lo, comp, row_min(level))
     bent = hi - lo > tol
     if bent.any():
         comp = np.where(bent[comp], nfaces + np.arange(len(comp)), comp)
@@ -120,7 +120,7 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
     und = np.minimum(np.arange(len(ea)), etwin)
-    return Hull3(hm.points, hm.normals, hm.level.max(axis=1), area, ea, eb, ef, eg, start,
+    return Hull3(hm.points, hm.normals, row_max(hm.level), area, ea, eb, ef, eg, start,
                  degree, etwin, und)
 
 
@@ -212,7 +212,7 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     und = np.minimum(np.arange(len(ea)), etwin)
     corner = (bnd & real[frm]).reshape(m, 3)
     heights = np.full(nfaces, -np.inf)
-    np.maximum.at(heights, comp, np.where(corner, level, -np.inf).max(axis=1))
+    np.maximum.at(heights, comp, row_max(np.where(corner, level, -np.inf)))
     return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, etwin, und)
 
 
