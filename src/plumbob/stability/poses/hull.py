@@ -14,6 +14,7 @@ Everything is relative to the centre of mass, which sits at the origin.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -36,6 +37,9 @@ class Hull3:
         about its normal) and eg on the right. Sorted by ``ea``.
     start, degree: per point, its out-edges are ``start .. start + degree``.
     twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
+
+    The rows the edge geometry and the roller both gather (each edge's start, vector and
+    left face's normal) are gathered once, when first asked for.
     """
 
     X: np.ndarray
@@ -50,6 +54,21 @@ class Hull3:
     degree: np.ndarray
     twin: np.ndarray
     und: np.ndarray
+
+    @cached_property
+    def edge_start(self) -> np.ndarray:
+        """(E, 3) ``X[ea]``."""
+        return np.take(self.X, self.ea, axis=0)
+
+    @cached_property
+    def edge_vector(self) -> np.ndarray:
+        """(E, 3) ``X[eb] - X[ea]``."""
+        return np.take(self.X, self.eb, axis=0) - self.edge_start
+
+    @cached_property
+    def left_normal(self) -> np.ndarray:
+        """(E, 3) ``normals[ef]``."""
+        return np.take(self.normals, self.ef, axis=0)
 
 
 def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray

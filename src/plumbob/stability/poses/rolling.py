@@ -47,15 +47,14 @@ def edge_geometry(h: Hull3) -> Edges3:
     """The Gauss-map arc of every directed edge of ``h``, and whether it holds a saddle:
     the direction from the centre square to the edge's line lies on the arc and the
     foot lies strictly inside the edge."""
-    A = np.take(h.X, h.ea, axis=0)
-    D = np.take(h.X, h.eb, axis=0) - A
+    A, D = h.edge_start, h.edge_vector
     L2 = dot(D, D)
     t = -dot(A, D) / L2
     pole = D / np.sqrt(L2)[:, None]
     p = A + t[:, None] * D
     sheight = np.sqrt(dot(p, p))  # = np.linalg.norm(p, axis=1), bit for bit
     s = p / sheight[:, None]
-    after_f = cross(pole, np.take(h.normals, h.ef, axis=0))
+    after_f = cross(pole, h.left_normal)
     before_g = cross(np.take(h.normals, h.eg, axis=0), pole)
     in_arc = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
     saddle = (t > 0) & (t < 1) & in_arc
@@ -121,10 +120,8 @@ class Roller:
     def __init__(self, h: Hull3, eg3: Edges3, W: np.ndarray, tol: float) -> None:
         self.h, self.eg3, self.W, self.tol = h, eg3, W, tol
         nF = len(h.normals)
-        A = np.take(h.X, h.ea, axis=0)
-        D = np.take(h.X, h.eb, axis=0) - A
+        A, D, n = h.edge_start, h.edge_vector, h.left_normal
         self.length = np.sqrt(dot(D, D))
-        n = np.take(h.normals, h.ef, axis=0)
         self.foot = np.take(h.heights, h.ef)[:, None] * n
         rel = self.foot - A
         s = dot(cross(D, rel), n) / self.length  # signed, positive inside
