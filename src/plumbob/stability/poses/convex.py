@@ -33,6 +33,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.sorting import lex_order, stable_order
 from .vectors import cross, dot
 
 __all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh"]
@@ -93,7 +94,7 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
     key = np.minimum(frm, to) * n + np.maximum(frm, to)
-    order = np.argsort(key)
+    order = stable_order(key)
     skey = key[order]
     a, b = order[0::2], order[1::2]
     if (len(key) % 2 == 0 and np.array_equal(skey[0::2], skey[1::2])
@@ -107,24 +108,14 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
 
 def _normal_order(normals: np.ndarray) -> np.ndarray:
     """The triangles ordered by their normals rounded to 1e-9, largest x first, then y,
-    then z, then as given: ``np.lexsort`` of the rounded components, in three
-    unstable integer sorts instead of three stable float sorts.
+    then z, then as given: ``np.lexsort`` of the rounded components, as three stable
+    integer sorts (:func:`~plumbob.mesh.sorting.lex_order`) instead of three float ones.
 
     ``np.round(x, 9)`` is ``rint(x · 1e9) / 1e9``, so the integers ``rint(x · 1e9)``
-    (|·| ≤ 1e9) sort the same way; x and y fit one 63-bit key, z and the position another,
-    and the final key is the rank of the first times F plus the rank of the second.
+    (|·| ≤ 1e9) sort the same way.
     """
-    F = len(normals)
     q = (1e9 - np.rint(normals * 1e9)).astype(np.int64)  # 0 ..= 2e9: descending components
-    by_z = np.argsort(q[:, 2] * F + np.arange(F))  # unique keys
-    rank_z = np.empty(F, dtype=np.int64)
-    rank_z[by_z] = np.arange(F)
-    xy = q[:, 0] * (2 * 10**9 + 1) + q[:, 1]
-    by_xy = np.argsort(xy)
-    sxy = xy[by_xy]
-    rank_xy = np.empty(F, dtype=np.int64)
-    rank_xy[by_xy] = np.cumsum(np.concatenate(([0], sxy[1:] != sxy[:-1])))
-    return np.argsort(rank_xy * F + rank_z)  # unique keys
+    return lex_order([q[:, 2], q[:, 1], q[:, 0]])
 
 
 def _planes(P: np.ndarray, tri: np.ndarray

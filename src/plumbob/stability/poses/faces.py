@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...mesh.sorting import stable_order
 from .hull import Hull3
 from .vectors import cross, dot, expand, unit
 
@@ -61,9 +62,9 @@ class PhysicalFaces:
 
 def _face_edges(h: Hull3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Directed edges grouped by their left face: (edge ids ordered by face, start, count)."""
-    nF, E = len(h.normals), len(h.ef)
-    order = np.argsort(h.ef * E + np.arange(E))  # stable by face: one unstable sort of
-    count = np.bincount(h.ef, minlength=nF)  # unique keys, faster than a stable sort
+    nF = len(h.normals)
+    order = stable_order(h.ef)
+    count = np.bincount(h.ef, minlength=nF)
     return order, np.cumsum(count) - count, count
 
 

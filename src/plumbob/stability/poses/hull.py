@@ -19,6 +19,7 @@ from functools import cached_property
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.sorting import stable_order
 from ...mesh.topology import connected_components
 from .convex import HullMesh, hull_mesh
 from .vectors import dot, row_max, row_min, unit
@@ -103,11 +104,6 @@ def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
     return comp, bent, nfaces
 
 
-def _by_start(frm: np.ndarray) -> np.ndarray:
-    """The stable order of ``frm`` (one unstable sort of unique keys)."""
-    return np.argsort(frm * len(frm) + np.arange(len(frm)))
-
-
 def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
     """Neighbouring triangles (i < j) whose corners all lie within ``eps`` of each other's
     planes and that face the same way. A triangle's own corners lie on its plane to
@@ -130,7 +126,7 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     tri, twin = hm.tri, hm.twins
     n = len(hm.points)
     frm = tri.ravel()
-    order = _by_start(frm)
+    order = stable_order(frm)
     inverse = np.empty_like(order)
     inverse[order] = np.arange(len(order))
     ea, eb = frm[order], tri[:, [1, 2, 0]].ravel()[order]
@@ -214,7 +210,7 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     first = np.flatnonzero(bnd & real[frm])  # the half-edge each edge starts with
     ea, eb = frm[first], to[ptr[first]]
     key = ea * n + eb
-    order = np.argsort(key)
+    order = stable_order(key)
     first, ea, eb, key = first[order], ea[order], eb[order], key[order]
     if np.any(key[1:] == key[:-1]):
         raise GeometryError("the hull's edges do not pair up (degenerate hull)")
