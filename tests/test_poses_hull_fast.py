@@ -18,7 +18,7 @@ from plumbob.stability.poses.convex import (
     hull_mesh,
 )
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.vectors import dot, row_max, row_min
+from plumbob.stability.poses.vectors import dot, row_max, row_min, unit
 
 
 def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
@@ -184,3 +184,21 @@ def test_unique_first_with_keys_alike_in_their_top_bits(seed, n, low):
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
     mine = unique_first(keys)
     assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 30), st.integers(1, 4),
+       st.sampled_from([1e-200, 1e-5, 1.0, 1e150]))
+def test_dot_and_unit_are_the_plain_formulas(seed, n, dim, scale):
+    """``dot`` adds the products in component order and ``unit`` divides by
+    ``np.linalg.norm``: the same numbers to the bit, whatever the magnitudes."""
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, dim)) * scale
+    b = rng.normal(size=(n, dim))
+    a[rng.random(n) < 0.2] = 0.0  # zero rows stay zero
+    plain = a[:, 0] * b[:, 0]
+    for k in range(1, dim):
+        plain = plain + a[:, k] * b[:, k]
+    with np.errstate(over="ignore"):
+        assert np.array_equal(dot(a, b), plain)
+        norm = np.linalg.norm(a, axis=-1, keepdims=True)
+        assert np.array_equal(unit(a), a / np.where(norm > 0, norm, 1.0))

@@ -183,11 +183,11 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     comp = connected_components(m, i, j)
     nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
-    level = dot(hm.corners, normals[comp][:, None, :])  # corners along their face's normal
+    level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])  # along the face's normal
     comp, bent, nfaces = _split_bent(comp, nfaces, level, eps)
     if bent.any():
         normals = _weighted_normals(comp, nfaces, tn, area)
-        level = dot(hm.corners, normals[comp][:, None, :])
+        level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])
     areas = np.bincount(comp, weights=area, minlength=nfaces)
 
     # --- face boundaries: chains of half-edges between different faces
@@ -207,12 +207,14 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
         ptr = np.where(term[ptr], ptr, ptr[ptr])
     else:
         raise GeometryError("a face of the hull has no corners (degenerate hull)")
-    first = np.flatnonzero(bnd & real[frm])  # the half-edge each edge starts with
-    ea, eb = frm[first], to[ptr[first]]
-    key = ea * n + eb
-    order = stable_order(key)
-    first, ea, eb, key = first[order], ea[order], eb[order], key[order]
-    if np.any(key[1:] == key[:-1]):
+    # an edge per chain: from its first half-edge (at a corner) to its last one's end
+    corner = bnd & real[frm]
+    first = np.flatnonzero(corner)
+    last = ptr[first]
+    order = stable_order(frm[first] * n + to[last])  # by (a, b)
+    first, last = first[order], last[order]
+    ea, eb = frm[first], to[last]
+    if np.any((ea[1:] == ea[:-1]) & (eb[1:] == eb[:-1])):
         raise GeometryError("the hull's edges do not pair up (degenerate hull)")
     ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
@@ -220,14 +222,13 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     # the reversed edge starts with the twin of this edge's last half-edge
     edge_of = np.full(3 * m, -1, dtype=np.int64)
     edge_of[first] = np.arange(len(first))
-    etwin = edge_of[twin[ptr[first]]]
+    etwin = edge_of[twin[last]]
     if not (np.all(etwin >= 0) and np.array_equal(ea[etwin], eb)
             and np.array_equal(eb[etwin], ea)):
         raise GeometryError("the hull's edges do not pair up (degenerate hull)")
     und = np.minimum(np.arange(len(ea)), etwin)
-    corner = (bnd & real[frm]).reshape(m, 3)
     heights = np.full(nfaces, -np.inf)
-    np.maximum.at(heights, comp, row_max(np.where(corner, level, -np.inf)))
+    np.maximum.at(heights, comp, row_max(np.where(corner.reshape(m, 3), level, -np.inf)))
     return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, etwin, und)
 
 
