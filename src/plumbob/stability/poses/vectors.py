@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import StabilityError
+from ...mesh.winding import cross  # one copy, shared with the solid angles
 
 __all__ = ["unit", "cross", "dot", "row_max", "row_min", "group_first", "expand",
            "pointer_sinks", "fibonacci_sphere"]
@@ -21,13 +22,6 @@ def unit(v: np.ndarray) -> np.ndarray:
     ``sqrt(dot(v, v))``, bit for bit ``np.linalg.norm(v, axis=-1)`` (5x faster)."""
     norm = np.sqrt(dot(v, v))[..., None]
     return v / np.where(norm > 0, norm, 1.0)
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross products of (…, 3) arrays (faster than ``np.cross`` for many small vectors)."""
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
