@@ -18,7 +18,7 @@ from plumbob.stability.poses.convex import (
     hull_mesh,
 )
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.vectors import dot, row_max, row_min, unit
+from plumbob.stability.poses.vectors import dot, expand, row_max, row_min, unit
 
 
 def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
@@ -202,3 +202,12 @@ def test_dot_and_unit_are_the_plain_formulas(seed, n, dim, scale):
         assert np.array_equal(dot(a, b), plain)
         norm = np.linalg.norm(a, axis=-1, keepdims=True)
         assert np.array_equal(unit(a), a / np.where(norm > 0, norm, 1.0))
+
+
+@given(st.lists(st.tuples(st.integers(0, 4), st.integers(0, 50)), max_size=20))
+def test_expand_lists_every_row_range(rows):
+    counts = np.array([c for c, _ in rows], dtype=np.int64)
+    starts = np.array([s for _, s in rows], dtype=np.int64)
+    row, item = expand(counts, starts)
+    want = [(i, s + k) for i, (c, s) in enumerate(rows) for k in range(c)]
+    assert list(zip(row.tolist(), item.tolist())) == want

@@ -29,10 +29,14 @@ def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     than a reduction over the last axis, and always in the same order): the products
     in one pass over whole rows, then added column by column."""
     prod = np.multiply(a, b)
-    if prod.shape[-1] == 1:
+    dim = prod.shape[-1]
+    if dim == 1:
         return prod[..., 0].copy()
     out = prod[..., 0] + prod[..., 1]
-    for k in range(2, prod.shape[-1]):
+    if dim == 3:
+        out += prod[..., 2]
+        return out
+    for k in range(2, dim):
         out += prod[..., k]
     return out
 
@@ -83,10 +87,9 @@ def expand(counts: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, np.ndarr
     >>> [a.tolist() for a in expand(np.array([2, 0, 1]), np.array([5, 0, 9]))]
     [[0, 0, 2], [5, 6, 9]]
     """
-    total = int(counts.sum())
     rows = np.repeat(np.arange(len(counts)), counts)
-    offsets = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
-    return rows, np.repeat(starts, counts) + offsets
+    shift = np.asarray(starts) - (np.cumsum(counts) - counts)  # item index − position
+    return rows, np.arange(len(rows)) + shift[rows]
 
 
 def pointer_sinks(nxt: np.ndarray) -> np.ndarray:
