@@ -148,7 +148,7 @@ def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, bnd: np.ndarr
     nxt = np.arange(len(frm)).reshape(-1, 3)[:, [1, 2, 0]].ravel()
     sub = np.flatnonzero(bnd & merged)
     key = face[sub] * n + frm[sub]
-    order = np.argsort(key)
+    order = stable_order(key)
     want = face[sub] * n + to[sub]
     pos = np.minimum(np.searchsorted(key[order], want), max(len(sub) - 1, 0))
     found = sub[order[pos]] if len(sub) else sub
