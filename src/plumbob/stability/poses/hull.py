@@ -39,8 +39,8 @@ class Hull3:
     start, degree: per point, its out-edges are ``start .. start + degree``.
     twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
 
-    The rows the edge geometry and the roller both gather (each edge's start, vector and
-    left face's normal) are gathered once, when first asked for.
+    The rows the edge geometry and the roller both gather (each edge's start, vector,
+    squared length and left face's normal) are gathered once, when first asked for.
     """
 
     X: np.ndarray
@@ -65,6 +65,11 @@ class Hull3:
     def edge_vector(self) -> np.ndarray:
         """(E, 3) ``X[eb] - X[ea]``."""
         return np.take(self.X, self.eb, axis=0) - self.edge_start
+
+    @cached_property
+    def edge_length2(self) -> np.ndarray:
+        """(E,) ``|X[eb] - X[ea]|²``."""
+        return dot(self.edge_vector, self.edge_vector)
 
     @cached_property
     def left_normal(self) -> np.ndarray:
