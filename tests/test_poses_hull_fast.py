@@ -18,7 +18,8 @@ from plumbob.stability.poses.convex import (
     hull_mesh,
 )
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.vectors import dot, expand, row_max, row_min, unit
+from plumbob.stability.poses.rolling import edge_geometry
+from plumbob.stability.poses.vectors import cross, dot, expand, row_max, row_min, unit
 
 
 def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
@@ -211,3 +212,29 @@ def test_expand_lists_every_row_range(rows):
     row, item = expand(counts, starts)
     want = [(i, s + k) for i, (c, s) in enumerate(rows) for k in range(c)]
     assert list(zip(row.tolist(), item.tolist())) == want
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_edge_geometry_is_the_plain_formulas(seed, grid):
+    """Every field of the edge geometry as the plain per-edge formulas give it, bit for
+    bit (before_g gathered from the reversed edge, the foot computed in place)."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 150)), 3))
+    if grid:
+        X = np.round(X * 2) / 2
+    X = X - X.mean(axis=0) - 0.01
+    h = build_hull3(X, 1e-12 * float(np.ptp(X)))
+    e = edge_geometry(h)
+    A = h.X[h.ea]
+    D = h.X[h.eb] - A
+    L2 = dot(D, D)
+    t = -dot(A, D) / L2
+    pole = D / np.sqrt(L2)[:, None]
+    p = A + t[:, None] * D
+    height = np.linalg.norm(p, axis=1)
+    s = p / height[:, None]
+    after_f, before_g = cross(pole, h.normals[h.ef]), cross(h.normals[h.eg], pole)
+    for mine, plain in [(e.t, t), (e.pole, pole), (e.spoint, s), (e.sheight, height),
+                        (e.after_f, after_f), (e.before_g, before_g),
+                        (e.toward_f, cross(s, pole))]:
+        assert np.array_equal(mine, plain)
