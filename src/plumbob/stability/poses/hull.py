@@ -163,6 +163,26 @@ def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, bnd: np.ndarr
     return nxt
 
 
+def _edge_twins(ea: np.ndarray, eb: np.ndarray, first: np.ndarray, last: np.ndarray,
+                twin: np.ndarray, n: int) -> np.ndarray:
+    """The reversed edge of each edge ``ea → eb`` (sorted by (a, b)), whose chain of
+    half-edges runs from ``first`` to ``last``: it starts with the twin of ``last``. Where
+    that does not settle it (a degenerate hull with an edge twice, or a chain that does
+    not retrace), the first edge ``eb → ea`` in the sorted keys."""
+    edge_of = np.full(len(twin), -1, dtype=np.int64)
+    edge_of[first] = np.arange(len(first))
+    etwin = edge_of[twin[last]]
+    if (np.all(etwin >= 0) and np.array_equal(ea[etwin], eb) and np.array_equal(eb[etwin], ea)
+            and not np.any((ea[1:] == ea[:-1]) & (eb[1:] == eb[:-1]))):
+        return etwin
+    key = ea * n + eb
+    want = eb * n + ea
+    pos = np.minimum(np.searchsorted(key, want), len(key) - 1)
+    if not np.array_equal(key[pos], want):
+        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
+    return pos
+
+
 def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     """The hull of ``X`` (n, 3), m, relative to the centre of mass, with the hull's triangles
     merged into faces where coplanar within ``eps`` (m; meant as round-off, so that the
@@ -219,18 +239,10 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     order = stable_order(frm[first] * n + to[last])  # by (a, b)
     first, last = first[order], last[order]
     ea, eb = frm[first], to[last]
-    if np.any((ea[1:] == ea[:-1]) & (eb[1:] == eb[:-1])):
-        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
     ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
-    # the reversed edge starts with the twin of this edge's last half-edge
-    edge_of = np.full(3 * m, -1, dtype=np.int64)
-    edge_of[first] = np.arange(len(first))
-    etwin = edge_of[twin[last]]
-    if not (np.all(etwin >= 0) and np.array_equal(ea[etwin], eb)
-            and np.array_equal(eb[etwin], ea)):
-        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
+    etwin = _edge_twins(ea, eb, first, last, twin, n)
     und = np.minimum(np.arange(len(ea)), etwin)
     heights = np.full(nfaces, -np.inf)
     np.maximum.at(heights, comp, row_max(np.where(corner.reshape(m, 3), level, -np.inf)))
