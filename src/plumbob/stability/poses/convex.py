@@ -24,6 +24,12 @@ manifold3d returns the hull's vertices as exact copies of input points
 Its quickhull leaves out points within its own epsilon (about 1e-7 of the size) of a
 facet, an order of magnitude below the contact tolerance (1e-6 of the size) at which
 faces are merged, so no pose can change.
+
+On large inputs manifold3d builds the hull in parallel: the same triangles come back
+in another order, each starting at another of its corners, from run to run. The order
+is made the geometry's own (:func:`_normal_order`); the starting corner still moves the
+last bits of each cross product, so answers on big meshes differ between runs by
+round-off (about 1e-14 relative, more in a quantity that is a small difference).
 """
 
 from __future__ import annotations
