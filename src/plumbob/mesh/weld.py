@@ -15,7 +15,7 @@ import numpy as np
 
 from .graph import connected_components
 
-__all__ = ["merge_vertices", "point_keys", "weld_near"]
+__all__ = ["merge_vertices", "point_keys", "unique_first", "weld_near"]
 
 #: a cell of the welding grid is this many tolerances wide (more than twice, so that two
 #: points within the tolerance share a cell of at least one of the eight shifted grids)
@@ -53,6 +53,38 @@ def point_keys(points: np.ndarray) -> np.ndarray:
         return _mix(_mix(_mix(b[:, 0]) ^ b[:, 1]) ^ b[:, 2])
 
 
+def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(keys, return_index=True, return_inverse=True)[1:]`` for uint64 keys
+    (hashes): the first index of each distinct key, in the order of the sorted keys, and
+    each key's group.
+
+    One plain sort of words packing each key's top bits above its index is a stable
+    argsort of the keys unless two different keys share their top bits (then the sorted
+    keys come out of order and a stable ``np.argsort`` decides): 5–10× faster than the
+    stable sort ``np.unique`` needs, same answer.
+
+    >>> [a.tolist() for a in unique_first(np.array([7, 3, 7, 5, 3], dtype=np.uint64))]
+    [[1, 3, 0], [2, 0, 2, 1, 0]]
+    """
+    keys = np.asarray(keys, dtype=np.uint64).reshape(-1)
+    n = len(keys)
+    bits = np.uint64(max(n - 1, 1).bit_length())
+    packed = (keys >> bits) << bits
+    packed |= np.arange(n, dtype=np.uint64)
+    packed.sort()
+    order = (packed & ((np.uint64(1) << bits) - np.uint64(1))).astype(np.intp)
+    sk = keys[order]
+    if np.any(sk[1:] < sk[:-1]):  # two keys alike in their top bits: sort them all
+        order = np.argsort(keys, kind="stable")
+        sk = keys[order]
+    new = np.empty(n, dtype=bool)
+    new[:1] = True
+    np.not_equal(sk[1:], sk[:-1], out=new[1:])
+    inverse = np.empty(n, dtype=np.intp)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new], inverse
+
+
 def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Distinct points and the index of each input point among them.
 
@@ -83,8 +115,10 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
     2
     """
     p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
-    unique, inverse = _merge_keys(p, point_keys(p))
-    if not np.array_equal(unique[inverse], p):  # a hash collision: merge exactly instead
+    first, inverse = unique_first(point_keys(p))
+    unique = np.take(p, first, axis=0)
+    # a hash collision (two points, one key): merge exactly instead
+    if not np.array_equal(np.take(unique, inverse, axis=0), p):
         unique, inverse = np.unique(p, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
     if tolerance > 0 and len(unique) > 1:
@@ -92,22 +126,6 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
         _, keep, relabel = np.unique(group, return_index=True, return_inverse=True)
         unique, inverse = unique[keep], relabel.reshape(-1)[inverse]
     return unique, inverse
-
-
-def _merge_keys(p: np.ndarray, key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Distinct points of ``p`` in the order of their keys, and each point's index among
-    them: ``np.unique(key, return_index=True, return_inverse=True)``'s answer, by numpy's
-    unstable (SIMD) argsort, ~6× faster than the stable one ``return_index`` asks for.
-    Which copy of a key stands for it is immaterial: equal keys are equal points, and a
-    collision shows in the caller's check of ``unique[inverse]``."""
-    order = np.argsort(key)
-    ordered = key[order]
-    new = np.empty(len(key), dtype=bool)
-    new[:1] = True
-    np.not_equal(ordered[1:], ordered[:-1], out=new[1:])
-    inverse = np.empty(len(key), dtype=np.intp)
-    inverse[order] = np.cumsum(new) - 1
-    return p[order[new]], inverse
 
 
 def weld_near(points: np.ndarray, tolerance: float) -> np.ndarray:

@@ -12,10 +12,22 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["solid_angle", "solid_angles", "winding_numbers"]
+__all__ = ["cross", "solid_angle", "solid_angles", "winding_numbers"]
 
 #: corner vectors formed per pass of :func:`winding_numbers` (points × triangles)
 WINDING_BLOCK = 2_000_000
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross products of (…, 3) arrays: ``np.cross``'s numbers, bit for bit, without its
+    per-call cost (which dominates for the few vectors of each step of a trace).
+
+    >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
+    [0.0, 0.0, 1.0]
+    """
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
 
 
 def _dot(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -40,11 +52,11 @@ def solid_angle(a: np.ndarray, b: np.ndarray, c: np.ndarray, *, unit: bool = Fal
     -0.125
     """
     if unit:
-        num = _dot(a, np.cross(b, c))
+        num = _dot(a, cross(b, c))
         den = 1.0 + _dot(a, b) + _dot(b, c) + _dot(c, a)
         return 2.0 * np.arctan2(num, den)
     la, lb, lc = (np.sqrt(_dot(x, x)) for x in (a, b, c))
-    det = _dot(a, np.cross(b, c))
+    det = _dot(a, cross(b, c))
     den = la * lb * lc + _dot(a, b) * lc + _dot(a, c) * lb + _dot(b, c) * la
     return 2 * np.arctan2(det, den)
 

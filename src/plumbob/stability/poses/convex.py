@@ -24,22 +24,53 @@ manifold3d returns the hull's vertices as exact copies of input points
 Its quickhull leaves out points within its own epsilon (about 1e-7 of the size) of a
 facet, an order of magnitude below the contact tolerance (1e-6 of the size) at which
 faces are merged, so no pose can change.
+
+On large inputs manifold3d builds the hull in parallel: the same triangles come back
+in another order, each starting at another of its corners, from run to run. The order
+is made the geometry's own (:func:`_normal_order`); the starting corner still moves the
+last bits of each cross product, so answers on big meshes differ between runs by
+round-off (about 1e-14 relative, more in a quantity that is a small difference).
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.sorting import lex_order, stable_order
 from .vectors import cross, dot
 
-__all__ = ["hull_triangles", "half_edge_twins"]
+__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh"]
 
 
-def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
-    """For the half-edges ``tri[t, k] → tri[t, (k + 1) % 3]`` (numbered ``3 t + k``), the
-    reversed half-edge of each; None when the triangles are not a closed surface (an
-    edge without exactly one reversed partner)."""
+class HullMesh(NamedTuple):
+    """The convex hull as triangles, with what the checks measured on the way (so that
+    :func:`~.hull.build_hull3` need not measure it again).
+
+    points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
+    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. corners:
+    (F, 3, 3) each triangle's corners. level: (F, 3) each corner's height along its own
+    triangle's normal. beyond: (3F,) per half-edge,
+    the height of the far corner of the triangle across it over this triangle's plane
+    (≤ 0 to rounding error on a convex hull).
+    """
+
+    points: np.ndarray
+    tri: np.ndarray
+    normals: np.ndarray
+    offsets: np.ndarray
+    twins: np.ndarray
+    area: np.ndarray
+    corners: np.ndarray
+    level: np.ndarray
+    beyond: np.ndarray
+
+
+def _twins_by_search(tri: np.ndarray, n: int) -> np.ndarray | None:
+    """:func:`half_edge_twins` by searching each reversed key among the sorted keys: the
+    general answer, for the surfaces the pairing by undirected keys cannot settle."""
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
     key = frm * n + to
@@ -54,19 +85,76 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
     return twin
 
 
-def _planes(P: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Unit normals, offsets (the plane n·x = offset) and the raw cross products."""
-    cr = cross(P[tri[:, 1]] - P[tri[:, 0]], P[tri[:, 2]] - P[tri[:, 0]])
-    norm = np.linalg.norm(cr, axis=1)
+def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
+    """For the half-edges ``tri[t, k] → tri[t, (k + 1) % 3]`` (numbered ``3 t + k``), the
+    reversed half-edge of each; None when the triangles are not a closed surface (an
+    edge without exactly one reversed partner).
+
+    One sort of the undirected keys puts each edge's two half-edges side by side (a
+    closed surface has exactly two, opposite); anything else is settled by
+    :func:`_twins_by_search`.
+
+    >>> half_edge_twins(np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]), 4).tolist()
+    [8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1]
+    """
+    frm = tri.ravel()
+    to = tri[:, [1, 2, 0]].ravel()
+    key = np.minimum(frm, to) * n + np.maximum(frm, to)
+    order = stable_order(key)
+    skey = key[order]
+    a, b = order[0::2], order[1::2]
+    if (len(key) % 2 == 0 and np.array_equal(skey[0::2], skey[1::2])
+            and not np.any(skey[1:-1:2] == skey[2::2])
+            and np.array_equal(frm[a], to[b]) and not np.any(frm[a] == to[a])):
+        twin = np.empty_like(order)
+        twin[a], twin[b] = b, a
+        return twin
+    return _twins_by_search(tri, n)
+
+
+def _normal_order(normals: np.ndarray) -> np.ndarray:
+    """The triangles ordered by their normals rounded to 1e-9, largest x first, then y,
+    then z, then as given: ``np.lexsort`` of the rounded components, as three stable
+    integer sorts (:func:`~plumbob.mesh.sorting.lex_order`) instead of three float ones.
+
+    ``np.round(x, 9)`` is ``rint(x · 1e9) / 1e9``, so the integers ``rint(x · 1e9)``
+    (|·| ≤ 1e9) sort the same way.
+    """
+    q = (1e9 - np.rint(normals * 1e9)).astype(np.int64)  # 0 ..= 2e9: descending components
+    return lex_order([q[:, 2], q[:, 1], q[:, 0]])
+
+
+def _planes(P: np.ndarray, tri: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Unit normals, offsets (the plane n·x = offset), the lengths of the raw cross
+    products (twice the areas) and the corners (F, 3, 3)."""
+    C = np.take(P, tri, axis=0)
+    cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
+    norm = np.sqrt(dot(cr, cr))  # = np.linalg.norm(cr, axis=1), bit for bit
     with np.errstate(invalid="ignore", divide="ignore"):
         tn = cr / norm[:, None]
-    off = dot(P[tri].mean(axis=1), tn)
-    return tn, off, cr
+    off = dot((C[:, 0] + C[:, 1] + C[:, 2]) / 3, tn)  # = C.mean(axis=1), bit for bit
+    return tn, off, norm, C
 
 
-def _manifold_hull(X: np.ndarray, eps: float):
-    """manifold3d's hull as (points, outward triangles, normals, offsets, twins), or None
-    when its answer fails the checks (then qhull decides)."""
+def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
+            area: np.ndarray, C: np.ndarray) -> HullMesh | None:
+    """The triangles in an order of their own geometry (by normal), not the hull
+    library's — so faces, and poses of equal probability, come out in the same order
+    from either library — with their twins and heights; None when not closed."""
+    order = _normal_order(tn)
+    tri, tn, off, area, C = (np.take(a, order, axis=0) for a in (tri, tn, off, area, C))
+    twin = half_edge_twins(tri, len(P))
+    if twin is None:
+        return None
+    far = tri[:, [2, 0, 1]].ravel()[twin]  # the corner across each half-edge
+    beyond = (dot(np.take(P, far, axis=0).reshape(-1, 3, 3), tn[:, None, :])
+              - off[:, None]).ravel()
+    return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
+
+
+def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
+    """manifold3d's hull, or None when its answer fails the checks (then qhull decides)."""
     import manifold3d
 
     mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
@@ -74,25 +162,21 @@ def _manifold_hull(X: np.ndarray, eps: float):
     tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(tri) < 4 or len(P) < 4:
         return None
-    tn, off, cr = _planes(P, tri)
+    tn, off, norm, C = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
-    area = 0.5 * np.linalg.norm(cr, axis=1)
+    area = 0.5 * norm
     if not float(np.dot(off, area)) / 3 > eps * area.sum():
         return None  # no volume: flat points make a two-sided polygon, not a solid
-    twin = half_edge_twins(tri, len(P))
-    if twin is None:
-        return None
+    found = _finish(P, tri, tn, off, area, C)
     # every edge convex: the far corner of the triangle across it lies under this one's plane
-    across = twin // 3
-    far = tri[across, (twin + 2) % 3]
-    if np.max(dot(P[far], tn[np.repeat(np.arange(len(tri)), 3)]) - np.repeat(off, 3)) > eps:
+    if found is None or np.max(found.beyond) > eps:
         return None
-    return P, tri, tn, off, twin
+    return found
 
 
-def _qhull(X: np.ndarray):
-    """scipy's qhull: (points, outward triangles, normals, offsets, twins)."""
+def _qhull(X: np.ndarray) -> HullMesh:
+    """scipy's qhull."""
     from scipy.spatial import ConvexHull, QhullError
 
     try:
@@ -107,10 +191,18 @@ def _qhull(X: np.ndarray):
     off = -eq[:, 3] / scale
     flip = dot(cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]]), tn) < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
-    twin = half_edge_twins(tri, len(X))
-    if twin is None:
+    C = np.take(X, tri, axis=0)
+    cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
+    found = _finish(X, tri, tn, off, 0.5 * np.sqrt(dot(cr, cr)), C)
+    if found is None:
         raise GeometryError("the convex hull is not a closed surface (qhull failure)")
-    return X, tri, tn, off, twin
+    return found
+
+
+def hull_mesh(X: np.ndarray, eps: float) -> HullMesh:
+    """:func:`hull_triangles` with what its checks measured (a :class:`HullMesh`)."""
+    found = _manifold_hull(X, eps)
+    return found if found is not None else _qhull(X)
 
 
 def hull_triangles(X: np.ndarray, eps: float
@@ -121,7 +213,8 @@ def hull_triangles(X: np.ndarray, eps: float
     indexes, wound counter-clockwise seen from outside, each triangle's outward unit
     normal and plane offset (n·x = offset), and for each half-edge ``3 t + k`` (from
     ``tri[t, k]`` to ``tri[t, (k + 1) % 3]``) its reversed twin. ``eps`` (m) is the
-    rounding error within which an edge may look concave.
+    rounding error within which an edge may look concave. The triangles come in an
+    order of their own geometry (by normal), whichever library made them.
 
     Raises GeometryError when the points span no volume.
 
@@ -130,13 +223,5 @@ def hull_triangles(X: np.ndarray, eps: float
     >>> len(tri), sorted(set(np.round(offsets, 12).tolist()))
     (12, [0.0, 1.0])
     """
-    found = _manifold_hull(X, eps)
-    P, tri, tn, off, twin = found if found is not None else _qhull(X)
-    # triangles in an order of their own geometry (by normal), not the hull library's: so
-    # faces, and poses of equal probability, come out in the same order from either path
-    key = np.round(tn, 9)
-    order = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
-    old = (3 * order[:, None] + np.arange(3)).ravel()  # new half-edge i was old[i]
-    new = np.empty_like(old)
-    new[old] = np.arange(len(old))
-    return P, tri[order], tn[order], off[order], new[twin[old]]
+    found = hull_mesh(X, eps)
+    return found.points, found.tri, found.normals, found.offsets, found.twins

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...mesh.sorting import stable_order
 from .hull import Hull3
 from .vectors import cross, dot, expand, unique, unit
 
@@ -62,7 +63,7 @@ class PhysicalFaces:
 def _face_edges(h: Hull3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Directed edges grouped by their left face: (edge ids ordered by face, start, count)."""
     nF = len(h.normals)
-    order = np.argsort(h.ef, kind="stable")
+    order = stable_order(h.ef)
     count = np.bincount(h.ef, minlength=nF)
     return order, np.cumsum(count) - count, count
 

@@ -14,13 +14,15 @@ Everything is relative to the centre of mass, which sits at the origin.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
 from ...errors import GeometryError
+from ...mesh.sorting import stable_order
 from ...mesh.topology import connected_components
-from .convex import hull_triangles
-from .vectors import cross, dot, unit
+from .convex import HullMesh, hull_mesh
+from .vectors import dot, row_max, row_min, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
 
@@ -36,6 +38,9 @@ class Hull3:
         about its normal) and eg on the right. Sorted by ``ea``.
     start, degree: per point, its out-edges are ``start .. start + degree``.
     twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
+
+    The rows the edge geometry and the roller both gather (each edge's start, vector,
+    squared length and left face's normal) are gathered once, when first asked for.
     """
 
     X: np.ndarray
@@ -51,35 +56,131 @@ class Hull3:
     twin: np.ndarray
     und: np.ndarray
 
+    @cached_property
+    def edge_start(self) -> np.ndarray:
+        """(E, 3) ``X[ea]``."""
+        return np.take(self.X, self.ea, axis=0)
+
+    @cached_property
+    def edge_vector(self) -> np.ndarray:
+        """(E, 3) ``X[eb] - X[ea]``."""
+        return np.take(self.X, self.eb, axis=0) - self.edge_start
+
+    @cached_property
+    def edge_length2(self) -> np.ndarray:
+        """(E,) ``|X[eb] - X[ea]|²``."""
+        return dot(self.edge_vector, self.edge_vector)
+
+    @cached_property
+    def left_normal(self) -> np.ndarray:
+        """(E, 3) ``normals[ef]``."""
+        return np.take(self.normals, self.ef, axis=0)
+
 
 def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray
                       ) -> np.ndarray:
-    """Area-weighted unit normals of groups."""
-    out = np.zeros((nfaces, normals.shape[1]))
-    np.add.at(out, comp, normals * area[:, None])
-    bad = np.linalg.norm(out, axis=1) == 0
+    """Area-weighted unit normals of groups (``np.bincount`` adds in the same order as
+    ``np.add.at``, so the sums are the same to the bit)."""
+    out = np.stack([np.bincount(comp, weights=normals[:, k] * area, minlength=nfaces)
+                    for k in range(normals.shape[1])], axis=1)
+    bad = np.sqrt(dot(out, out)) == 0
     if bad.any():  # zero-area groups: the plain normals
-        np.add.at(out, comp, normals * (bad[comp])[:, None])
+        w = bad[comp]
+        out += np.stack([np.bincount(comp, weights=normals[:, k] * w, minlength=nfaces)
+                         for k in range(normals.shape[1])], axis=1)
     return unit(out)
 
 
-def _split_bent(comp: np.ndarray, nfaces: int, corners: np.ndarray, owner: np.ndarray,
-                X: np.ndarray, normals: np.ndarray, tol: float
+def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
                 ) -> tuple[np.ndarray, np.ndarray, int]:
     """Groups whose corners stray more than ``tol`` from the group's plane go back to their
-    parts (a chain of nearly coplanar slivers can bend). ``corners`` are point indices,
-    ``owner`` the part each belongs to; returns (comp, bent mask of old groups, nfaces)."""
-    level = dot(X[corners], normals[comp[owner]])
+    parts (a chain of nearly coplanar slivers can bend). ``level`` (F, 3): each part's
+    corners' heights along its group's normal; returns (comp, bent mask of old groups,
+    nfaces)."""
     hi = np.full(nfaces, -np.inf)
     lo = np.full(nfaces, np.inf)
-    np.maximum.at(hi, comp[owner], level)
-    np.minimum.at(lo, comp[owner], level)
+    np.maximum.at(hi, comp, row_max(level))
+    np.minimum.at(lo, comp, row_min(level))
     bent = hi - lo > tol
     if bent.any():
         comp = np.where(bent[comp], nfaces + np.arange(len(comp)), comp)
         _, comp = np.unique(comp, return_inverse=True)
         nfaces = int(comp.max()) + 1
     return comp, bent, nfaces
+
+
+def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Neighbouring triangles (i < j) whose corners all lie within ``eps`` of each other's
+    planes and that face the same way. A triangle's own corners lie on its plane to
+    rounding error, so of the neighbour only the far corner can stray (``hm.beyond``)."""
+    m = len(hm.tri)
+    dev = np.abs(hm.level - hm.offsets[:, None])  # own corners off the own plane
+    # how far the triangle across each half-edge strays from this one's plane
+    stray = np.maximum(np.abs(hm.beyond).reshape(m, 3), np.maximum(dev, dev[:, [1, 2, 0]]))
+    stray = stray.ravel()
+    i = np.arange(3 * m) // 3
+    j = hm.twins // 3
+    cand = np.flatnonzero((i < j) & (stray <= eps) & (stray[hm.twins] <= eps))
+    i, j = i[cand], j[cand]
+    same = dot(hm.normals[i], hm.normals[j]) > 0
+    return i[same], j[same]
+
+
+def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
+    """Every triangle a face of its own: the half-edges are the edges."""
+    tri, twin = hm.tri, hm.twins
+    n = len(hm.points)
+    frm = tri.ravel()
+    order = stable_order(frm)
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    ea, eb = frm[order], tri[:, [1, 2, 0]].ravel()[order]
+    ef, eg = order // 3, twin[order] // 3
+    etwin = inverse[twin[order]]
+    degree = np.bincount(ea, minlength=n)
+    start = np.cumsum(degree) - degree
+    und = np.minimum(np.arange(len(ea)), etwin)
+    return Hull3(hm.points, hm.normals, row_max(hm.level), area, ea, eb, ef, eg, start,
+                 degree, etwin, und)
+
+
+def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, bnd: np.ndarray,
+                merged: np.ndarray, n: int) -> np.ndarray:
+    """For every boundary half-edge (per half-edge ``3 t + k``; ``bnd`` marks them), the
+    boundary half-edge of the same face that starts where it ends: the next one in its
+    triangle when the triangle is a face alone, else found by sorting the boundary
+    half-edges of merged faces (``merged``) by (face, start)."""
+    nxt = np.arange(len(frm)).reshape(-1, 3)[:, [1, 2, 0]].ravel()
+    sub = np.flatnonzero(bnd & merged)
+    key = face[sub] * n + frm[sub]
+    order = stable_order(key)
+    want = face[sub] * n + to[sub]
+    pos = np.minimum(np.searchsorted(key[order], want), max(len(sub) - 1, 0))
+    found = sub[order[pos]] if len(sub) else sub
+    if not np.array_equal(face[found] * n + frm[found], want):
+        raise GeometryError("a face of the hull is not a simple polygon (degenerate hull)")
+    nxt[sub] = found
+    return nxt
+
+
+def _edge_twins(ea: np.ndarray, eb: np.ndarray, first: np.ndarray, last: np.ndarray,
+                twin: np.ndarray, n: int) -> np.ndarray:
+    """The reversed edge of each edge ``ea → eb`` (sorted by (a, b)), whose chain of
+    half-edges runs from ``first`` to ``last``: it starts with the twin of ``last``. Where
+    that does not settle it (a degenerate hull with an edge twice, or a chain that does
+    not retrace), the first edge ``eb → ea`` in the sorted keys."""
+    edge_of = np.full(len(twin), -1, dtype=np.int64)
+    edge_of[first] = np.arange(len(first))
+    etwin = edge_of[twin[last]]
+    if (np.all(etwin >= 0) and np.array_equal(ea[etwin], eb) and np.array_equal(eb[etwin], ea)
+            and not np.any((ea[1:] == ea[:-1]) & (eb[1:] == eb[:-1]))):
+        return etwin
+    key = ea * n + eb
+    want = eb * n + ea
+    pos = np.minimum(np.searchsorted(key, want), len(key) - 1)
+    if not np.array_equal(key[pos], want):
+        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
+    return pos
 
 
 def build_hull3(X: np.ndarray, eps: float) -> Hull3:
@@ -95,78 +196,57 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     >>> len(h.normals), len(h.ea), h.heights.tolist()
     (6, 24, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
     """
-    X, tri, tn, toff, twin = hull_triangles(X, eps)  # manifold3d, or qhull as fallback
-    cr = cross(X[tri[:, 1]] - X[tri[:, 0]], X[tri[:, 2]] - X[tri[:, 0]])
-    area = 0.5 * np.linalg.norm(cr, axis=1)
-    m = len(tri)
-
-    # --- half-edges: a → b of triangle t (numbered 3 t + k); twin: the reversed one
-    n = len(X)
-    frm = tri.ravel()
-    to = tri[:, [1, 2, 0]].ravel()
-    across = twin // 3  # the triangle beyond each half-edge
-    tri_of = np.repeat(np.arange(m), 3)
+    hm = hull_mesh(X, eps)  # manifold3d, or qhull as fallback
+    X, tri, tn, twin = hm.points, hm.tri, hm.normals, hm.twins
+    area = hm.area
+    m, n = len(tri), len(X)
 
     # --- exactly coplanar neighbours (the hull's triangulated facets) make one face
-    i, j = tri_of, across
-    pair = i < j
-    i, j = i[pair], j[pair]
-    dij = np.abs(np.einsum("kvc,kc->kv", X[tri[j]], tn[i]) - toff[i][:, None]).max(axis=1)
-    dji = np.abs(np.einsum("kvc,kc->kv", X[tri[i]], tn[j]) - toff[j][:, None]).max(axis=1)
-    same = (dij <= eps) & (dji <= eps) & (dot(tn[i], tn[j]) > 0)
-    if not same.any():  # every triangle a face of its own: the half-edges are the edges
-        order = np.argsort(frm, kind="stable")
-        inverse = np.empty_like(order)
-        inverse[order] = np.arange(len(order))
-        ea, eb = frm[order], to[order]
-        ef, eg = tri_of[order], tri_of[twin[order]]
-        etwin = inverse[twin[order]]
-        degree = np.bincount(ea, minlength=n)
-        start = np.cumsum(degree) - degree
-        und = np.minimum(np.arange(len(ea)), etwin)
-        heights = np.max(dot(X[tri], tn[:, None, :]), axis=1)
-        return Hull3(X, tn, heights, area, ea, eb, ef, eg, start, degree, etwin, und)
-    comp = connected_components(m, i[same], j[same])
+    i, j = _coplanar_pairs(hm, eps)
+    if len(i) == 0:
+        return _single(hm, area)
+    comp = connected_components(m, i, j)
     nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
-    comp, bent, nfaces = _split_bent(comp, nfaces, tri.ravel(), tri_of, X, normals, eps)
+    level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])  # along the face's normal
+    comp, bent, nfaces = _split_bent(comp, nfaces, level, eps)
     if bent.any():
         normals = _weighted_normals(comp, nfaces, tn, area)
+        level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])
     areas = np.bincount(comp, weights=area, minlength=nfaces)
 
     # --- face boundaries: chains of half-edges between different faces
-    face = comp[tri_of]
-    bnd = face != face[twin]
-    bf, bt, bF, bG = frm[bnd], to[bnd], face[bnd], face[twin][bnd]
-    real = np.bincount(bf, minlength=n) >= 3
-    key2 = bF * n + bf
-    order2 = np.argsort(key2)
-    pos2 = np.minimum(np.searchsorted(key2[order2], bF * n + bt), len(order2) - 1)
-    nxt = order2[pos2]
-    if not np.array_equal(key2[nxt], bF * n + bt):
-        raise GeometryError("a face of the hull is not a simple polygon (degenerate hull)")
-    term = real[bt]
-    ptr = np.where(term, np.arange(len(bt)), nxt)
+    frm = tri.ravel()
+    to = tri[:, [1, 2, 0]].ravel()
+    face = np.repeat(comp, 3)
+    beyond = face[twin]
+    bnd = face != beyond
+    real = np.bincount(frm[bnd], minlength=n) >= 3
+    merged = np.repeat(np.bincount(comp, minlength=nfaces)[comp] > 1, 3)
+    nxt = _chain_next(face, frm, to, bnd, merged, n)
+    term = ~bnd | real[to]
+    ptr = np.where(term, np.arange(3 * m), nxt)
     for _ in range(64):
         if term[ptr].all():
             break
         ptr = np.where(term[ptr], ptr, ptr[ptr])
     else:
         raise GeometryError("a face of the hull has no corners (degenerate hull)")
-    sel = real[bf]
-    ea, eb, ef, eg = bf[sel], bt[ptr[sel]], bF[sel], bG[sel]
-    order3 = np.lexsort((eb, ea))
-    ea, eb, ef, eg = ea[order3], eb[order3], ef[order3], eg[order3]
+    # an edge per chain: from its first half-edge (at a corner) to its last one's end
+    corner = bnd & real[frm]
+    first = np.flatnonzero(corner)
+    last = ptr[first]
+    order = stable_order(frm[first] * n + to[last])  # by (a, b)
+    first, last = first[order], last[order]
+    ea, eb = frm[first], to[last]
+    ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
-    key3 = ea * n + eb
-    pos3 = np.minimum(np.searchsorted(key3, eb * n + ea), len(key3) - 1)
-    if not np.array_equal(key3[pos3], eb * n + ea):
-        raise GeometryError("the hull's edges do not pair up (degenerate hull)")
-    und = np.minimum(np.arange(len(ea)), pos3)
+    etwin = _edge_twins(ea, eb, first, last, twin, n)
+    und = np.minimum(np.arange(len(ea)), etwin)
     heights = np.full(nfaces, -np.inf)
-    np.maximum.at(heights, ef, dot(X[ea], normals[ef]))
-    return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, pos3, und)
+    np.maximum.at(heights, comp, row_max(np.where(corner.reshape(m, 3), level, -np.inf)))
+    return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, etwin, und)
 
 
 def shifted(h: Hull3, delta: np.ndarray) -> Hull3:

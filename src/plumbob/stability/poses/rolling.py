@@ -48,16 +48,19 @@ def edge_geometry(h: Hull3) -> Edges3:
     """The Gauss-map arc of every directed edge of ``h``, and whether it holds a saddle:
     the direction from the centre square to the edge's line lies on the arc and the
     foot lies strictly inside the edge."""
-    A, B = h.X[h.ea], h.X[h.eb]
-    D = B - A
-    L2 = dot(D, D)
-    t = -dot(A, D) / L2
+    A, D, L2 = h.edge_start, h.edge_vector, h.edge_length2
+    t = dot(A, D)
+    np.negative(t, out=t)
+    t /= L2  # -(A·D) / |D|²
     pole = D / np.sqrt(L2)[:, None]
-    p = A + t[:, None] * D
-    sheight = np.linalg.norm(p, axis=1)
-    s = p / sheight[:, None]
-    nf, ng = h.normals[h.ef], h.normals[h.eg]
-    after_f, before_g = cross(pole, nf), cross(ng, pole)
+    s = t[:, None] * D
+    s += A  # the foot A + t D ...
+    sheight = np.sqrt(dot(s, s))  # = np.linalg.norm(s, axis=1), bit for bit
+    s /= sheight[:, None]  # ... and its direction
+    after_f = cross(pole, h.left_normal)
+    # the reversed edge's pole is −pole (exactly) and its faces are swapped, so its
+    # after_f is this edge's n_G × pole, bit for bit
+    before_g = np.take(after_f, h.twin, axis=0)
     in_arc = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
     saddle = (t > 0) & (t < 1) & in_arc
     return Edges3(pole, t, saddle, s, sheight, after_f, before_g, cross(s, pole))
@@ -147,20 +150,22 @@ class Roller:
     def __init__(self, h: Hull3, eg3: Edges3, W: np.ndarray, tol: float) -> None:
         self.h, self.eg3, self.W, self.tol = h, eg3, W, tol
         nF = len(h.normals)
-        A, B = h.X[h.ea], h.X[h.eb]
-        D = B - A
-        self.length = np.sqrt(dot(D, D))
-        n = h.normals[h.ef]
-        self.foot = h.heights[h.ef][:, None] * n
-        s = dot(cross(D, self.foot - A), n) / self.length  # signed, positive inside
+        A, D, n = h.edge_start, h.edge_vector, h.left_normal
+        self.length = np.sqrt(h.edge_length2)
+        self.foot = np.take(h.heights, h.ef)[:, None] * n
+        rel = self.foot - A
+        s = dot(cross(D, rel), n) / self.length  # signed, positive inside
         self.margin = np.full(nF, np.inf)
         np.minimum.at(self.margin, h.ef, s)
         self.stable = self.margin > tol
         self._memo = np.where(self.stable, np.arange(nF), -1)  # sinks found so far
         # an unstable face tips over the point of its boundary nearest the foot
-        A, D, L = h.X[h.ea], h.X[h.eb] - h.X[h.ea], self.length
-        tau = np.clip(dot(self.foot - A, D) / (L * L), 0.0, 1.0)
-        dist = np.linalg.norm(A + tau[:, None] * D - self.foot, axis=1)
+        L = self.length
+        tau = np.clip(dot(rel, D) / (L * L), 0.0, 1.0)
+        off = tau[:, None] * D
+        off += A
+        off -= self.foot  # A + tau D − foot
+        dist = np.sqrt(dot(off, off))  # = np.linalg.norm(off, axis=1), bit for bit
         tip = group_first(h.ef, dist, nF)
         self.tip_edge = tip
         along = (tau * L)[tip]

@@ -1,0 +1,240 @@
+"""The fast paths of the pose hull pipeline give the answers of the plain ones they replace:
+the triangle order by integer ranks is ``np.lexsort`` of the rounded normals, twins by one
+sort of undirected keys are twins by search (closed or not), the weld's one-sort unique is
+``np.unique``'s, and ``build_hull3``'s faces and edges are those of a plain construction."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from plumbob.mesh.sorting import lex_order, stable_order
+from plumbob.mesh.weld import merge_vertices, unique_first
+from plumbob.stability.poses.convex import (
+    _normal_order,
+    _twins_by_search,
+    half_edge_twins,
+    hull_mesh,
+)
+from plumbob.stability.poses.hull import build_hull3
+from plumbob.stability.poses.rolling import edge_geometry
+from plumbob.stability.poses.vectors import cross, dot, expand, row_max, row_min, unit
+
+
+def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
+    """Unit vectors, many repeated and many sharing components to 1e-9 (ties)."""
+    v = rng.normal(size=(n, 3))
+    if quantum:
+        v = np.round(v / quantum) * quantum
+    v[rng.random(n) < 0.3] = [0.0, 0.0, 1.0]
+    v[rng.random(n) < 0.1] = [0.0, 0.0, -1.0]
+    v[rng.random(n) < 0.1, :2] = 0.0  # x and y equal, z of either sign
+    v[~np.any(v != 0, axis=1)] = [1.0, 0.0, 0.0]
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    v[rng.random(n) < 0.05] *= -1.0  # exact negatives, signed zeros
+    return v
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(1, 400), st.sampled_from([0.0, 0.5, 1e-9]))
+def test_normal_order_is_the_lexsort_of_rounded_normals(seed, n, quantum):
+    tn = _unit_rows(np.random.default_rng(seed), n, quantum)
+    key = np.round(tn, 9)
+    want = np.lexsort((-key[:, 2], -key[:, 1], -key[:, 0]))
+    assert np.array_equal(_normal_order(tn), want)
+
+
+def _closed_surface(rng: np.random.Generator, n: int) -> np.ndarray:
+    """A random convex hull's triangles (a closed 2-manifold, wound outward), vertices
+    renumbered."""
+    from scipy.spatial import ConvexHull
+
+    X = rng.normal(size=(n, 3))
+    hull = ConvexHull(X)
+    tri = hull.simplices.copy()
+    a, b, c = (X[tri[:, k]] for k in range(3))
+    inward = np.einsum("ij,ij->i", np.cross(b - a, c - a), hull.equations[:, :3]) < 0
+    tri[inward] = tri[inward][:, ::-1]
+    perm = rng.permutation(len(X))
+    return perm[tri][rng.permutation(len(tri))]
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 60))
+def test_twins_by_undirected_keys_are_twins_by_search(seed, n):
+    rng = np.random.default_rng(seed)
+    tri = _closed_surface(rng, n)
+    twin = half_edge_twins(tri, n)
+    assert twin is not None and np.array_equal(twin, _twins_by_search(tri, n))
+    frm, to = tri.ravel(), tri[:, [1, 2, 0]].ravel()
+    assert np.array_equal(frm[twin], to) and np.array_equal(twin[twin], np.arange(len(twin)))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 40),
+       st.sampled_from(["drop", "flip", "duplicate", "loop", "random"]))
+def test_twins_of_broken_surfaces_agree_with_search(seed, n, how):
+    """Whatever the triangles, the fast twins are the searched ones (None alike)."""
+    rng = np.random.default_rng(seed)
+    tri = _closed_surface(rng, n)
+    k = int(rng.integers(len(tri)))
+    if how == "drop":
+        tri = np.delete(tri, k, axis=0)
+    elif how == "flip":
+        tri[k] = tri[k, ::-1]
+    elif how == "duplicate":
+        tri = np.concatenate((tri, tri[k:k + 1]))
+    elif how == "loop":
+        tri[k, 1] = tri[k, 0]
+    else:
+        tri = rng.integers(0, 5, size=(int(rng.integers(1, 8)), 3))
+        n = 5
+    fast, slow = half_edge_twins(tri, n), _twins_by_search(tri, n)
+    assert (fast is None) == (slow is None)
+    if fast is not None:
+        assert np.array_equal(fast, slow)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 500), st.integers(1, 50))
+def test_unique_first_is_numpys_unique(seed, n, spread):
+    rng = np.random.default_rng(seed)
+    keys = rng.integers(0, 2**64 - 1, spread, dtype=np.uint64, endpoint=True)[
+        rng.integers(0, spread, n)]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    mine = unique_first(keys)
+    assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))
+
+
+def test_merge_vertices_matches_the_exact_merge():
+    rng = np.random.default_rng(7)
+    pts = rng.normal(size=(300, 3))[rng.integers(0, 300, 2000)]
+    pts[rng.random(len(pts)) < 0.1] *= -0.0  # signed zeros... and plain sign flips
+    vertices, index = merge_vertices(pts)
+    assert np.array_equal(vertices[index], pts + 0.0)
+    assert len(vertices) == len(np.unique(pts + 0.0, axis=0))
+
+
+def _plain_faces(X: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Faces and heights the slow way: triangles joined across edges whose far corners lie
+    within eps of both planes, areas summed, the largest corner height per face."""
+    from plumbob.mesh.graph import connected_components
+
+    hm = hull_mesh(X, eps)
+    P, tri, tn, off, twin = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins
+    i = np.repeat(np.arange(len(tri)), 3)
+    j = twin // 3
+    dij = np.abs(np.einsum("kvc,kc->kv", P[tri[j]], tn[i]) - off[i][:, None]).max(axis=1)
+    dji = np.abs(np.einsum("kvc,kc->kv", P[tri[i]], tn[j]) - off[j][:, None]).max(axis=1)
+    same = (dij <= eps) & (dji <= eps) & (np.einsum("ij,ij->i", tn[i], tn[j]) > 0)
+    comp = connected_components(len(tri), i[same], j[same])
+    return comp, np.bincount(comp, weights=hm.area)
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_build_hull3_faces_are_the_plain_ones(seed, grid):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 200)), 3))
+    if grid:  # many coplanar triangles: merged faces with corners on their edges
+        X = np.round(X * 2) / 2
+    X = X - X.mean(axis=0)
+    eps = 1e-12 * float(np.ptp(X))
+    h = build_hull3(X, eps)
+    comp, areas = _plain_faces(X, eps)
+    assert np.allclose(np.sort(h.areas), np.sort(areas), rtol=1e-12, atol=0)
+    # edges: sorted by their start, twins reversed, faces on both sides, and every
+    # face's height that of its corners
+    assert np.all(np.diff(h.ea) >= 0)
+    assert np.array_equal(h.ea[h.twin], h.eb) and np.array_equal(h.eb[h.twin], h.ea)
+    assert np.array_equal(h.ef[h.twin], h.eg) and np.all(h.ef != h.eg)
+    assert np.array_equal(h.und, np.minimum(np.arange(len(h.ea)), h.twin))
+    top = np.full(len(h.normals), -np.inf)
+    np.maximum.at(top, h.ef, dot(h.X[h.ea], h.normals[h.ef]))
+    assert np.array_equal(top, h.heights)
+    assert np.array_equal(np.bincount(h.ea, minlength=len(h.X)), h.degree)
+    # every input point under every face's plane
+    assert (X @ h.normals.T - h.heights).max() <= 10 * eps
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 50), st.integers(1, 5))
+def test_row_max_and_min_are_numpys(seed, n, k):
+    a = np.random.default_rng(seed).normal(size=(n, k))
+    a[a > 1.5] = np.nan  # NaN propagates alike
+    assert np.array_equal(row_max(a), a.max(axis=1), equal_nan=True)
+    assert np.array_equal(row_min(a), a.min(axis=1), equal_nan=True)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 300),
+       st.sampled_from([1, 3, 1000, 2**31, 2**62]))
+def test_stable_order_is_a_stable_argsort(seed, n, spread):
+    keys = np.random.default_rng(seed).integers(-spread, spread, n, dtype=np.int64)
+    assert np.array_equal(stable_order(keys), np.argsort(keys, kind="stable"))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 200), st.integers(1, 4))
+def test_lex_order_is_lexsort(seed, n, k):
+    rng = np.random.default_rng(seed)
+    keys = [rng.integers(-3, 3, n) for _ in range(k)]
+    assert np.array_equal(lex_order(keys), np.lexsort(keys))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 400), st.sampled_from([0, 20, 40, 60]))
+def test_unique_first_with_keys_alike_in_their_top_bits(seed, n, low):
+    """Keys differing only in their low bits (below the packed index) still come out in
+    full order."""
+    rng = np.random.default_rng(seed)
+    keys = (rng.integers(0, 4, n).astype(np.uint64) << np.uint64(low)) | rng.integers(
+        0, 8, n).astype(np.uint64)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    mine = unique_first(keys)
+    assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 30), st.integers(1, 4),
+       st.sampled_from([1e-200, 1e-5, 1.0, 1e150]))
+def test_dot_and_unit_are_the_plain_formulas(seed, n, dim, scale):
+    """``dot`` adds the products in component order and ``unit`` divides by
+    ``np.linalg.norm``: the same numbers to the bit, whatever the magnitudes."""
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, dim)) * scale
+    b = rng.normal(size=(n, dim))
+    a[rng.random(n) < 0.2] = 0.0  # zero rows stay zero
+    plain = a[:, 0] * b[:, 0]
+    for k in range(1, dim):
+        plain = plain + a[:, k] * b[:, k]
+    with np.errstate(over="ignore"):
+        assert np.array_equal(dot(a, b), plain)
+        norm = np.linalg.norm(a, axis=-1, keepdims=True)
+        assert np.array_equal(unit(a), a / np.where(norm > 0, norm, 1.0))
+
+
+@given(st.lists(st.tuples(st.integers(0, 4), st.integers(0, 50)), max_size=20))
+def test_expand_lists_every_row_range(rows):
+    counts = np.array([c for c, _ in rows], dtype=np.int64)
+    starts = np.array([s for _, s in rows], dtype=np.int64)
+    row, item = expand(counts, starts)
+    want = [(i, s + k) for i, (c, s) in enumerate(rows) for k in range(c)]
+    assert list(zip(row.tolist(), item.tolist())) == want
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_edge_geometry_is_the_plain_formulas(seed, grid):
+    """Every field of the edge geometry as the plain per-edge formulas give it, bit for
+    bit (before_g gathered from the reversed edge, the foot computed in place)."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 150)), 3))
+    if grid:
+        X = np.round(X * 2) / 2
+    X = X - X.mean(axis=0) - 0.01
+    h = build_hull3(X, 1e-12 * float(np.ptp(X)))
+    e = edge_geometry(h)
+    A = h.X[h.ea]
+    D = h.X[h.eb] - A
+    L2 = dot(D, D)
+    t = -dot(A, D) / L2
+    pole = D / np.sqrt(L2)[:, None]
+    p = A + t[:, None] * D
+    height = np.linalg.norm(p, axis=1)
+    s = p / height[:, None]
+    after_f, before_g = cross(pole, h.normals[h.ef]), cross(h.normals[h.eg], pole)
+    for mine, plain in [(e.t, t), (e.pole, pole), (e.spoint, s), (e.sheight, height),
+                        (e.after_f, after_f), (e.before_g, before_g),
+                        (e.toward_f, cross(s, pole))]:
+        assert np.array_equal(mine, plain)
