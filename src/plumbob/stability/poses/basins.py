@@ -12,6 +12,7 @@ exact trace, checks that the areas add up to 4π, and says when they do not.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -37,6 +38,7 @@ class Basins(NamedTuple):
     edges: the hull's edge geometry.
     saddles: (S,) ids of the directed edges (one per pair) holding a saddle.
     error: |Σ area − 4π| / 4π (NaN for sampled basins).
+    grouped: the areas of grouped faces are summed on the face standing for each group.
     """
 
     area: np.ndarray
@@ -44,6 +46,7 @@ class Basins(NamedTuple):
     edges: Edges3
     saddles: np.ndarray
     error: float
+    grouped: bool = False
 
 
 def _crossing_face(h: Hull3, before: np.ndarray, after: np.ndarray) -> np.ndarray:
@@ -56,27 +59,41 @@ def _crossing_face(h: Hull3, before: np.ndarray, after: np.ndarray) -> np.ndarra
     return np.where(share_f, f, np.where(share_g, g, -1))
 
 
-def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller
-                  ) -> tuple[np.ndarray, bool]:
+def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
+                 group: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
     """Basin areas (per face, sr) from the separatrices traced back from every saddle.
 
     Every trace's path is kept as segments; each segment adds the signed spherical
     triangle from the left basin's face normal to the left basin and takes it from the
     right one, all summed in one pass at the end. Around a face of many corners the
     traces move in runs (:mod:`.fans`), one vectorised move per run.
+
+    ``group`` (F,): per stable face, the face whose basin stands for its group (−1 for
+    the others). Only the separatrices between groups are traced, each group's boundary
+    fanned from its standing face's normal, and the group's whole area is put there: the
+    saddles inside a rolling family (a capsule's 400 side faces) need no trace at all.
     """
     nF = len(h.normals)
     sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
     if len(sad) == 0:
         return np.zeros(nF), False
+    ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
+    f, g = ends[:len(sad)], ends[len(sad):]
+    if group is not None:
+        f, g = group[f], group[g]
+        between = f != g
+        sad, f, g = sad[between], f[between], g[between]
+        if len(sad) == 0:  # no saddle between groups: one group is the whole sphere
+            standing = np.zeros(nF, dtype=bool)
+            standing[group[group >= 0]] = True
+            return np.where(standing, 4 * np.pi / standing.sum(), 0.0), standing.sum() == 1
     s = eg3.spoint[sad]
     # two traces per saddle: into the regions of both its ends
     v = np.concatenate((h.ea[sad], h.eb[sad]))
     p = np.concatenate((s, s))
     edge = np.concatenate((sad, sad))
     exclude = h.und[edge]
-    ends = roller.sinks(np.concatenate((h.ef[edge], h.eg[edge])))
-    f, g = ends[:len(edge)], ends[len(edge):]
+    f, g = np.concatenate((f, f)), np.concatenate((g, g))
     side = dot(cross(p, W[v]), h.normals[h.ef[edge]]) > 0
     left, right = np.where(side, f, g), np.where(side, g, f)
     near = eg3.t < -_FLAT  # arcs a region's flow leaves: traced back through them
@@ -153,10 +170,16 @@ def sampled_basins(h: Hull3, roller: Roller, samples: int) -> np.ndarray:
     return area
 
 
-def basins3(h: Hull3, eps: float, samples: int | None) -> Basins | None:
+def basins3(h: Hull3, eps: float, samples: int | None,
+            grouping: Callable[[Hull3, Roller, Edges3, np.ndarray], np.ndarray] | None = None
+            ) -> Basins | None:
     """The basins of every face of ``h`` (rolls resolved to ``eps``, m): traced exactly when
     ``samples`` is None — then None when the traced areas do not add up to 4π — else from
-    rolling a Fibonacci lattice of ``samples`` directions."""
+    rolling a Fibonacci lattice of ``samples`` directions.
+
+    ``grouping(h, roller, edges, saddles)``, when given, says which stable faces are
+    traced as one (:func:`trace_basins`' ``group``): their summed area is on the face
+    standing for them, and the result's ``grouped`` is True."""
     eg3 = edge_geometry(h)
     W = unit(h.X)
     roller = Roller(h, eg3, W, eps)
@@ -166,12 +189,17 @@ def basins3(h: Hull3, eps: float, samples: int | None) -> Basins | None:
     sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
     if samples is not None:
         return Basins(sampled_basins(h, roller, samples), roller, eg3, sad, float("nan"))
+    group = grouping(h, roller, eg3, sad) if grouping is not None else None
+    standing = stable.copy()
+    if group is not None:  # the faces standing for their groups
+        standing[:] = False
+        standing[group[stable]] = True
     if len(sad) == 0:  # one basin: the whole sphere
-        area = np.where(stable, 4 * np.pi / np.count_nonzero(stable), 0.0)
-        ok = np.count_nonzero(stable) == 1
+        area = np.where(standing, 4 * np.pi / np.count_nonzero(standing), 0.0)
+        ok = np.count_nonzero(standing) == 1
     else:
-        area, ok = trace_basins(h, eg3, W, roller)
+        area, ok = trace_basins(h, eg3, W, roller, group)
     error = abs(area.sum() - 4 * np.pi) / (4 * np.pi)
-    if not ok or error > _AREA_CHECK or np.any(area[stable] <= 0):
+    if not ok or error > _AREA_CHECK or np.any(area[standing] <= 0):
         return None
-    return Basins(area, roller, eg3, sad, float(error))
+    return Basins(area, roller, eg3, sad, float(error), group is not None)

@@ -62,8 +62,9 @@ class Families:
     """Per candidate pose its family; per family what it is.
 
     label: (P,) family of each candidate. kind: (F,) ``"face"``, ``"rolling"`` or
-    ``"rocking"``. rep: (F,) the candidate that stands for it (a rolling family's
-    largest basin, a bowl's lowest face). members: (F,) candidates in it. ripple: (F,)
+    ``"rocking"``. rep: (F,) the candidate that stands for it (a rolling family's or a
+    physical face's largest exact face, a bowl's lowest face). members: (F,) candidates
+    in it. ripple: (F,)
     the highest rise of a saddle inside it above its faces, m (0 for one face).
     axis: (F, 3) the axis a rolling family rolls about (NaN when it has none).
     """
@@ -124,14 +125,14 @@ def families(land: Landscape, roll_angle_deg: float = ROLL_ANGLE_DEG,
     ripple = np.zeros(nfam)
     np.maximum.at(ripple, label[land.sa[join]], (land.sh - high_side)[join])
     lowest = group_first(label, land.heights, nfam)
-    largest = group_first(label, -land.area, nfam)
+    largest = group_first(label, -land.face_area, nfam)  # its largest face: not traced areas
     top = np.full(nfam, -np.inf)
     np.maximum.at(top, label, land.heights)
     span = top - land.heights[lowest]
     cos_spread = np.ones(nfam)
     np.minimum.at(cos_spread, label, dot(land.normals, land.normals[lowest[label]]))
     spread = np.degrees(np.arccos(np.clip(cos_spread, -1.0, 1.0)))
-    # one physical face: every member lies on the face of the largest basin
+    # one physical face: every member lies on the physical face of the largest
     a, b = land.same
     on_face = np.ones(nfam, dtype=np.int64)
     np.add.at(on_face, label[a], (a == largest[label[a]]) & (b != a))

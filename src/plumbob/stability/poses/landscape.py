@@ -15,7 +15,8 @@ The result, a :class:`Landscape`, is all :mod:`.resting` needs to report poses.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -23,8 +24,8 @@ from ...errors import StabilityError
 from ..planar import drop_collinear, planar_hull
 from .basins import basins3
 from .faces import physical_faces
-from .hull import build_hull3, shifted
-from .rolling import Roller, edge_geometry
+from .hull import Hull3, build_hull3, shifted
+from .rolling import Edges3, Roller, edge_geometry
 from .vectors import dot, pointer_sinks, unit
 
 __all__ = ["Landscape", "landscape3", "landscape2"]
@@ -41,7 +42,9 @@ class Landscape:
 
     normals, heights: (P, dim), (P,) per candidate: the outward unit normal of the
     stable face and the height of the centre of mass over it, m.
-    area: (P,) the area of its basin (sr, or rad for a lamina), > 0.
+    area: (P,) the area of its basin (sr, or rad for a lamina); the basins of a rolling
+    family's members are traced as one and summed on its representative (the others
+    hold 0). face_area: (P,) the exact face's area, m² (its length for a lamina, m).
     margin: (P,) how far the foot of the centre lies inside the physical face, m.
     sa, sb, sh: saddles (maxima for a lamina) between the basins of candidates sa and
     sb (never equal), at height sh, m.
@@ -55,6 +58,7 @@ class Landscape:
     normals: np.ndarray
     heights: np.ndarray
     area: np.ndarray
+    face_area: np.ndarray
     margin: np.ndarray
     sa: np.ndarray
     sb: np.ndarray
@@ -75,11 +79,33 @@ def _between(label: np.ndarray, fa: np.ndarray, fb: np.ndarray, sh: np.ndarray
     return a[keep], b[keep], sh[keep]
 
 
-def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
+def _candidates(h: Hull3, sinks: np.ndarray, area: np.ndarray, fa: np.ndarray, fb: np.ndarray,
+                sheight: np.ndarray, tol: float, method: str, error: float) -> Landscape:
+    """The landscape over the stable faces ``sinks`` of ``h``, their basin areas ``area``,
+    and the saddles (at heights ``sheight``) whose arcs roll down to ``fa`` and ``fb``."""
+    pf = physical_faces(h, sinks, tol)
+    label = np.full(len(h.normals), -1, dtype=np.int64)
+    label[sinks] = np.arange(len(sinks))
+    sa, sb, sh = _between(label, fa, fb, sheight)
+
+    def corners(p: int) -> np.ndarray:
+        return pf.corners(h, p)
+
+    return Landscape(h.normals[sinks], h.heights[sinks], area, h.areas[sinks], pf.margin, sa,
+                     sb, sh, pf.same, corners, h.X[h.degree > 0], len(h.normals), method, error)
+
+
+def landscape3(X: np.ndarray, tol: float, samples: int,
+               families_of: Callable[[Landscape], Any] | None = None) -> Landscape:
     """3D: the landscape over the physical faces of the hull of ``X`` (n, 3), m, relative
     to the centre of mass; faces coplanar within ``tol`` (m) of a stable face's plane are
     one. Basins are traced exactly, from a centre nudged by a hair when the landscape is
-    degenerate, and from ``samples`` rolled directions when that fails too."""
+    degenerate, and from ``samples`` rolled directions when that fails too.
+
+    ``families_of(landscape)`` (:func:`.families.families` with the caller's roll angle),
+    when given, says before the trace which stable faces are one rolling family: only the
+    boundaries between poses are then traced, and each rolling family's area is summed on
+    its representative (first try only: a nudged centre traces every basin)."""
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
     eps = 1e-12 * size
     h0 = build_hull3(X, eps)
@@ -90,13 +116,28 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
             f"the centre of mass lies {where} the body's convex hull "
             f"(by {abs(inside):.3g} m), so the body cannot rest on any face: is the mesh "
             "open or inside out, or a density negative?")
+    provisional: list[Landscape] = []
+
+    def grouping(h: Hull3, roller: Roller, eg3: Edges3, sad: np.ndarray) -> np.ndarray:
+        stable = np.flatnonzero(roller.stable)
+        fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
+        land = _candidates(h, stable, np.zeros(len(stable)), fa, fb, eg3.sheight[sad], tol,
+                           "exact", 0.0)
+        provisional.append(land)
+        fam = families_of(land)
+        group = np.full(len(h.normals), -1, dtype=np.int64)
+        group[stable] = stable
+        rolling = fam.kind[fam.label] == "rolling"
+        group[stable[rolling]] = stable[fam.rep[fam.label[rolling]]]
+        return group
+
     # A centre exactly above a vertex or an edge's end (symmetric meshes) is a degenerate
     # landscape whose traces may not close: look again from a centre nudged by a hair.
     method, found = "exact", None
     for nudge in _NUDGES:
         h = h0 if nudge == 0 else shifted(h0, nudge * size * _NUDGE_DIRECTION)
         try:
-            found = basins3(h, eps, None)
+            found = basins3(h, eps, None, grouping if families_of and nudge == 0 else None)
         except StabilityError:  # a roll lost through a corner: degenerate too, nudge
             found = None
         if found is not None:
@@ -104,7 +145,10 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
     if found is None:
         h, method = h0, "sampled"
         found = basins3(h, eps, samples)
-    area, roller, eg3, sad, error = found
+    area, roller, eg3, sad, error, grouped = found
+    if grouped:  # h is h0: the provisional landscape is the landscape, with its areas
+        stable = np.flatnonzero(roller.stable)
+        return replace(provisional[-1], area=area[stable], error=error)
     stable = roller.stable
     fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
     if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:
@@ -116,16 +160,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
         except StabilityError:
             pass  # the true centre's rolls are degenerate too: keep the nudged answer
     sinks = np.flatnonzero(stable & (area > 0))
-    pf = physical_faces(h0, sinks, tol)
-    label = np.full(len(h0.normals), -1, dtype=np.int64)
-    label[sinks] = np.arange(len(sinks))
-    sa, sb, sh = _between(label, fa, fb, eg3.sheight[sad])
-
-    def corners(p: int) -> np.ndarray:
-        return pf.corners(h0, p)
-
-    return Landscape(h0.normals[sinks], h0.heights[sinks], area[sinks], pf.margin, sa, sb, sh,
-                     pf.same, corners, h0.X[h0.degree > 0], len(h0.normals), method, error)
+    return _candidates(h0, sinks, area[sinks], fa, fb, eg3.sheight[sad], tol, method, error)
 
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:
@@ -175,5 +210,5 @@ def landscape2(X: np.ndarray, tol: float) -> Landscape:
         g = ids[p]
         return np.array([V[g], V[(g + 1) % m]])
 
-    return Landscape(normals[ids], heights[ids], arc[ids], margins[ids], sa, sb, sh,
+    return Landscape(normals[ids], heights[ids], arc[ids], L[ids], margins[ids], sa, sb, sh,
                      np.zeros((2, 0), dtype=np.int64), corners, V, m, "exact", float(error))

@@ -10,6 +10,7 @@ for a body, sampling its curved surfaces first.
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import numpy as np
 
@@ -196,7 +197,11 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     if not (size > 0 and tol > 0):
         raise GeometryError("the points have no extent, or the tolerance is not positive")
     X = X - com
-    land = landscape2(X, tol) if X.shape[1] == 2 else landscape3(X, tol, samples)
+    if X.shape[1] == 2:
+        land = landscape2(X, tol)
+    else:  # the families are known before the trace: only the boundaries between poses
+        land = landscape3(X, tol, samples, partial(families, roll_angle_deg=roll_angle_deg,
+                                                   neutral_height=neutral_height))
     return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
                     float(neutral_height), list(notes))
 
