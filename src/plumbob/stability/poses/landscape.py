@@ -75,14 +75,15 @@ def _between(label: np.ndarray, fa: np.ndarray, fb: np.ndarray, sh: np.ndarray
     return a[keep], b[keep], sh[keep]
 
 
-def landscape3(X: np.ndarray, tol: float, samples: int) -> Landscape:
+def landscape3(X: np.ndarray, tol: float, samples: int,
+               surface: np.ndarray | None = None) -> Landscape:
     """3D: the landscape over the physical faces of the hull of ``X`` (n, 3), m, relative
     to the centre of mass; faces coplanar within ``tol`` (m) of a stable face's plane are
     one. Basins are traced exactly, from a centre nudged by a hair when the landscape is
     degenerate, and from ``samples`` rolled directions when that fails too."""
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
     eps = 1e-12 * size
-    h0 = build_hull3(X, eps)
+    h0 = build_hull3(X, eps, surface)  # surface: the body's own mesh, used if convex
     inside = float(h0.heights.min())
     if not inside > tol:
         where = "outside" if inside < -tol else "on the surface of"

@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from ...arguments import answering, finite_result, instance, non_negative, optional, positive
+from ...bodies.solid import MeshSolid
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_SAMPLING
@@ -98,11 +99,24 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
                  int(len(land.sh)), land.error, tuple(notes))
 
 
+def _triangle_indices(surface, n: int) -> np.ndarray:
+    """``surface`` as (m, 3) int64 indices below ``n``, or a GeometryError."""
+    tri = np.asarray(surface)
+    if tri.ndim != 2 or tri.shape[1] != 3 or not (tri.dtype.kind in "iu" or tri.size == 0):
+        raise GeometryError("a surface for the poses needs (m, 3) integer indices into the "
+                            f"points, not an array of shape {tri.shape} ({tri.dtype})")
+    tri = tri.astype(np.int64, copy=False)
+    if tri.size and not (tri.min() >= 0 and tri.max() < n):
+        raise GeometryError(f"a surface's triangles index points 0 … {n - 1} only, "
+                            f"not {int(tri.min())} … {int(tri.max())}")
+    return tri
+
+
 def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                       g: float = STANDARD_GRAVITY, tolerance: float | None = None,
                       roll_angle_deg: float = ROLL_ANGLE_DEG, neutral_height: float = 0.0,
                       samples: int = FALLBACK_SAMPLES,
-                      notes: tuple[str, ...] = ()) -> Poses:
+                      notes: tuple[str, ...] = (), surface=None) -> Poses:
     """Resting poses of the convex hull of a set of points.
 
     The basins are traced on the exact hull; faces coplanar within ``tolerance`` of a
@@ -137,6 +151,12 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         hull); the result's ``method`` is then ``"sampled"``.
     notes : tuple of str, optional
         Notes to carry into the result, before its own.
+    surface : array_like of int, optional
+        (m, 3) the triangles of the body's closed, outward-wound mesh through the
+        points (indices into ``points``, every point a corner). When checks that prove
+        it find the mesh convex (:func:`~.convex.own_hull`), its triangles are the
+        hull's and no hull is computed (on a finely tessellated capsule the hull is
+        most of the time); otherwise, and for a lamina, it changes nothing.
 
     Returns
     -------
@@ -146,7 +166,8 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     Raises
     ------
     GeometryError
-        Too few points, points spanning no volume (area), or non-finite numbers.
+        Too few points, points spanning no volume (area), or non-finite numbers; a
+        ``surface`` that is not (m, 3) indices into the points.
     StabilityError
         The centre of mass is not strictly inside the hull: the body rests on no face.
 
@@ -195,8 +216,10 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         tol = float(tolerance)
     if not (size > 0 and tol > 0):
         raise GeometryError("the points have no extent, or the tolerance is not positive")
+    if surface is not None:
+        surface = _triangle_indices(surface, len(X))
     X = X - com
-    land = landscape2(X, tol) if X.shape[1] == 2 else landscape3(X, tol, samples)
+    land = landscape2(X, tol) if X.shape[1] == 2 else landscape3(X, tol, samples, surface)
     return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
                     float(neutral_height), list(notes))
 
@@ -273,6 +296,9 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     size = body_size(body)
     htol = sampling(size, sampling_tolerance)
     pts = hull_points(body, htol)
+    surface = None
+    if dim == 3 and isinstance(body, MeshSolid):  # its own mesh: the hull, if convex
+        pts, surface = body.welded
     # sampled (curved) surfaces leave ridges up to the sampling tolerance: below them is one
     # family whatever the roll angle; a mesh's or a polytope's hull is exact
     neutral_height = 0.0 if is_polytope(body, size) else 2.0 * htol
@@ -282,4 +308,5 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     if pts.shape[1] != dim:
         pts = pts[:, :dim]
     return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
-                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height)
+                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
+                             surface=surface)
