@@ -17,7 +17,9 @@ and manifold3d imports in 3–11 ms where ``scipy.spatial`` takes 300–850 ms, 
 alone would be a large part of the start-up of ``plumbob poses``. So
 :func:`hull_triangles` asks manifold3d, checks its answer (a closed surface of
 non-degenerate triangles, every edge convex to rounding error, a volume) and falls
-back to qhull only when that check fails.
+back to qhull only when that check fails. A closed mesh that is its own hull (a
+finely tessellated capsule: every point on the hull, quickhull's slowest case) needs
+no hull at all: :func:`own_hull` proves it convex and takes its triangles.
 
 manifold3d returns the hull's vertices as exact copies of input points
 (``to_mesh64``), so the facet planes are planes through input points, as qhull's are.
