@@ -172,10 +172,10 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
             return None
         beyond = _beyond(P, tri, tn, off, twin)
     else:
-        rank = np.empty_like(order)
-        rank[order] = np.arange(len(order))
-        old = known[0].reshape(-1, 3)[order].ravel()  # the old twin of each new half-edge
-        twin = 3 * rank[old // 3] + old % 3
+        first = np.empty_like(order)  # each old triangle's first new half-edge
+        first[order] = np.arange(0, 3 * len(order), 3)
+        renamed = (first[:, None] + np.arange(3)).ravel()  # old half-edge → new
+        twin = renamed[known[0].reshape(-1, 3)[order].ravel()]
         beyond = known[1].reshape(-1, 3)[order].ravel()
     return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
 
