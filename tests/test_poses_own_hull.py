@@ -83,7 +83,7 @@ def precheck(request, monkeypatch) -> bool:
     """Every refusal twice: as it happens (a sampled check first, which catches most), and
     with that check waved through, so that the full certificate must refuse alone."""
     if not request.param:
-        monkeypatch.setattr(convex, "_sampled_planes_hold", lambda *args: True)
+        monkeypatch.setattr(convex, "may_be_own_hull", lambda *args: True)
     return request.param
 
 
@@ -131,6 +131,17 @@ def test_a_mesh_body_passes_its_own_triangles(monkeypatch):
     assert [p.kind for p in hull] == ["rolling"]  # the capsule rolls (its ends are round)
 
 
+def test_a_mesh_body_that_is_plainly_not_convex_is_not_welded_again(monkeypatch):
+    """A mesh read with its vertices welded already (a reader's check did it) and not
+    convex: a sample of its planes says so, and it is not welded a second time."""
+    V, F, _ = welded(l_block())
+    body = MeshSolid(V[F], vertices=V.copy())
+    own = resting_poses(body)
+    assert "welded" not in body.__dict__
+    monkeypatch.setattr(convex, "own_hull", lambda *args: None)
+    assert_same_poses(own, resting_poses(MeshSolid(V[F])))
+
+
 def l_block() -> M3:
     return M3.cube([3.0, 1.0, 1.0]) + M3.cube([1.0, 1.0, 3.0])
 
@@ -161,7 +172,8 @@ def test_a_mesh_that_is_not_convex_changes_nothing(make, monkeypatch, precheck):
     assert_same_poses(own, hull)
     assert_same_poses(own, poses_from_points(V, com, roll_angle_deg=0.0))
     if precheck and make is not dimpled:  # refused at once, by the sampled check
-        assert not convex._sampled_planes_hold(V - com, F, 1e-12)
+        X = V - com
+        assert not convex.may_be_own_hull(X, X[convex.sample_triangles(F)], 1e-12)
 
 
 def test_the_dimple_is_really_there():
@@ -290,5 +302,5 @@ def test_a_vertex_pushed_inside_the_others_hull_is_refused(seed, n, depth):
     assume(float((eq[:, :3] @ V[k] + eq[:, 3]).max()) < -1e-9)  # well inside the others
     assert not certified(V, F, com)
     with pytest.MonkeyPatch.context() as m:  # the full certificate alone refuses it too
-        m.setattr(convex, "_sampled_planes_hold", lambda *args: True)
+        m.setattr(convex, "may_be_own_hull", lambda *args: True)
         assert not certified(V, F, com)

@@ -47,7 +47,7 @@ from ...mesh.winding import solid_angle
 from .vectors import cross, dot
 
 __all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
-           "SOLID_ANGLE_CLOSURE"]
+           "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
 
 #: a surface proved convex by :func:`own_hull` subtends 4π from the centre to within this,
 #: relative (one winding is 4π, two 8π: any other integer is far outside it)
@@ -137,7 +137,11 @@ def _planes(P: np.ndarray, tri: np.ndarray
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Unit normals, offsets (the plane n·x = offset), the lengths of the raw cross
     products (twice the areas) and the corners (F, 3, 3)."""
-    C = np.take(P, tri, axis=0)
+    return _corner_planes(np.take(P, tri, axis=0))
+
+
+def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_planes` of triangles given by their corners ``C`` (F, 3, 3)."""
     cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
     norm = np.sqrt(dot(cr, cr))  # = np.linalg.norm(cr, axis=1), bit for bit
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -180,14 +184,25 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
 
 
-def _sampled_planes_hold(P: np.ndarray, tri: np.ndarray, eps: float) -> bool:
-    """A quick necessary condition for :func:`own_hull`: 16 triangles spread over the
-    mesh have the origin strictly inside their planes and none of 4096 points spread
-    over the mesh lies more than ``eps`` outside them. A mesh that is not convex
-    almost always fails it, in well under a millisecond (the whole certificate takes
-    tens on 100k triangles, more than the hull of such a mesh)."""
-    tn, off, _, _ = _planes(P, tri[:: max(1, len(tri) // 16)][:16])
-    Q = P[:: max(1, len(P) // 4096)]
+SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries
+SAMPLE_POINTS = 4096  # points it tries against them
+
+
+def sample_triangles(tri: np.ndarray) -> np.ndarray:
+    """The :data:`SAMPLE_TRIANGLES` rows of ``tri`` (triangles as indices or as corners)
+    that :func:`may_be_own_hull` tries: spread evenly over the mesh."""
+    return tri[:: max(1, len(tri) // SAMPLE_TRIANGLES)][:SAMPLE_TRIANGLES]
+
+
+def may_be_own_hull(P: np.ndarray, corners: np.ndarray, eps: float) -> bool:
+    """A quick necessary condition for :func:`own_hull`: the triangles with ``corners``
+    (k, 3, 3) (:func:`sample_triangles` of the mesh) have the origin strictly inside
+    their planes and no point of ``P`` (:data:`SAMPLE_POINTS` of them, spread evenly)
+    more than ``eps`` outside. A mesh that is not convex almost always fails it, in well
+    under a millisecond (the whole certificate takes tens on 100k triangles, more than
+    the hull of such a mesh)."""
+    tn, off, _, _ = _corner_planes(np.asarray(corners, dtype=np.float64))
+    Q = P[:: max(1, len(P) // SAMPLE_POINTS)]
     with np.errstate(invalid="ignore"):
         return bool(np.all(off > eps) and np.all((Q @ tn.T).max(axis=0) - off <= eps))
 
@@ -241,7 +256,7 @@ def own_hull(P: np.ndarray, tri: np.ndarray, eps: float) -> HullMesh | None:
     if (P.ndim != 2 or P.shape[1] != 3 or tri.ndim != 2 or tri.shape[1] != 3 or m < 4
             or tri.min() < 0 or tri.max() >= n):
         return None  # not triangles through the points
-    if not _sampled_planes_hold(P, tri, eps):
+    if not may_be_own_hull(P, np.take(P, sample_triangles(tri), axis=0), eps):
         return None  # not convex, found cheaply
     if np.count_nonzero(np.bincount(tri.ravel(), minlength=n)) != n:
         return None  # a point off the surface

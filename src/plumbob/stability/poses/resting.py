@@ -22,6 +22,7 @@ from ...tolerances import sampling_tolerance as sampling
 from ...units import STANDARD_GRAVITY
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
+from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
 from .landscape import Landscape, landscape2, landscape3
 from .placement import placement
@@ -97,6 +98,18 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
                      f"come from rolling {FALLBACK_SAMPLES} directions downhill")
     return Poses(tuple(poses), mass, g, com.copy(), land.method, land.faces,
                  int(len(land.sh)), land.error, tuple(notes))
+
+
+def _own_surface(body: MeshSolid, pts: np.ndarray, com: np.ndarray, size: float
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
+    """A mesh's welded vertices and triangles (:attr:`MeshSolid.welded`), for
+    :func:`~.convex.own_hull` to take as the hull if it proves the mesh convex; ``pts``
+    and None when a sample of its triangles' planes already shows it is not
+    (:func:`~.convex.may_be_own_hull`), so that such a mesh is not welded again."""
+    corners = sample_triangles(body.triangles) - com
+    if not may_be_own_hull(pts - com, corners, 1e-12 * size):
+        return pts, None
+    return body.welded
 
 
 def _triangle_indices(surface, n: int) -> np.ndarray:
@@ -296,9 +309,6 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
     size = body_size(body)
     htol = sampling(size, sampling_tolerance)
     pts = hull_points(body, htol)
-    surface = None
-    if dim == 3 and isinstance(body, MeshSolid):  # its own mesh: the hull, if convex
-        pts, surface = body.welded
     # sampled (curved) surfaces leave ridges up to the sampling tolerance: below them is one
     # family whatever the roll angle; a mesh's or a polytope's hull is exact
     neutral_height = 0.0 if is_polytope(body, size) else 2.0 * htol
@@ -307,6 +317,9 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
         com = np.pad(com, (0, dim - com.size))
     if pts.shape[1] != dim:
         pts = pts[:, :dim]
+    surface = None
+    if dim == 3 and isinstance(body, MeshSolid):  # its own mesh: the hull, if convex
+        pts, surface = _own_surface(body, pts, com, size)
     return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
                              roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
                              surface=surface)
