@@ -36,7 +36,8 @@ def poses_both_ways(X: np.ndarray, center: np.ndarray, monkeypatch) -> tuple:
     grouped_steps = len(steps)
     every = landscape.landscape3
     monkeypatch.setattr(landscape, "landscape3",
-                        lambda X, tol, samples, families_of=None: every(X, tol, samples))
+                        lambda X, tol, samples, families_of=None, surface=None:
+                        every(X, tol, samples, None, surface))
     from plumbob.stability.poses import resting
 
     monkeypatch.setattr(resting, "landscape3", landscape.landscape3)

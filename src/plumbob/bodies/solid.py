@@ -151,9 +151,17 @@ class MeshSolid(_UniformSolid):
     @cached_property
     def _distinct_vertices(self) -> np.ndarray:
         """The mesh's distinct vertices (n, 3), m: computed once (stability asks often)."""
-        points = merge_vertices(self.triangles.reshape(-1, 3))[0]
+        return self.welded[0]
+
+    @cached_property
+    def welded(self) -> tuple[np.ndarray, np.ndarray]:
+        """The mesh as distinct vertices (n, 3), m, and triangles (m, 3) indexing them
+        (:func:`~plumbob.mesh.weld.merge_vertices`, exact copies only): welded once."""
+        points, index = merge_vertices(self.triangles.reshape(-1, 3))
         points.setflags(write=False)
-        return points
+        index = index.reshape(-1, 3)
+        index.setflags(write=False)
+        return points, index
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         matrix = np.asarray(matrix, dtype=float)

@@ -17,7 +17,9 @@ and manifold3d imports in 3–11 ms where ``scipy.spatial`` takes 300–850 ms, 
 alone would be a large part of the start-up of ``plumbob poses``. So
 :func:`hull_triangles` asks manifold3d, checks its answer (a closed surface of
 non-degenerate triangles, every edge convex to rounding error, a volume) and falls
-back to qhull only when that check fails.
+back to qhull only when that check fails. A closed mesh that is its own hull (a
+finely tessellated capsule: every point on the hull, quickhull's slowest case) needs
+no hull at all: :func:`own_hull` proves it convex and takes its triangles.
 
 manifold3d returns the hull's vertices as exact copies of input points
 (``to_mesh64``), so the facet planes are planes through input points, as qhull's are.
@@ -34,15 +36,22 @@ round-off (about 1e-14 relative, more in a quantity that is a small difference).
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 
 from ...errors import GeometryError
 from ...mesh.sorting import lex_order, stable_order
+from ...mesh.winding import solid_angle
 from .vectors import cross, dot
 
-__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh"]
+__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
+           "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
+
+#: a surface proved convex by :func:`own_hull` subtends 4π from the centre to within this,
+#: relative (one winding is 4π, two 8π: any other integer is far outside it)
+SOLID_ANGLE_CLOSURE = 1e-9
 
 
 class HullMesh(NamedTuple):
@@ -128,7 +137,11 @@ def _planes(P: np.ndarray, tri: np.ndarray
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Unit normals, offsets (the plane n·x = offset), the lengths of the raw cross
     products (twice the areas) and the corners (F, 3, 3)."""
-    C = np.take(P, tri, axis=0)
+    return _corner_planes(np.take(P, tri, axis=0))
+
+
+def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_planes` of triangles given by their corners ``C`` (F, 3, 3)."""
     cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
     norm = np.sqrt(dot(cr, cr))  # = np.linalg.norm(cr, axis=1), bit for bit
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -137,20 +150,131 @@ def _planes(P: np.ndarray, tri: np.ndarray
     return tn, off, norm, C
 
 
+def _beyond(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
+            twin: np.ndarray) -> np.ndarray:
+    """(3F,) per half-edge, the height of the far corner of the triangle across it over
+    this triangle's plane (≤ 0 to rounding error where the edge is convex)."""
+    far = tri[:, [2, 0, 1]].ravel()[twin]  # the corner across each half-edge
+    return (dot(np.take(P, far, axis=0).reshape(-1, 3, 3), tn[:, None, :])
+            - off[:, None]).ravel()
+
+
 def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
-            area: np.ndarray, C: np.ndarray) -> HullMesh | None:
+            area: np.ndarray, C: np.ndarray,
+            known: tuple[np.ndarray, np.ndarray] | None = None) -> HullMesh | None:
     """The triangles in an order of their own geometry (by normal), not the hull
     library's — so faces, and poses of equal probability, come out in the same order
-    from either library — with their twins and heights; None when not closed."""
+    from either library — with their twins and heights; None when not closed.
+
+    ``known``: the twins and :func:`_beyond` of ``tri`` as given, when measured
+    already: renumbered, not searched again (a closed 2-manifold's twins are unique)."""
     order = _normal_order(tn)
     tri, tn, off, area, C = (np.take(a, order, axis=0) for a in (tri, tn, off, area, C))
-    twin = half_edge_twins(tri, len(P))
-    if twin is None:
-        return None
-    far = tri[:, [2, 0, 1]].ravel()[twin]  # the corner across each half-edge
-    beyond = (dot(np.take(P, far, axis=0).reshape(-1, 3, 3), tn[:, None, :])
-              - off[:, None]).ravel()
+    if known is None:
+        twin = half_edge_twins(tri, len(P))
+        if twin is None:
+            return None
+        beyond = _beyond(P, tri, tn, off, twin)
+    else:
+        first = np.empty_like(order)  # each old triangle's first new half-edge
+        first[order] = np.arange(0, 3 * len(order), 3)
+        renamed = (first[:, None] + np.arange(3)).ravel()  # old half-edge → new
+        twin = renamed[known[0].reshape(-1, 3)[order].ravel()]
+        beyond = known[1].reshape(-1, 3)[order].ravel()
     return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
+
+
+SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries
+SAMPLE_POINTS = 4096  # points it tries against them
+
+
+def sample_triangles(tri: np.ndarray) -> np.ndarray:
+    """The :data:`SAMPLE_TRIANGLES` rows of ``tri`` (triangles as indices or as corners)
+    that :func:`may_be_own_hull` tries: spread evenly over the mesh."""
+    return tri[:: max(1, len(tri) // SAMPLE_TRIANGLES)][:SAMPLE_TRIANGLES]
+
+
+def may_be_own_hull(P: np.ndarray, corners: np.ndarray, eps: float) -> bool:
+    """A quick necessary condition for :func:`own_hull`: the triangles with ``corners``
+    (k, 3, 3) (:func:`sample_triangles` of the mesh) have the origin strictly inside
+    their planes and no point of ``P`` (:data:`SAMPLE_POINTS` of them, spread evenly)
+    more than ``eps`` outside. A mesh that is not convex almost always fails it, in well
+    under a millisecond (the whole certificate takes tens on 100k triangles, more than
+    the hull of such a mesh)."""
+    tn, off, _, _ = _corner_planes(np.asarray(corners, dtype=np.float64))
+    Q = P[:: max(1, len(P) // SAMPLE_POINTS)]
+    with np.errstate(invalid="ignore"):
+        return bool(np.all(off > eps) and np.all((Q @ tn.T).max(axis=0) - off <= eps))
+
+
+def own_hull(P: np.ndarray, tri: np.ndarray, eps: float) -> HullMesh | None:
+    """The closed surface ``tri`` (m, 3) through the points ``P`` (n, 3), relative to
+    the centre of mass, as its own convex hull, when checks that prove it bounds a
+    convex body with the centre strictly inside hold; otherwise None (then the hull of
+    the points is computed). Every point must be a corner of a triangle (a point off
+    the surface could lie outside it). Returns what :func:`hull_mesh` would for the
+    hull of ``P``: triangles ordered by normal, outward, with their twins.
+
+    The proof (``tri`` wound outward, the centre of mass at the origin), cheapest
+    checks first, so a mesh that is not convex costs little:
+
+    1. *The origin strictly inside every triangle's plane*: every plane offset is above
+       ``eps`` (a degenerate triangle, with no plane, fails). Each triangle then
+       subtends a positive solid angle from the origin: the central projection onto
+       the unit sphere keeps the orientation everywhere.
+    2. *A closed 2-manifold*: every directed half-edge has exactly one reversed twin.
+    3. *Every edge convex* to rounding error: the far corner of the triangle across
+       each half-edge lies at most ``eps`` above this triangle's plane.
+    4. *The solid angles add up to 4π* (:data:`SOLID_ANGLE_CLOSURE`): the projection
+       of the closed surface has degree 1. As it keeps orientation, each point of the
+       sphere has as many preimages as the degree counts (a vertex whose star wrapped
+       around its ray k times would give nearby points k), so every ray from the
+       origin meets the surface once: it is embedded and bounds a solid star-shaped
+       about the origin.
+
+    That solid is locally convex everywhere: inside a triangle, along an edge (3), and
+    at a vertex, whose star is a simple fan (4) turning the same way at each edge (3),
+    so its cone is convex. A closed connected locally convex set is convex
+    (Tietze–Nakajima): the solid is the hull of the vertices and the triangles are
+    the hull's. A mesh concave by less than ``eps`` (round-off, 1e-12 of the size)
+    passes, as a hull library's answer is checked to the same ``eps``. Split or
+    fanned flat faces (a cylinder's cap) are fine: exactly coplanar triangles become
+    one face in :func:`~.hull.build_hull3` whichever way they are cut.
+
+    >>> cube = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+    >>> quads = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4],
+    ...          [1, 5, 7, 3]]
+    >>> tri = np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))])
+    >>> len(own_hull(cube, tri, 1e-12).tri)
+    12
+    >>> own_hull(cube + [0, 0, 1.5], tri, 1e-12) is None  # the centre outside
+    True
+    """
+    P = np.asarray(P, dtype=np.float64)
+    tri = np.asarray(tri, dtype=np.int64)
+    n, m = len(P), len(tri)
+    if (P.ndim != 2 or P.shape[1] != 3 or tri.ndim != 2 or tri.shape[1] != 3 or m < 4
+            or tri.min() < 0 or tri.max() >= n):
+        return None  # not triangles through the points
+    if not may_be_own_hull(P, np.take(P, sample_triangles(tri), axis=0), eps):
+        return None  # not convex, found cheaply
+    if np.count_nonzero(np.bincount(tri.ravel(), minlength=n)) != n:
+        return None  # a point off the surface
+    tn, off, norm, C = _planes(P, tri)
+    with np.errstate(invalid="ignore"):
+        if not np.all(off > eps):  # NaN (a degenerate triangle) fails too
+            return None  # (1)
+    twin = half_edge_twins(tri, n)
+    if twin is None:
+        return None  # (2)
+    beyond = _beyond(P, tri, tn, off, twin)
+    if not float(beyond.max()) <= eps:
+        return None  # (3)
+    omega = solid_angle(C[:, 0], C[:, 1], C[:, 2])
+    if not (np.all(omega > 0)
+            and abs(float(omega.sum()) - 4 * math.pi) <= SOLID_ANGLE_CLOSURE * 4 * math.pi):
+        return None  # (4) wound about the centre more than once, or not at all
+    return _finish(P, tri, tn, off, 0.5 * norm, C, (twin, beyond))
 
 
 def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
@@ -199,15 +323,25 @@ def _qhull(X: np.ndarray) -> HullMesh:
     return found
 
 
-def hull_mesh(X: np.ndarray, eps: float) -> HullMesh:
+def hull_mesh(X: np.ndarray, eps: float, surface: np.ndarray | None = None) -> HullMesh:
     """:func:`hull_triangles` with what its checks measured (a :class:`HullMesh`)."""
+    if surface is not None:
+        found = own_hull(X, surface, eps)
+        if found is not None:
+            return found
     found = _manifold_hull(X, eps)
     return found if found is not None else _qhull(X)
 
 
-def hull_triangles(X: np.ndarray, eps: float
+def hull_triangles(X: np.ndarray, eps: float, surface: np.ndarray | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The convex hull of ``X`` (n, 3) as triangles.
+
+    ``surface`` (m, 3), optional: triangles of a closed, outward surface through the
+    points (indices into ``X``, every point used), ``X`` relative to a point strictly
+    inside. When :func:`own_hull` proves it bounds a convex body (a mesh
+    that is its own hull), they are the hull and no hull is computed; otherwise the
+    hull of the points is, as without it.
 
     Returns ``(P, tri, normals, offsets, twins)``: points (m, 3) that ``tri`` (F, 3)
     indexes, wound counter-clockwise seen from outside, each triangle's outward unit
@@ -223,5 +357,5 @@ def hull_triangles(X: np.ndarray, eps: float
     >>> len(tri), sorted(set(np.round(offsets, 12).tolist()))
     (12, [0.0, 1.0])
     """
-    found = hull_mesh(X, eps)
+    found = hull_mesh(X, eps, surface)
     return found.points, found.tri, found.normals, found.offsets, found.twins

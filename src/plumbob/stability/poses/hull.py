@@ -183,10 +183,11 @@ def _edge_twins(ea: np.ndarray, eb: np.ndarray, first: np.ndarray, last: np.ndar
     return pos
 
 
-def build_hull3(X: np.ndarray, eps: float) -> Hull3:
+def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) -> Hull3:
     """The hull of ``X`` (n, 3), m, relative to the centre of mass, with the hull's triangles
     merged into faces where coplanar within ``eps`` (m; meant as round-off, so that the
-    faces are exact).
+    faces are exact). ``surface``: the body's own closed mesh through ``X`` (triangles
+    indexing it), taken as the hull when proved convex (:func:`~.convex.hull_triangles`).
 
     Raises GeometryError when the points span no volume or the hull is not a
     closed surface of simple polygons.
@@ -196,7 +197,7 @@ def build_hull3(X: np.ndarray, eps: float) -> Hull3:
     >>> len(h.normals), len(h.ea), h.heights.tolist()
     (6, 24, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
     """
-    hm = hull_mesh(X, eps)  # manifold3d, or qhull as fallback
+    hm = hull_mesh(X, eps, surface)  # the mesh itself if convex, manifold3d, or qhull
     X, tri, tn, twin = hm.points, hm.tri, hm.normals, hm.twins
     area = hm.area
     m, n = len(tri), len(X)

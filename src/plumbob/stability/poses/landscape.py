@@ -96,7 +96,8 @@ def _candidates(h: Hull3, sinks: np.ndarray, area: np.ndarray, fa: np.ndarray, f
 
 
 def landscape3(X: np.ndarray, tol: float, samples: int,
-               families_of: Callable[[Landscape], Any] | None = None) -> Landscape:
+               families_of: Callable[[Landscape], Any] | None = None,
+               surface: np.ndarray | None = None) -> Landscape:
     """3D: the landscape over the physical faces of the hull of ``X`` (n, 3), m, relative
     to the centre of mass; faces coplanar within ``tol`` (m) of a stable face's plane are
     one. Basins are traced exactly, from a centre nudged by a hair when the landscape is
@@ -105,10 +106,12 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     ``families_of(landscape)`` (:func:`.families.families` with the caller's roll angle),
     when given, says before the trace which stable faces are one rolling family: only the
     boundaries between poses are then traced, and each rolling family's area is summed on
-    its representative (first try only: a nudged centre traces every basin)."""
+    its representative (first try only: a nudged centre traces every basin).
+    ``surface`` (m, 3): the body's own triangles as indices into ``X``, taken for the hull
+    when they bound a convex body (:func:`.convex.own_hull`)."""
     size = float(np.linalg.norm(np.ptp(X, axis=0)))
     eps = 1e-12 * size
-    h0 = build_hull3(X, eps)
+    h0 = build_hull3(X, eps, surface)  # surface: the body's own mesh, used if convex
     inside = float(h0.heights.min())
     if not inside > tol:
         where = "outside" if inside < -tol else "on the surface of"

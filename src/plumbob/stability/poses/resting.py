@@ -15,6 +15,7 @@ from functools import partial
 import numpy as np
 
 from ...arguments import answering, finite_result, instance, non_negative, optional, positive
+from ...bodies.solid import MeshSolid
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_SAMPLING
@@ -22,6 +23,7 @@ from ...tolerances import sampling_tolerance as sampling
 from ...units import STANDARD_GRAVITY
 from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
+from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
 from .landscape import Landscape, landscape2, landscape3
 from .placement import placement
@@ -99,11 +101,36 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
                  int(len(land.sh)), land.error, tuple(notes))
 
 
+def _own_surface(body: MeshSolid, pts: np.ndarray, com: np.ndarray, size: float
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
+    """A mesh's welded vertices and triangles (:attr:`MeshSolid.welded`), for
+    :func:`~.convex.own_hull` to take as the hull if it proves the mesh convex; ``pts``
+    and None when a sample of its triangles' planes already shows it is not
+    (:func:`~.convex.may_be_own_hull`), so that such a mesh is not welded again."""
+    corners = sample_triangles(body.triangles) - com
+    if not may_be_own_hull(pts - com, corners, 1e-12 * size):
+        return pts, None
+    return body.welded
+
+
+def _triangle_indices(surface, n: int) -> np.ndarray:
+    """``surface`` as (m, 3) int64 indices below ``n``, or a GeometryError."""
+    tri = np.asarray(surface)
+    if tri.ndim != 2 or tri.shape[1] != 3 or not (tri.dtype.kind in "iu" or tri.size == 0):
+        raise GeometryError("a surface for the poses needs (m, 3) integer indices into the "
+                            f"points, not an array of shape {tri.shape} ({tri.dtype})")
+    tri = tri.astype(np.int64, copy=False)
+    if tri.size and not (tri.min() >= 0 and tri.max() < n):
+        raise GeometryError(f"a surface's triangles index points 0 … {n - 1} only, "
+                            f"not {int(tri.min())} … {int(tri.max())}")
+    return tri
+
+
 def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                       g: float = STANDARD_GRAVITY, tolerance: float | None = None,
                       roll_angle_deg: float = ROLL_ANGLE_DEG, neutral_height: float = 0.0,
                       samples: int = FALLBACK_SAMPLES,
-                      notes: tuple[str, ...] = ()) -> Poses:
+                      notes: tuple[str, ...] = (), surface=None) -> Poses:
     """Resting poses of the convex hull of a set of points.
 
     The basins are traced on the exact hull; faces coplanar within ``tolerance`` of a
@@ -138,6 +165,12 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         hull); the result's ``method`` is then ``"sampled"``.
     notes : tuple of str, optional
         Notes to carry into the result, before its own.
+    surface : array_like of int, optional
+        (m, 3) the triangles of the body's closed, outward-wound mesh through the
+        points (indices into ``points``, every point a corner). When checks that prove
+        it find the mesh convex (:func:`~.convex.own_hull`), its triangles are the
+        hull's and no hull is computed (on a finely tessellated capsule the hull is
+        most of the time); otherwise, and for a lamina, it changes nothing.
 
     Returns
     -------
@@ -147,7 +180,8 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     Raises
     ------
     GeometryError
-        Too few points, points spanning no volume (area), or non-finite numbers.
+        Too few points, points spanning no volume (area), or non-finite numbers; a
+        ``surface`` that is not (m, 3) indices into the points.
     StabilityError
         The centre of mass is not strictly inside the hull: the body rests on no face.
 
@@ -196,12 +230,14 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         tol = float(tolerance)
     if not (size > 0 and tol > 0):
         raise GeometryError("the points have no extent, or the tolerance is not positive")
+    if surface is not None:
+        surface = _triangle_indices(surface, len(X))
     X = X - com
     if X.shape[1] == 2:
         land = landscape2(X, tol)
     else:  # the families are known before the trace: only the boundaries between poses
         land = landscape3(X, tol, samples, partial(families, roll_angle_deg=roll_angle_deg,
-                                                   neutral_height=neutral_height))
+                                                   neutral_height=neutral_height), surface)
     return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
                     float(neutral_height), list(notes))
 
@@ -286,5 +322,9 @@ def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None 
         com = np.pad(com, (0, dim - com.size))
     if pts.shape[1] != dim:
         pts = pts[:, :dim]
+    surface = None
+    if dim == 3 and isinstance(body, MeshSolid):  # its own mesh: the hull, if convex
+        pts, surface = _own_surface(body, pts, com, size)
     return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
-                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height)
+                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
+                             surface=surface)
