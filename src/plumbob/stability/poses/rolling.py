@@ -61,6 +61,9 @@ def edge_geometry(h: Hull3) -> Edges3:
     # the reversed edge's pole is −pole (exactly) and its faces are swapped, so its
     # after_f is this edge's n_G × pole, bit for bit
     before_g = np.take(after_f, h.twin, axis=0)
+    odd = np.take(h.ef, h.twin) != h.eg  # an edge a degenerate hull has twice: no mirror
+    if odd.any():
+        before_g[odd] = cross(h.normals[h.eg[odd]], pole[odd])
     in_arc = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
     saddle = (t > 0) & (t < 1) & in_arc
     return Edges3(pole, t, saddle, s, sheight, after_f, before_g, cross(s, pole))
