@@ -7,8 +7,8 @@ wins over these defaults.
 
 from __future__ import annotations
 
-__all__ = ["CONTACT", "HULL_SAMPLING", "TEXT_ROUND_OFF", "WELD", "contact_tolerance",
-           "sampling_tolerance", "weld_tolerance"]
+__all__ = ["CONTACT", "HULL_ROUND_OFF", "HULL_SAMPLING", "TEXT_ROUND_OFF", "WELD",
+           "contact_tolerance", "sampling_tolerance", "weld_tolerance"]
 
 #: Points within this fraction of the body's size of the lowest level touch the
 #: ground, and faces coplanar within it are one face: far above float64 round-off
@@ -24,6 +24,11 @@ WELD = 1e-7
 #: Curved surfaces are sampled so no point of the body lies further than this
 #: fraction of its size outside the samples' hull.
 HULL_SAMPLING = 1e-4
+
+#: A convex hull's planes, corners and edges are exact to this fraction of the size:
+#: coplanar within it is one face, concave by less is convex (float64 round-off of
+#: the hull's own arithmetic, far below the contact tolerance).
+HULL_ROUND_OFF = 1e-12
 
 #: Text reports show values below this fraction of their scale as 0: round-off
 #: that six significant digits would otherwise print as noise (JSON keeps every digit).

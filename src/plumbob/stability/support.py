@@ -37,6 +37,7 @@ import numpy as np
 from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
+from ..tolerances import HULL_ROUND_OFF
 from .planar import drop_collinear, planar_hull
 
 __all__ = [
@@ -301,7 +302,7 @@ def _hull_2d(q: np.ndarray, tolerance: float) -> tuple[str, np.ndarray]:
         return "segment", ends
     # corners collinear to rounding error are not corners (qhull's hull dropped them too)
     size = float(np.max(np.linalg.norm(spread, axis=1)))
-    return "polygon", drop_collinear(q[corners], 1e-12 * size)  # counter-clockwise
+    return "polygon", drop_collinear(q[corners], HULL_ROUND_OFF * size)  # counter-clockwise
 
 
 def _edges(kind: str, v: np.ndarray, dim: int):

@@ -16,7 +16,7 @@ import numpy as np
 
 from ...errors import StabilityError
 from ...limits import MAX_SAMPLES, check_count
-from ...tolerances import sampling_tolerance
+from ...tolerances import HULL_ROUND_OFF, sampling_tolerance
 from ..poses import Poses, resting_poses
 from ..poses.convex import hull_triangles
 from ..support import body_size, hull_points
@@ -162,7 +162,7 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     com = np.asarray(props.center_of_mass, dtype=float)
     size = body_size(body)
     pts = hull_triangles(hull_points(body, sampling_tolerance(size, None)) - com,
-                         1e-12 * size)[0]
+                         HULL_ROUND_OFF * size)[0]
     radius = float(np.linalg.norm(pts, axis=1).max())
     t0 = math.sqrt(radius / g)
     scaled = pts / radius

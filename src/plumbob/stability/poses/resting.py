@@ -18,7 +18,7 @@ from ...arguments import answering, finite_result, instance, non_negative, optio
 from ...bodies.solid import MeshSolid
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
-from ...tolerances import CONTACT, HULL_SAMPLING
+from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING
 from ...tolerances import sampling_tolerance as sampling
 from ...units import STANDARD_GRAVITY
 from ..rocking import rocking
@@ -108,7 +108,7 @@ def _own_surface(body: MeshSolid, pts: np.ndarray, com: np.ndarray, size: float
     and None when a sample of its triangles' planes already shows it is not
     (:func:`~.convex.may_be_own_hull`), so that such a mesh is not welded again."""
     corners = sample_triangles(body.triangles) - com
-    if not may_be_own_hull(pts - com, corners, 1e-12 * size):
+    if not may_be_own_hull(pts - com, corners, HULL_ROUND_OFF * size):
         return pts, None
     return body.welded
 
