@@ -24,7 +24,7 @@ import numpy as np
 
 from ...mesh.sorting import stable_order
 from .hull import Hull3
-from .vectors import cross, dot, expand, unique, unit
+from .vectors import around, cross, dot, expand, unique
 
 __all__ = ["PhysicalFaces", "physical_faces"]
 
@@ -52,12 +52,7 @@ class PhysicalFaces:
         """The corners (m, relative to the centre) of sink ``k``'s physical face,
         counter-clockwise about its outward normal."""
         pts = h.X[unique(h.ea[self.boundary[self.boundary_owner == k]])]
-        n = h.normals[self.sinks[k]]
-        seed = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-        e1 = unit(seed - (seed @ n) * n)
-        e2 = cross(n, e1)
-        rel = pts - pts.mean(axis=0)
-        return pts[np.argsort(np.arctan2(rel @ e2, rel @ e1), kind="stable")]
+        return pts[around(pts, h.normals[self.sinks[k]])]
 
 
 def _face_edges(h: Hull3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

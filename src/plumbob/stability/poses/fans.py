@@ -27,7 +27,7 @@ import numpy as np
 
 from .hull import Hull3
 from .rolling import Edges3, step
-from .vectors import dot, unit
+from .vectors import around, dot, unit
 
 __all__ = ["FAN_CORNERS", "prefix_products", "Fans"]
 
@@ -74,12 +74,7 @@ class Fans:
         if face not in self._rings:
             h = self.h
             edges = np.flatnonzero(h.ef == face)
-            n = h.normals[face]
-            seed = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-            e1 = unit(seed - (seed @ n) * n)
-            e2 = np.cross(n, e1)
-            rel = h.X[h.ea[edges]] - h.X[h.ea[edges]].mean(axis=0)
-            edges = edges[np.argsort(np.arctan2(rel @ e2, rel @ e1), kind="stable")]
+            edges = edges[around(h.X[h.ea[edges]], h.normals[face])]
             self._rings[face] = (h.ea[edges], edges)
         return self._rings[face]
 

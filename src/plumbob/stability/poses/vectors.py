@@ -14,7 +14,7 @@ from ...errors import StabilityError
 from ...mesh.winding import cross  # one copy, shared with the solid angles
 
 __all__ = ["unit", "cross", "dot", "row_max", "row_min", "group_first", "expand",
-           "pointer_sinks", "fibonacci_sphere", "unique"]
+           "pointer_sinks", "fibonacci_sphere", "unique", "around"]
 
 
 def unit(v: np.ndarray) -> np.ndarray:
@@ -131,3 +131,18 @@ def fibonacci_sphere(n: int) -> np.ndarray:
     phi = np.pi * (3.0 - np.sqrt(5.0)) * i
     r = np.sqrt(np.maximum(0.0, 1.0 - z * z))
     return np.stack((r * np.cos(phi), r * np.sin(phi), z), axis=1)
+
+
+def around(points: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """The order (k,) that lists coplanar ``points`` (k, 3) counter-clockwise about the
+    unit ``normal`` of their plane (by angle about their mean; ties keep their order).
+
+    >>> square = np.array([[1.0, 1, 0], [-1, -1, 0], [1, -1, 0], [-1, 1, 0]])
+    >>> around(square, np.array([0.0, 0, 1])).tolist()
+    [1, 2, 0, 3]
+    """
+    seed = np.array([1.0, 0.0, 0.0]) if abs(normal[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = unit(seed - (seed @ normal) * normal)
+    e2 = cross(normal, e1)
+    rel = points - points.mean(axis=0)
+    return np.argsort(np.arctan2(rel @ e2, rel @ e1), kind="stable")
