@@ -59,6 +59,16 @@ def _crossing_face(h: Hull3, before: np.ndarray, after: np.ndarray) -> np.ndarra
     return np.where(share_f, f, np.where(share_g, g, -1))
 
 
+def standing_faces(roller: Roller, group: np.ndarray | None) -> np.ndarray:
+    """(F,) the faces whose basins are traced: the stable ones, or with ``group`` (see
+    :func:`trace_basins`) the one standing for each group."""
+    if group is None:
+        return roller.stable
+    standing = np.zeros(len(roller.stable), dtype=bool)
+    standing[group[roller.stable]] = True
+    return standing
+
+
 def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
                  group: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
     """Basin areas (per face, sr) from the separatrices traced back from every saddle.
@@ -75,18 +85,16 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     """
     nF = len(h.normals)
     sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
-    if len(sad) == 0:
-        return np.zeros(nF), False
     ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
     f, g = ends[:len(sad)], ends[len(sad):]
     if group is not None:
         f, g = group[f], group[g]
         between = f != g
         sad, f, g = sad[between], f[between], g[between]
-        if len(sad) == 0:  # no saddle between groups: one group is the whole sphere
-            standing = np.zeros(nF, dtype=bool)
-            standing[group[group >= 0]] = True
-            return np.where(standing, 4 * np.pi / standing.sum(), 0.0), standing.sum() == 1
+    if len(sad) == 0:  # no saddle between basins (groups): one of them is the whole sphere
+        standing = standing_faces(roller, group)
+        count = np.count_nonzero(standing)
+        return np.where(standing, 4 * np.pi / count, 0.0), count == 1
     s = eg3.spoint[sad]
     # two traces per saddle: into the regions of both its ends
     v = np.concatenate((h.ea[sad], h.eb[sad]))
@@ -190,16 +198,8 @@ def basins3(h: Hull3, eps: float, samples: int | None,
     if samples is not None:
         return Basins(sampled_basins(h, roller, samples), roller, eg3, sad, float("nan"))
     group = grouping(h, roller, eg3, sad) if grouping is not None else None
-    standing = stable.copy()
-    if group is not None:  # the faces standing for their groups
-        standing[:] = False
-        standing[group[stable]] = True
-    if len(sad) == 0:  # one basin: the whole sphere
-        area = np.where(standing, 4 * np.pi / np.count_nonzero(standing), 0.0)
-        ok = np.count_nonzero(standing) == 1
-    else:
-        area, ok = trace_basins(h, eg3, W, roller, group)
+    area, ok = trace_basins(h, eg3, W, roller, group)
     error = abs(area.sum() - 4 * np.pi) / (4 * np.pi)
-    if not ok or error > _AREA_CHECK or np.any(area[standing] <= 0):
+    if not ok or error > _AREA_CHECK or np.any(area[standing_faces(roller, group)] <= 0):
         return None
     return Basins(area, roller, eg3, sad, float(error), group is not None)
