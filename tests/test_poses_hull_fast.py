@@ -18,7 +18,7 @@ from plumbob.stability.poses.convex import (
     hull_mesh,
 )
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.rolling import edge_geometry
+from plumbob.stability.poses.rolling import arc_sides, edge_geometry
 from plumbob.stability.poses.vectors import cross, dot, expand, row_max, row_min, unit
 
 
@@ -218,7 +218,7 @@ def test_expand_lists_every_row_range(rows):
 @example(39368, True)  # a grid hull with an edge twice: its twin is not its mirror (CI found it)
 def test_edge_geometry_is_the_plain_formulas(seed, grid):
     """Every field of the edge geometry as the plain per-edge formulas give it, bit for
-    bit (before_g gathered from the reversed edge, the foot computed in place)."""
+    bit (computed block by block, the saddle rows' directions in a pass of their own)."""
     rng = np.random.default_rng(seed)
     X = rng.normal(size=(int(rng.integers(8, 150)), 3))
     if grid:
@@ -235,7 +235,17 @@ def test_edge_geometry_is_the_plain_formulas(seed, grid):
     height = np.linalg.norm(p, axis=1)
     s = p / height[:, None]
     after_f, before_g = cross(pole, h.normals[h.ef]), cross(h.normals[h.eg], pole)
-    for mine, plain in [(e.t, t), (e.pole, pole), (e.spoint, s), (e.sheight, height),
-                        (e.after_f, after_f), (e.before_g, before_g),
-                        (e.toward_f, cross(s, pole))]:
+    n = h.normals[h.ef]
+    foot = h.heights[h.ef][:, None] * n
+    L = np.sqrt(L2)
+    inset = dot(cross(D, foot - A), n) / L
+    tau = np.clip(dot(foot - A, D) / L2, 0.0, 1.0)
+    tip = np.linalg.norm(A + tau[:, None] * D - foot, axis=1)
+    saddle = (t > 0) & (t < 1) & (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
+    rows = np.flatnonzero(saddle)
+    mine_after, mine_before = arc_sides(h, e.pole, np.arange(len(h.ea)))
+    for mine, plain in [(e.t, t), (e.pole, pole), (e.saddle, saddle), (mine_after, after_f),
+                        (mine_before, before_g), (e.inset, inset), (e.tip_distance, tip),
+                        (e.along, tau * L), (e.saddles, rows), (e.spoint, s[rows]),
+                        (e.sheight, height[rows]), (e.toward_f, cross(s, pole)[rows])]:
         assert np.array_equal(mine, plain)

@@ -224,7 +224,7 @@ def test_a_surface_wound_twice_is_refused_by_its_solid_angle(precheck):
     assert np.all(omega > 0) and omega.sum() == pytest.approx(8 * np.pi, rel=1e-12)
     # the other checks pass: closed, the origin inside every plane, every edge convex
     twin = convex.half_edge_twins(F, len(V))
-    tn, off, _, _ = convex._planes(V, F)
+    tn, off, _ = convex._planes(V, F)
     assert twin is not None and off.min() > 0.1
     assert convex._beyond(V, F, tn, off, twin).max() < 0
     assert convex.own_hull(V, F, 1e-12) is None

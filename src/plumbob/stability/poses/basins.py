@@ -95,7 +95,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
         standing = standing_faces(roller, group)
         count = np.count_nonzero(standing)
         return np.where(standing, 4 * np.pi / count, 0.0), count == 1
-    s = eg3.spoint[sad]
+    s = eg3.spoint[eg3.saddle_rows(sad)]
     # two traces per saddle: into the regions of both its ends
     v = np.concatenate((h.ea[sad], h.eb[sad]))
     p = np.concatenate((s, s))

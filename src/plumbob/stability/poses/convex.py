@@ -41,12 +41,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...blockwise import blockwise
 from ...errors import GeometryError
 from ...mesh.sorting import lex_order, stable_order
 from ...mesh.winding import solid_angle
 from .vectors import cross, dot
 
-__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
+__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull", "corner_levels",
            "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
 
 #: a surface proved convex by :func:`own_hull` subtends 4π from the centre to within this,
@@ -59,9 +60,8 @@ class HullMesh(NamedTuple):
     :func:`~.hull.build_hull3` need not measure it again).
 
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
-    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. corners:
-    (F, 3, 3) each triangle's corners. level: (F, 3) each corner's height along its own
-    triangle's normal. beyond: (3F,) per half-edge,
+    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. level: (F, 3)
+    each corner's height along its own triangle's normal. beyond: (3F,) per half-edge,
     the height of the far corner of the triangle across it over this triangle's plane
     (≤ 0 to rounding error on a convex hull).
     """
@@ -72,7 +72,6 @@ class HullMesh(NamedTuple):
     offsets: np.ndarray
     twins: np.ndarray
     area: np.ndarray
-    corners: np.ndarray
     level: np.ndarray
     beyond: np.ndarray
 
@@ -133,55 +132,69 @@ def _normal_order(normals: np.ndarray) -> np.ndarray:
     return lex_order([q[:, 2], q[:, 1], q[:, 0]])
 
 
-def _planes(P: np.ndarray, tri: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Unit normals, offsets (the plane n·x = offset), the lengths of the raw cross
-    products (twice the areas) and the corners (F, 3, 3)."""
-    return _corner_planes(np.take(P, tri, axis=0))
+def _planes(P: np.ndarray, tri: np.ndarray, solid_angles: bool = False
+            ) -> tuple[np.ndarray, ...]:
+    """Unit normals, offsets (the plane n·x = offset) and the lengths of the raw cross
+    products (twice the areas) of the triangles ``tri`` through ``P``; with
+    ``solid_angles``, also the solid angle each subtends from the origin. Block by
+    block: the corners are never gathered for all triangles at once."""
+    def rows(r: slice) -> tuple[np.ndarray, ...]:
+        C = np.take(P, tri[r], axis=0)
+        planes = _corner_planes(C)
+        if not solid_angles:
+            return planes
+        return (*planes, solid_angle(C[:, 0], C[:, 1], C[:, 2]))
+
+    return blockwise(len(tri), rows)
 
 
-def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_planes` of triangles given by their corners ``C`` (F, 3, 3)."""
     cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
     norm = np.sqrt(dot(cr, cr))  # = np.linalg.norm(cr, axis=1), bit for bit
     with np.errstate(invalid="ignore", divide="ignore"):
         tn = cr / norm[:, None]
     off = dot((C[:, 0] + C[:, 1] + C[:, 2]) / 3, tn)  # = C.mean(axis=1), bit for bit
-    return tn, off, norm, C
+    return tn, off, norm
+
+
+def corner_levels(P: np.ndarray, tri: np.ndarray, normals: np.ndarray) -> np.ndarray:
+    """(F, 3) the heights of the corners of the triangles ``tri`` through ``P`` along
+    ``normals`` (F, 3), one normal per triangle: block by block."""
+    def rows(r: slice) -> tuple[np.ndarray]:
+        return (dot(np.take(P, tri[r], axis=0), normals[r][:, None, :]),)
+
+    return blockwise(len(tri), rows)[0]
 
 
 def _beyond(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
             twin: np.ndarray) -> np.ndarray:
     """(3F,) per half-edge, the height of the far corner of the triangle across it over
     this triangle's plane (≤ 0 to rounding error where the edge is convex)."""
-    far = tri[:, [2, 0, 1]].ravel()[twin]  # the corner across each half-edge
-    return (dot(np.take(P, far, axis=0).reshape(-1, 3, 3), tn[:, None, :])
-            - off[:, None]).ravel()
+    far = tri[:, [2, 0, 1]].ravel()  # the corner of each half-edge's triangle across it
+
+    def rows(r: slice) -> tuple[np.ndarray]:
+        corners = np.take(far, twin[3 * r.start:3 * r.stop])
+        far_points = np.take(P, corners, axis=0).reshape(-1, 3, 3)
+        return (dot(far_points, tn[r][:, None, :]) - off[r][:, None],)
+
+    beyond, = blockwise(len(tri), rows)
+    return beyond.ravel()
 
 
 def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
-            area: np.ndarray, C: np.ndarray,
-            known: tuple[np.ndarray, np.ndarray] | None = None) -> HullMesh | None:
+            area: np.ndarray) -> HullMesh | None:
     """The triangles in an order of their own geometry (by normal), not the hull
     library's — so faces, and poses of equal probability, come out in the same order
-    from either library — with their twins and heights; None when not closed.
-
-    ``known``: the twins and :func:`_beyond` of ``tri`` as given, when measured
-    already: renumbered, not searched again (a closed 2-manifold's twins are unique)."""
+    from either library — with their twins, heights and corner levels; None when not
+    closed."""
     order = _normal_order(tn)
-    tri, tn, off, area, C = (np.take(a, order, axis=0) for a in (tri, tn, off, area, C))
-    if known is None:
-        twin = half_edge_twins(tri, len(P))
-        if twin is None:
-            return None
-        beyond = _beyond(P, tri, tn, off, twin)
-    else:
-        first = np.empty_like(order)  # each old triangle's first new half-edge
-        first[order] = np.arange(0, 3 * len(order), 3)
-        renamed = (first[:, None] + np.arange(3)).ravel()  # old half-edge → new
-        twin = renamed[known[0].reshape(-1, 3)[order].ravel()]
-        beyond = known[1].reshape(-1, 3)[order].ravel()
-    return HullMesh(P, tri, tn, off, twin, area, C, dot(C, tn[:, None, :]), beyond)
+    tri, tn, off, area = (np.take(a, order, axis=0) for a in (tri, tn, off, area))
+    twin = half_edge_twins(tri, len(P))
+    if twin is None:
+        return None
+    beyond = _beyond(P, tri, tn, off, twin)
+    return HullMesh(P, tri, tn, off, twin, area, corner_levels(P, tri, tn), beyond)
 
 
 SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries
@@ -201,7 +214,7 @@ def may_be_own_hull(P: np.ndarray, corners: np.ndarray, eps: float) -> bool:
     more than ``eps`` outside. A mesh that is not convex almost always fails it, in well
     under a millisecond (the whole certificate takes tens on 100k triangles, more than
     the hull of such a mesh)."""
-    tn, off, _, _ = _corner_planes(np.asarray(corners, dtype=np.float64))
+    tn, off, _ = _corner_planes(np.asarray(corners, dtype=np.float64))
     Q = P[:: max(1, len(P) // SAMPLE_POINTS)]
     with np.errstate(invalid="ignore"):
         return bool(np.all(off > eps) and np.all((Q @ tn.T).max(axis=0) - off <= eps))
@@ -215,8 +228,9 @@ def own_hull(P: np.ndarray, tri: np.ndarray, eps: float) -> HullMesh | None:
     the surface could lie outside it). Returns what :func:`hull_mesh` would for the
     hull of ``P``: triangles ordered by normal, outward, with their twins.
 
-    The proof (``tri`` wound outward, the centre of mass at the origin), cheapest
-    checks first, so a mesh that is not convex costs little:
+    The proof (``tri`` wound outward, the centre of mass at the origin); the planes and
+    solid angles are measured in one pass, the twins only for a mesh that passes (1)
+    and (4), so a mesh that is not convex costs little:
 
     1. *The origin strictly inside every triangle's plane*: every plane offset is above
        ``eps`` (a degenerate triangle, with no plane, fails). Each triangle then
@@ -260,21 +274,17 @@ def own_hull(P: np.ndarray, tri: np.ndarray, eps: float) -> HullMesh | None:
         return None  # not convex, found cheaply
     if np.count_nonzero(np.bincount(tri.ravel(), minlength=n)) != n:
         return None  # a point off the surface
-    tn, off, norm, C = _planes(P, tri)
+    tn, off, norm, omega = _planes(P, tri, solid_angles=True)
     with np.errstate(invalid="ignore"):
         if not np.all(off > eps):  # NaN (a degenerate triangle) fails too
             return None  # (1)
-    twin = half_edge_twins(tri, n)
-    if twin is None:
-        return None  # (2)
-    beyond = _beyond(P, tri, tn, off, twin)
-    if not float(beyond.max()) <= eps:
-        return None  # (3)
-    omega = solid_angle(C[:, 0], C[:, 1], C[:, 2])
     if not (np.all(omega > 0)
             and abs(float(omega.sum()) - 4 * math.pi) <= SOLID_ANGLE_CLOSURE * 4 * math.pi):
         return None  # (4) wound about the centre more than once, or not at all
-    return _finish(P, tri, tn, off, 0.5 * norm, C, (twin, beyond))
+    found = _finish(P, tri, tn, off, 0.5 * norm)  # its twins: None if not closed (2)
+    if found is None or not float(found.beyond.max()) <= eps:
+        return None  # (2), (3)
+    return found
 
 
 def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
@@ -286,13 +296,13 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
     tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(tri) < 4 or len(P) < 4:
         return None
-    tn, off, norm, C = _planes(P, tri)
+    tn, off, norm = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
     area = 0.5 * norm
     if not float(np.dot(off, area)) / 3 > eps * area.sum():
         return None  # no volume: flat points make a two-sided polygon, not a solid
-    found = _finish(P, tri, tn, off, area, C)
+    found = _finish(P, tri, tn, off, area)
     # every edge convex: the far corner of the triangle across it lies under this one's plane
     if found is None or np.max(found.beyond) > eps:
         return None
@@ -317,7 +327,7 @@ def _qhull(X: np.ndarray) -> HullMesh:
     tri[flip] = tri[flip][:, [0, 2, 1]]
     C = np.take(X, tri, axis=0)
     cr = cross(C[:, 1] - C[:, 0], C[:, 2] - C[:, 0])
-    found = _finish(X, tri, tn, off, 0.5 * np.sqrt(dot(cr, cr)), C)
+    found = _finish(X, tri, tn, off, 0.5 * np.sqrt(dot(cr, cr)))
     if found is None:
         raise GeometryError("the convex hull is not a closed surface (qhull failure)")
     return found

@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from .hull import Hull3
-from .rolling import Edges3, step
+from .rolling import Edges3, arc_sides, step
 from .vectors import around, dot, unit
 
 __all__ = ["FAN_CORNERS", "prefix_products", "Fans"]
@@ -119,7 +119,8 @@ class Fans:
             M = w[:, :, None] * k[:, None, :]
             M -= dot(k, w)[:, None, None] * np.eye(3)
             q = (prefix_products(M) @ p)
-            q *= np.sign(dot(q, eg3.after_f[ks] + eg3.before_g[ks]))[:, None]
+            after_f, before_g = arc_sides(h, k, ks)
+            q *= np.sign(dot(q, after_f + before_g))[:, None]
             q = unit(q)
             starts = np.concatenate((p[None, :], q[:-1]))
             prev = np.concatenate(([entered], ks[:-1]))

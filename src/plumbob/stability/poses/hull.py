@@ -14,14 +14,13 @@ Everything is relative to the centre of mass, which sits at the origin.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import cached_property
 
 import numpy as np
 
 from ...errors import GeometryError
 from ...mesh.sorting import stable_order
 from ...mesh.topology import connected_components
-from .convex import HullMesh, hull_mesh
+from .convex import HullMesh, corner_levels, hull_mesh
 from .vectors import dot, row_max, row_min, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
@@ -38,9 +37,6 @@ class Hull3:
         about its normal) and eg on the right. Sorted by ``ea``.
     start, degree: per point, its out-edges are ``start .. start + degree``.
     twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
-
-    The rows the edge geometry and the roller both gather (each edge's start, vector,
-    squared length and left face's normal) are gathered once, when first asked for.
     """
 
     X: np.ndarray
@@ -55,26 +51,6 @@ class Hull3:
     degree: np.ndarray
     twin: np.ndarray
     und: np.ndarray
-
-    @cached_property
-    def edge_start(self) -> np.ndarray:
-        """(E, 3) ``X[ea]``."""
-        return np.take(self.X, self.ea, axis=0)
-
-    @cached_property
-    def edge_vector(self) -> np.ndarray:
-        """(E, 3) ``X[eb] - X[ea]``."""
-        return np.take(self.X, self.eb, axis=0) - self.edge_start
-
-    @cached_property
-    def edge_length2(self) -> np.ndarray:
-        """(E,) ``|X[eb] - X[ea]|²``."""
-        return dot(self.edge_vector, self.edge_vector)
-
-    @cached_property
-    def left_normal(self) -> np.ndarray:
-        """(E, 3) ``normals[ef]``."""
-        return np.take(self.normals, self.ef, axis=0)
 
 
 def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray
@@ -209,11 +185,11 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
     comp = connected_components(m, i, j)
     nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
-    level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])  # along the face's normal
+    level = corner_levels(X, tri, np.take(normals, comp, axis=0))  # along the face's normal
     comp, bent, nfaces = _split_bent(comp, nfaces, level, eps)
     if bent.any():
         normals = _weighted_normals(comp, nfaces, tn, area)
-        level = dot(hm.corners, np.take(normals, comp, axis=0)[:, None, :])
+        level = corner_levels(X, tri, np.take(normals, comp, axis=0))
     areas = np.bincount(comp, weights=area, minlength=nfaces)
 
     # --- face boundaries: chains of half-edges between different faces

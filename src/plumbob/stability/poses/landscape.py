@@ -125,7 +125,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     def grouping(h: Hull3, roller: Roller, eg3: Edges3, sad: np.ndarray) -> np.ndarray:
         stable = np.flatnonzero(roller.stable)
         fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
-        land = _candidates(h, stable, np.zeros(len(stable)), fa, fb, eg3.sheight[sad], tol,
+        land = _candidates(h, stable, np.zeros(len(stable)), fa, fb, eg3.sheight[eg3.saddle_rows(sad)], tol,
                            "exact", 0.0)
         provisional.append(land)
         fam = families_of(land)
@@ -164,7 +164,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
         except StabilityError:
             pass  # the true centre's rolls are degenerate too: keep the nudged answer
     sinks = np.flatnonzero(stable & (area > 0))
-    return _candidates(h0, sinks, area[sinks], fa, fb, eg3.sheight[sad], tol, method, error)
+    return _candidates(h0, sinks, area[sinks], fa, fb, eg3.sheight[eg3.saddle_rows(sad)], tol, method, error)
 
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:

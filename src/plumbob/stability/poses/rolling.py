@@ -19,11 +19,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...blockwise import blockwise
 from ...errors import StabilityError
 from .hull import Hull3
 from .vectors import cross, dot, expand, group_first, unique, unit
 
-__all__ = ["Edges3", "edge_geometry", "first_least_sorted", "step", "Roller"]
+__all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step", "Roller"]
 
 _THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are its own arc
 _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
@@ -32,41 +33,100 @@ _CORNER = 5e-19  # 1 − cos of the angle (1e-9 rad) within which a roll is at a
 
 @dataclass(frozen=True)
 class Edges3:
-    """Per directed edge: geometry for the Gauss-map flow."""
+    """Per directed edge of a hull: the Gauss-map arc the flow crosses, and where the
+    centre's foot on the edge's left face lies against the edge (for the roll).
+
+    Only what every edge needs is kept for every edge. The saddle's direction and
+    height are kept for the saddle edges (``saddles``), the rows the traces and rolls
+    ask them for; the arc's ends are made for the edges a step tries
+    (:func:`arc_sides`).
+    """
 
     pole: np.ndarray  # (E, 3) unit edge direction: the arc n_F → n_G turns about it
     t: np.ndarray  # (E,) foot of c on the edge's line, as a fraction from a to b
     saddle: np.ndarray  # (E,) bool: the arc holds a saddle
-    spoint: np.ndarray  # (E, 3) unit direction from c square to the edge line
-    sheight: np.ndarray  # (E,) |c to the edge line|, m
-    after_f: np.ndarray  # (E, 3) pole × n_F: q·after_f ≥ 0 when q lies past n_F on the arc
-    before_g: np.ndarray  # (E, 3) n_G × pole: q·before_g ≥ 0 when q lies before n_G
-    toward_f: np.ndarray  # (E, 3) spoint × pole: q·toward_f > 0 when q lies on n_F's side
+    inset: np.ndarray  # (E,) how far the foot of c on face F lies inside this edge, m
+    tip_distance: np.ndarray  # (E,) from that foot to the nearest point of the edge, m
+    along: np.ndarray  # (E,) that nearest point, as a distance from a, m
+    saddles: np.ndarray  # (S,) the directed edges holding a saddle, ascending
+    spoint: np.ndarray  # (S, 3) unit direction from c square to the edge line
+    sheight: np.ndarray  # (S,) |c to the edge line|, m
+    toward_f: np.ndarray  # (S, 3) spoint × pole: q·toward_f > 0 when q lies on n_F's side
+
+    def saddle_rows(self, edges: np.ndarray) -> np.ndarray:
+        """The rows of ``spoint``, ``sheight`` and ``toward_f`` for the saddle edges
+        ``edges``."""
+        return np.searchsorted(self.saddles, edges)
+
+    def toward_f_at(self, edges: np.ndarray) -> np.ndarray:
+        """(k, 3) ``toward_f`` of ``edges``; zero rows for edges holding no saddle."""
+        if len(self.saddles) == 0:
+            return np.zeros((len(edges), 3))
+        rows = np.minimum(self.saddle_rows(edges), len(self.saddles) - 1)
+        found = np.take(self.saddles, rows) == edges
+        return np.where(found[:, None], np.take(self.toward_f, rows, axis=0), 0.0)
+
+
+def arc_sides(h: Hull3, pole: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For directed edges ``edges`` with poles ``pole`` (k, 3): ``after_f = pole × n_F``
+    (q·after_f ≥ 0 when q lies past n_F on the arc) and ``before_g = n_G × pole``
+    (q·before_g ≥ 0 when q lies before n_G)."""
+    return (cross(pole, np.take(h.normals, np.take(h.ef, edges), axis=0)),
+            cross(np.take(h.normals, np.take(h.eg, edges), axis=0), pole))
+
+
+def _foot_direction(A: np.ndarray, D: np.ndarray, t: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """The unit direction from the centre square to the lines ``A + t D`` (k, 3), at
+    their feet ``t``, and its length (m)."""
+    s = t[:, None] * D
+    s += A  # the foot A + t D ...
+    height = np.sqrt(dot(s, s))  # = np.linalg.norm(s, axis=1), bit for bit
+    s /= height[:, None]  # ... and its direction
+    return s, height
 
 
 def edge_geometry(h: Hull3) -> Edges3:
-    """The Gauss-map arc of every directed edge of ``h``, and whether it holds a saddle:
-    the direction from the centre square to the edge's line lies on the arc and the
-    foot lies strictly inside the edge."""
-    A, D, L2 = h.edge_start, h.edge_vector, h.edge_length2
-    t = dot(A, D)
-    np.negative(t, out=t)
-    t /= L2  # -(A·D) / |D|²
-    pole = D / np.sqrt(L2)[:, None]
-    s = t[:, None] * D
-    s += A  # the foot A + t D ...
-    sheight = np.sqrt(dot(s, s))  # = np.linalg.norm(s, axis=1), bit for bit
-    s /= sheight[:, None]  # ... and its direction
-    after_f = cross(pole, h.left_normal)
-    # the reversed edge's pole is −pole (exactly) and its faces are swapped, so its
-    # after_f is this edge's n_G × pole, bit for bit
-    before_g = np.take(after_f, h.twin, axis=0)
-    odd = np.take(h.ef, h.twin) != h.eg  # an edge a degenerate hull has twice: no mirror
-    if odd.any():
-        before_g[odd] = cross(h.normals[h.eg[odd]], pole[odd])
-    in_arc = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
-    saddle = (t > 0) & (t < 1) & in_arc
-    return Edges3(pole, t, saddle, s, sheight, after_f, before_g, cross(s, pole))
+    """The Gauss-map arc of every directed edge of ``h``, whether it holds a saddle (the
+    direction from the centre square to the edge's line lies on the arc and the foot
+    lies strictly inside the edge), and the foot of the centre on the edge's left face
+    against the edge. Row by row, in blocks (:func:`~plumbob.blockwise.blockwise`)."""
+    X, N, H = h.X, h.normals, h.heights
+    ea, eb, ef, eg = h.ea, h.eb, h.ef, h.eg
+
+    def rows(r: slice) -> tuple[np.ndarray, ...]:
+        A = np.take(X, ea[r], axis=0)
+        D = np.take(X, eb[r], axis=0)
+        D -= A
+        L2 = dot(D, D)
+        t = dot(A, D)
+        np.negative(t, out=t)
+        t /= L2  # -(A·D) / |D|²
+        L = np.sqrt(L2)
+        pole = D / L[:, None]
+        s, _ = _foot_direction(A, D, t)
+        n = np.take(N, ef[r], axis=0)
+        after_f, before_g = cross(pole, n), cross(np.take(N, eg[r], axis=0), pole)
+        saddle = (t > 0) & (t < 1) & (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
+        # the centre's foot on face F: how far inside this edge, and its nearest point
+        foot = np.take(H, ef[r])[:, None] * n
+        rel = foot - A
+        inset = dot(cross(D, rel), n) / L  # signed, positive inside
+        tau = np.clip(dot(rel, D) / L2, 0.0, 1.0)
+        off = tau[:, None] * D
+        off += A
+        off -= foot  # A + tau D − foot
+        tip_distance = np.sqrt(dot(off, off))  # = np.linalg.norm(off, axis=1), bit for bit
+        return pole, t, saddle, inset, tip_distance, tau * L
+
+    pole, t, saddle, inset, tip, along = blockwise(len(ea), rows)
+    saddles = np.flatnonzero(saddle)
+    A = np.take(X, np.take(ea, saddles), axis=0)
+    D = np.take(X, np.take(eb, saddles), axis=0)
+    D -= A
+    s, height = _foot_direction(A, D, np.take(t, saddles))
+    toward_f = cross(s, np.take(pole, saddles, axis=0))
+    return Edges3(pole, t, saddle, inset, tip, along, saddles, s, height, toward_f)
 
 
 def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.ndarray,
@@ -84,7 +144,8 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     theta = np.arctan2(-a, b)
     theta = np.where(theta <= _THETA_EPS, theta + np.pi, theta)
     q = np.cos(theta)[:, None] * pr + np.sin(theta)[:, None] * tr
-    miss = np.maximum(0.0, -np.minimum(dot(q, eg3.after_f[cand]), dot(q, eg3.before_g[cand])))
+    after_f, before_g = arc_sides(h, k, cand)
+    miss = np.maximum(0.0, -np.minimum(dot(q, after_f), dot(q, before_g)))
     ok = (theta > _THETA_EPS) & (theta <= limit[rows] + 1e-12)
     return np.where(ok, theta, np.inf), miss, q
 
@@ -153,26 +214,17 @@ class Roller:
     def __init__(self, h: Hull3, eg3: Edges3, W: np.ndarray, tol: float) -> None:
         self.h, self.eg3, self.W, self.tol = h, eg3, W, tol
         nF = len(h.normals)
-        A, D, n = h.edge_start, h.edge_vector, h.left_normal
-        self.length = np.sqrt(h.edge_length2)
-        self.foot = np.take(h.heights, h.ef)[:, None] * n
-        rel = self.foot - A
-        s = dot(cross(D, rel), n) / self.length  # signed, positive inside
         self.margin = np.full(nF, np.inf)
-        np.minimum.at(self.margin, h.ef, s)
+        np.minimum.at(self.margin, h.ef, eg3.inset)
         self.stable = self.margin > tol
         self._memo = np.where(self.stable, np.arange(nF), -1)  # sinks found so far
         # an unstable face tips over the point of its boundary nearest the foot
-        L = self.length
-        tau = np.clip(dot(rel, D) / (L * L), 0.0, 1.0)
-        off = tau[:, None] * D
-        off += A
-        off -= self.foot  # A + tau D − foot
-        dist = np.sqrt(dot(off, off))  # = np.linalg.norm(off, axis=1), bit for bit
-        tip = group_first(h.ef, dist, nF)
+        tip = group_first(h.ef, eg3.tip_distance, nF)
         self.tip_edge = tip
-        along = (tau * L)[tip]
-        self.pivots = ~self.stable & ~((along > tol) & (along < L[tip] - tol))
+        along = eg3.along[tip]
+        D = np.take(h.X, np.take(h.eb, tip), axis=0) - np.take(h.X, np.take(h.ea, tip), axis=0)
+        length = np.sqrt(dot(D, D))
+        self.pivots = ~self.stable & ~((along > tol) & (along < length - tol))
         self.pivot_vertex = np.where(along <= tol, h.ea[tip], h.eb[tip])
         # rolls over edges chain faces: jump along them to a stable face or a pivot
         over = np.where(self.stable | self.pivots, np.arange(nF), h.eg[tip])
@@ -249,7 +301,8 @@ class Roller:
             sliding = ~lost & (eg3.t[e] < 1)
             # on a sliding arc: to the side of its saddle, or to its lower end
             fa, ga = h.ef[e], h.eg[e]
-            towards_f = np.where(eg3.saddle[e], dot(q, eg3.toward_f[e]) > 0,
+            towards_f = np.where(eg3.saddle[e],
+                                 dot(q, eg3.toward_f_at(e)) > 0,
                                  h.heights[fa] <= h.heights[ga])
             slid = rolling[sliding]
             cur[slid] = np.where(towards_f, fa, ga)[sliding]
