@@ -30,6 +30,7 @@ import numpy as np
 
 from ..errors import StabilityError
 from ..limits import MAX_SAMPLES, check_count
+from ..tolerances import size_of
 from .targets import Target
 
 __all__ = ["BallastPlan", "plan_ballast", "required_mass", "SHAPES", "ballast_body"]
@@ -140,7 +141,7 @@ def _hull_optimum(region, goal: Target, mass: float,
     if result.status != 0 or not result.x[0] > 0:
         return None
     point = result.x[1:] / result.x[0]
-    size = float(np.linalg.norm(np.ptp(hull.points, axis=0)))
+    size = size_of(hull.points)
     point = np.where(np.abs(point) < 1e-12 * size, 0.0, point) + 0.0  # round-off of a vertex
     if not region.contains(point[None])[0]:
         return None  # the hull's best point is outside a non-convex region

@@ -38,6 +38,7 @@ from ..bodies.solid import MeshSolid
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
 from ..results import Result
+from ..tolerances import size_of
 from .cells import Cells, box_union, grid_cells, manifold_rows
 
 __all__ = ["HollowResult", "WrittenHollow", "hollow", "write_hollow", "CELLS_ALONG"]
@@ -204,7 +205,7 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     outer_mesh = MeshSolid(triangles, density)
     before = outer_mesh.mass_properties()
     rho = before.mass / before.measure
-    size = float(np.linalg.norm(np.ptp(triangles.reshape(-1, 3), axis=0)))
+    size = size_of(triangles.reshape(-1, 3))
     h = float(step) if step is not None else min(wall / 2, size / 64)
     # float32 files move vertices by ~1e-7 of the size: keep the exact walls that much thicker
     offset = inward_offset(body, wall * (1 + 1e-6) + 1e-6 * size, step=h, extra=h)

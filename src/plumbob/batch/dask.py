@@ -17,6 +17,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
+from ..blockwise import set_workers
 from .extra import require
 from .options import Options
 from .rows import FileResult, failure, lost_row, process_file
@@ -25,7 +26,9 @@ __all__ = ["run_dask", "dask_task"]
 
 
 def dask_task(path: str, shown: str, options: Options) -> FileResult:
-    """One file on a Dask worker, within the time limit."""
+    """One file on a Dask worker, within the time limit (the worker's threads share its
+    cores already: plumbob's own blocks run in the task's thread alone)."""
+    set_workers(1)
     if options.timeout is None:
         return process_file(path, options, shown)
     box: list[FileResult] = []

@@ -17,6 +17,7 @@ import time
 from collections import deque
 from collections.abc import Iterator
 
+from ..blockwise import set_workers
 from .options import Options
 from .rows import FileResult, lost_row, process_file
 
@@ -29,6 +30,7 @@ Task = tuple[int, str, str]
 def _serve(conn, options: Options) -> None:
     """A worker's life: measure each path it is sent until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
+    set_workers(1)  # the pool's processes share the cores already: no threads of its own
     while True:
         try:
             task = conn.recv()

@@ -18,7 +18,7 @@ from ..arguments import vector
 from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 from ..materials import check_density
-from ..tolerances import contact_tolerance
+from ..tolerances import contact_tolerance, size_of
 
 __all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE",
            "lowest", "contact_sampling"]
@@ -142,8 +142,7 @@ class Body(ABC):
     @property
     def size(self) -> float:
         """Diagonal of the bounding box of the hull points, m."""
-        pts = self.hull_points()
-        return float(np.linalg.norm(np.ptp(pts, axis=0)))
+        return size_of(self.hull_points())
 
     def with_default_density(self, density: float) -> Body:
         """This body with ``density`` wherever no density was given."""

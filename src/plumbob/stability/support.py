@@ -37,7 +37,7 @@ import numpy as np
 from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
-from ..tolerances import HULL_ROUND_OFF
+from ..tolerances import HULL_ROUND_OFF, size_of
 from .planar import drop_collinear, planar_hull
 
 __all__ = [
@@ -186,7 +186,7 @@ def body_size(body) -> float:
     """Diagonal of the bounding box of the body's hull points, m."""
     if isinstance(body, Body):
         return float(body.size)
-    return float(np.linalg.norm(np.ptp(hull_points(body), axis=0)))
+    return size_of(hull_points(body))
 
 
 def body_dim(body, props: MassProperties) -> int:

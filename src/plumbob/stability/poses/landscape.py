@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import StabilityError
-from ...tolerances import HULL_ROUND_OFF
+from ...tolerances import HULL_ROUND_OFF, size_of
 from ..planar import drop_collinear, planar_hull
 from .basins import basins3
 from .faces import physical_faces
@@ -110,7 +110,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     its representative (first try only: a nudged centre traces every basin).
     ``surface`` (m, 3): the body's own triangles as indices into ``X``, taken for the hull
     when they bound a convex body (:func:`.convex.own_hull`)."""
-    size = float(np.linalg.norm(np.ptp(X, axis=0)))
+    size = size_of(X)
     eps = HULL_ROUND_OFF * size
     h0 = build_hull3(X, eps, surface)  # surface: the body's own mesh, used if convex
     inside = float(h0.heights.min())

@@ -18,7 +18,7 @@ from ...arguments import answering, finite_result, instance, non_negative, optio
 from ...bodies.solid import MeshSolid
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
-from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING
+from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
 from ...tolerances import sampling_tolerance as sampling
 from ...units import STANDARD_GRAVITY
 from ..rocking import rocking
@@ -63,7 +63,7 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
     rise = np.maximum(0.0, exit_height - land.heights[fam.rep])
     barrier = np.where(np.isfinite(exit_height), mass * g * rise, np.nan)
     order = np.lexsort((land.heights[fam.rep], -prob))
-    size = float(np.linalg.norm(np.ptp(land.points, axis=0)))
+    size = size_of(land.points)
     poses = []
     for f in order.tolist():
         r = int(fam.rep[f])
@@ -223,7 +223,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         what = "a volume" if X.shape[1] == 3 else "an area"
         raise GeometryError(f"resting poses need points spanning {what}: at least "
                             f"{X.shape[1] + 1}, and this body has {len(X)}")
-    size = float(np.linalg.norm(np.ptp(X, axis=0)))
+    size = size_of(X)
     if tolerance is None:
         tol = max(CONTACT * size, _FLOAT32_ULPS * float(np.abs(X).max()))
     else:
