@@ -1,7 +1,9 @@
 """Benchmark: ``plumbob poses`` as a whole process, against trimesh and against the floor.
 
 Per mesh (binary STL, about 10 000 and 100 000 triangles), the median of 3
-whole-process wall times of the processes below. plumbob's bytecode is compiled
+whole-process wall times of the processes below, run in turns (plumbob, floor,
+trimesh, then again), so that a machine whose speed drifts during the run slows all
+three alike. plumbob's bytecode is compiled
 first (``compileall`` on ``src/plumbob``), as an installed package has it, like the
 installed libraries the other processes import: with ``PYTHONDONTWRITEBYTECODE`` set
 (as in this project's sandbox) each plumbob process would otherwise recompile every
@@ -106,16 +108,33 @@ def capsule(faces: int) -> np.ndarray:
     return make(segments)
 
 
+def _env() -> dict[str, str]:
+    return dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"))
+
+
+def run_once(args: list[str]) -> float:
+    """Wall time (s) of one whole process."""
+    start = time.perf_counter()
+    subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                   env=_env())
+    return time.perf_counter() - start
+
+
 def median_process(args: list[str], repeat: int) -> float:
     """Median wall time (s) of a whole process over ``repeat`` runs."""
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"))
-    times = []
+    return statistics.median(run_once(args) for _ in range(repeat))
+
+
+def interleaved_medians(commands: dict[str, list[str]], repeat: int) -> dict[str, float]:
+    """Median wall time (s) of each command over ``repeat`` rounds, the commands taking
+    turns within each round: a machine that slows down or speeds up during the run
+    (other tenants, memory the host reclaims) moves every command's times alike, so the
+    ratios between them stay fair."""
+    times: dict[str, list[float]] = {name: [] for name in commands}
     for _ in range(repeat):
-        start = time.perf_counter()
-        subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                       env=env)
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+        for name, args in commands.items():
+            times[name].append(run_once(args))
+    return {name: statistics.median(ts) for name, ts in times.items()}
 
 
 def profile(path: str, top: int = 14) -> None:
@@ -174,10 +193,12 @@ def hull_times(path: str) -> str:
 
 def run_case(name: str, path: str, faces: int, repeat: int, trimesh: bool,
              prof: bool, hulls: bool = False) -> dict:
-    plumbob = median_process([sys.executable, "-m", "plumbob", "poses", path, "--units", "mm"],
-                             repeat)
-    floor = median_process([sys.executable, "-c", FLOOR, path], repeat)
-    tm = median_process([sys.executable, "-c", TRIMESH, path], repeat) if trimesh else None
+    commands = {"plumbob": [sys.executable, "-m", "plumbob", "poses", path, "--units", "mm"],
+                "floor": [sys.executable, "-c", FLOOR, path]}
+    if trimesh:
+        commands["trimesh"] = [sys.executable, "-c", TRIMESH, path]
+    medians = interleaved_medians(commands, repeat)
+    plumbob, floor, tm = medians["plumbob"], medians["floor"], medians.get("trimesh")
     ratio_tm = f"{tm / plumbob:6.1f}×" if tm else "   —  "
     tm_text = f"{tm:7.2f}" if tm else "     — "
     print(f"{name:<28}{faces:>8,}  {plumbob:7.2f}  {tm_text}  {floor:6.2f}   {ratio_tm}"
