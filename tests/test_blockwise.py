@@ -98,7 +98,7 @@ def test_edge_geometry_in_threaded_blocks_is_the_one_block_answer(seed):
     finally:
         blocks.BLOCK_ROWS, blocks.MIN_THREADED_ROWS = saved
         set_workers(None)
-    for field in one.__dataclass_fields__:
+    for field in one._fields:
         assert np.array_equal(getattr(one, field), getattr(many, field)), field
 
 

@@ -24,8 +24,7 @@ whose "volume" would depend on ``o``.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -37,8 +36,7 @@ __all__ = ["VolumeMoments", "triangle_soup_moments", "mesh_field_moments", "CHUN
 CHUNK = 1 << 12  # triangles per pass: the temporaries (~1 MB) stay in cache
 
 
-@dataclass(frozen=True, eq=False)
-class VolumeMoments:
+class VolumeMoments(NamedTuple):
     """Signed volume moments about ``origin`` plus closure diagnostics.
 
     origin: (3,) m. m0: m³. m1: (3,) m⁴. m2: (3, 3) m⁵.

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import sys
 import warnings
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -41,16 +41,14 @@ ASCII_BLOCK = 1 << 23  # bytes per ASCII read
 MAX_LINE = 1 << 24  # an ASCII STL with no facet end in this many bytes is not one
 
 
-@dataclass(frozen=True, eq=False)
-class StlSolid:
+class StlSolid(NamedTuple):
     """One solid of an STL file: its name (or None) and triangles (n, 3, 3) in file units."""
 
     name: str | None
     triangles: np.ndarray
 
 
-@dataclass(frozen=True, eq=False)
-class StlFile:
+class StlFile(NamedTuple):
     """What an STL file holds: solids, whether it was binary, the largest coordinate
     magnitude (``reach``, file units), the bounding box when it was found while
     parsing (``lo``, ``hi``; ASCII only) and notices about the file itself."""

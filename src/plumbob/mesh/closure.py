@@ -22,7 +22,7 @@ without sorting; only when it fails is the topology built.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -63,8 +63,7 @@ def is_closed(vector_area: np.ndarray, area: float) -> bool:
     return bool(np.linalg.norm(vector_area) <= CLOSURE_TOLERANCE * max(area, 1e-300))
 
 
-@dataclass(frozen=True, eq=False)
-class SurfaceSummary:
+class SurfaceSummary(NamedTuple):
     """What one pass over a triangle soup tells: enough to judge closure and sign.
 
     origin: (3,) m, the point volumes are summed about.
@@ -153,8 +152,7 @@ def edges_pair(triangles: np.ndarray) -> bool:
     return bool(total == 0)
 
 
-@dataclass(frozen=True, eq=False)
-class Holes:
+class Holes(NamedTuple):
     """The loops of unshared edges of a mesh, told apart by whether they span an area.
 
     edges: unshared edges on holes (loops spanning an area). loops: how many holes.

@@ -15,7 +15,7 @@ Errors here name no file: a reader adds its path (see :mod:`plumbob.io.solids`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -33,8 +33,7 @@ __all__ = ["FULL_CHECK_LIMIT", "CheckedSolid", "check_solid"]
 FULL_CHECK_LIMIT = 50_000
 
 
-@dataclass(frozen=True, eq=False)
-class CheckedSolid:
+class CheckedSolid(NamedTuple):
     """A triangle soup found (or made) closed and outward-facing.
 
     triangles: (n, 3, 3) m, closed and wound outward; the input array itself

@@ -7,7 +7,7 @@ jumping (:func:`connected_components`) — no Python loop over triangles.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -17,8 +17,7 @@ from .weld import merge_vertices, weld_near
 __all__ = ["connected_components", "Topology", "mesh_topology"]
 
 
-@dataclass(frozen=True, eq=False)
-class Topology:
+class Topology(NamedTuple):
     """How a triangle soup's faces connect.
 
     vertices: (V, 3) m, merged exact copies. faces: (n, 3) indices, winding as read.
@@ -133,8 +132,7 @@ def mesh_topology(triangles: np.ndarray, tolerance: float = 0.0) -> Topology:
                     welded, moved)
 
 
-@dataclass(frozen=True, eq=False)
-class _Pairing:
+class _Pairing(NamedTuple):
     """Half-edges (h, 2) of the non-degenerate faces, their faces, and their sort by edge."""
 
     half: np.ndarray

@@ -18,7 +18,7 @@ the origin.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -29,8 +29,7 @@ from .vectors import around, cross, dot, expand, unique
 __all__ = ["PhysicalFaces", "physical_faces"]
 
 
-@dataclass(frozen=True)
-class PhysicalFaces:
+class PhysicalFaces(NamedTuple):
     """The physical face of every stable exact face.
 
     sinks: (S,) the stable exact faces. owner, face: (K,) pairs — exact face ``face[k]``

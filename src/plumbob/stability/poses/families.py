@@ -32,7 +32,7 @@ once.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -57,8 +57,7 @@ LEVEL_RIPPLES = 4.0
 CIRCLE_RESIDUAL = 0.02
 
 
-@dataclass(frozen=True)
-class Families:
+class Families(NamedTuple):
     """Per candidate pose its family; per family what it is.
 
     label: (P,) family of each candidate. kind: (F,) ``"face"``, ``"rolling"`` or

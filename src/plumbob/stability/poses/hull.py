@@ -13,7 +13,7 @@ Everything is relative to the centre of mass, which sits at the origin.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -26,8 +26,7 @@ from .vectors import dot, row_max, row_min, unit
 __all__ = ["Hull3", "build_hull3", "shifted"]
 
 
-@dataclass(frozen=True)
-class Hull3:
+class Hull3(NamedTuple):
     """The exact convex hull, relative to the centre of mass (at the origin).
 
     X: (n, 3) hull points (only those with out-edges are vertices).
@@ -228,4 +227,4 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
 
 def shifted(h: Hull3, delta: np.ndarray) -> Hull3:
     """The same hull seen from a centre moved by ``delta``: only heights change."""
-    return replace(h, X=h.X - delta, heights=h.heights - h.normals @ delta)
+    return h._replace(X=h.X - delta, heights=h.heights - h.normals @ delta)

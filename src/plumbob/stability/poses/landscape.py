@@ -15,8 +15,7 @@ The result, a :class:`Landscape`, is all :mod:`.resting` needs to report poses.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -36,8 +35,7 @@ _NUDGE_DIRECTION = np.array([0.5773, 0.2245, 0.7853]) / np.linalg.norm([0.5773, 
 # (a fixed, deterministic direction with no special relation to any axis)
 
 
-@dataclass(frozen=True)
-class Landscape:
+class Landscape(NamedTuple):
     """The height function's landscape over the stable faces (3D) or edges (2D) of the
     exact hull: the candidate poses.
 
@@ -152,7 +150,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     area, roller, eg3, sad, error, grouped = found
     if grouped:  # h is h0: the provisional landscape is the landscape, with its areas
         stable = np.flatnonzero(roller.stable)
-        return replace(provisional[-1], area=area[stable], error=error)
+        return provisional[-1]._replace(area=area[stable], error=error)
     stable = roller.stable
     fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
     if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:

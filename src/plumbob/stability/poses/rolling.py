@@ -15,7 +15,7 @@ arc-crossing step :func:`step`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -31,8 +31,7 @@ _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still 
 _CORNER = 5e-19  # 1 − cos of the angle (1e-9 rad) within which a roll is at an arc's end
 
 
-@dataclass(frozen=True)
-class Edges3:
+class Edges3(NamedTuple):
     """Per directed edge of a hull: the Gauss-map arc the flow crosses, and where the
     centre's foot on the edge's left face lies against the edge (for the roll).
 
