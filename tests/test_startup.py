@@ -157,18 +157,24 @@ def _checked_meshes():
 @pytest.mark.parametrize(("name", "triangles", "reused"), _checked_meshes(),
                          ids=[case[0] for case in _checked_meshes()])
 def test_check_solid_vertices_are_those_a_body_would_weld(name, triangles, reused):
-    """A mesh read from a file is welded once: check_solid hands its vertices to the body
-    only when they are exactly the distinct corners of the triangles it returns."""
+    """A mesh read from a file is welded once: check_solid hands its vertices and the
+    triangles' index into them to the body only when they are exactly what welding the
+    triangles it returns would give."""
     from plumbob.bodies.solid import MeshSolid
     from plumbob.mesh.solid import check_solid
     from plumbob.mesh.weld import merge_vertices
 
     checked = check_solid(triangles)
     assert (checked.vertices is not None) == reused, name
-    expect = merge_vertices(checked.triangles.reshape(-1, 3))[0]
-    body = MeshSolid(checked.triangles, checked=True, vertices=checked.vertices)
+    assert (checked.index is not None) == reused, name
+    expect, expect_index = merge_vertices(checked.triangles.reshape(-1, 3))
+    body = MeshSolid(checked.triangles, checked=True, vertices=checked.vertices,
+                     index=checked.index)
     got = body.hull_points()
     assert got.dtype == expect.dtype and np.array_equal(got, expect), name
+    points, index = body.welded  # the check's weld, index and all, when it has one
+    assert np.array_equal(points, expect) and index.dtype == np.int64, name
+    assert np.array_equal(index, expect_index.reshape(-1, 3)), name
     moved = body.transformed(np.eye(3), np.array([1.0, 0.0, 0.0]))
     moved_expect = merge_vertices(moved.triangles.reshape(-1, 3))[0]  # not carried over
     assert np.array_equal(moved.hull_points(), moved_expect)

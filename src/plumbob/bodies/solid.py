@@ -96,6 +96,8 @@ class MeshSolid(_UniformSolid):
     vertices: (init only) the triangles' distinct corners as
         :func:`~plumbob.mesh.weld.merge_vertices` gives them, when a reader's check has
         them already (:attr:`plumbob.mesh.CheckedSolid.vertices`): not welded again.
+    index: (init only) with ``vertices``, each triangle's corners as rows of them
+        (:attr:`plumbob.mesh.CheckedSolid.index`): :attr:`welded` without a weld.
     """
 
     triangles: np.ndarray
@@ -107,8 +109,9 @@ class MeshSolid(_UniformSolid):
     moments: VolumeMoments | None = field(default=None, repr=False)
     checked: bool = field(default=False, repr=False)
     vertices: InitVar[np.ndarray | None] = None
+    index: InitVar[np.ndarray | None] = None
 
-    def __post_init__(self, vertices: np.ndarray | None) -> None:
+    def __post_init__(self, vertices: np.ndarray | None, index: np.ndarray | None) -> None:
         tri = np.asarray(self.triangles)
         if tri.dtype.kind in "iu":
             tri = tri.astype(float)
@@ -129,6 +132,10 @@ class MeshSolid(_UniformSolid):
         if vertices is not None:  # welded already (by check_solid): not again
             vertices.setflags(write=False)
             self.__dict__["_distinct_vertices"] = vertices
+            if index is not None and index.shape == (len(tri), 3):
+                index = index.astype(np.int64, copy=True)
+                index.setflags(write=False)
+                self.__dict__["welded"] = (vertices, index)
 
     def mass_properties(self) -> MassProperties:
         m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)

@@ -44,6 +44,8 @@ class CheckedSolid(NamedTuple):
     vertices: the distinct corners of ``triangles`` (V, 3) float64, exactly as
         :func:`~plumbob.mesh.weld.merge_vertices` gives them, when the check welded them
         on the way (so a body need not weld them again), else None.
+    index: (n, 3) int64, each triangle's corners as rows of ``vertices`` (the index
+        :func:`~plumbob.mesh.weld.merge_vertices` gives), when ``vertices`` is known.
     """
 
     triangles: np.ndarray
@@ -51,6 +53,7 @@ class CheckedSolid(NamedTuple):
     moments: VolumeMoments | None
     surface: SurfaceSummary
     vertices: np.ndarray | None = None
+    index: np.ndarray | None = None
 
 
 def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | None = None,
@@ -162,10 +165,11 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     # The topology's vertices are the input's distinct corners; they are the output's
     # too unless a weld or a repair changed the corners or flat shells were dropped.
     known = topo.vertices if not (topo.welded or found.loops or len(faces) != n) else None
+    index = faces if known is not None else None
     if not changed and faces is not before:
         # only whole shells turned: reuse the input's dtype (float32 stays float32)
         same_dtype = vertices[faces].astype(triangles.dtype, copy=False)
-        return CheckedSolid(same_dtype, tuple(notices), None, summary, known)
+        return CheckedSolid(same_dtype, tuple(notices), None, summary, known, index)
     if not changed:
-        return CheckedSolid(triangles, tuple(notices), summary.moments, summary, known)
-    return CheckedSolid(vertices[faces], tuple(notices), None, summary, known)
+        return CheckedSolid(triangles, tuple(notices), summary.moments, summary, known, index)
+    return CheckedSolid(vertices[faces], tuple(notices), None, summary, known, index)
