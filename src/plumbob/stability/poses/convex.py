@@ -47,8 +47,8 @@ from ...mesh.sorting import lex_order, stable_order
 from ...mesh.winding import solid_angle
 from .vectors import cross, dot
 
-__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull", "corner_levels",
-           "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
+__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
+           "corner_levels", "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
 
 #: a surface proved convex by :func:`own_hull` subtends 4π from the centre to within this,
 #: relative (one winding is 4π, two 8π: any other integer is far outside it)
