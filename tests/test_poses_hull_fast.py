@@ -249,3 +249,40 @@ def test_edge_geometry_is_the_plain_formulas(seed, grid):
                         (e.along, tau * L), (e.saddles, rows), (e.spoint, s[rows]),
                         (e.sheight, height[rows]), (e.toward_f, cross(s, pole)[rows])]:
         assert np.array_equal(mine, plain)
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_the_hull_is_the_same_to_the_bit_whatever_order_manifold3d_returns(seed, grid):
+    """manifold3d's parallel quickhull returns the same triangles in another order, each
+    starting at another corner, from run to run on large inputs: the hull plumbob builds
+    from them (and so every pose) is the same to the bit however they come."""
+    import types
+
+    import manifold3d
+
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 200)), 3))
+    if grid:
+        X = np.round(X * 2) / 2  # coplanar triangles: ties in the order by normal
+    X = X - X.mean(axis=0) - 0.01
+    eps = 1e-12 * float(np.ptp(X))
+    mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X)).to_mesh64()
+    P = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
+
+    def shuffled_hull(points):
+        rows = rng.permutation(len(tri))
+        turn = rng.integers(0, 3, len(tri))
+        again = np.take_along_axis(tri[rows], (turn[rows, None] + np.arange(3)) % 3, axis=1)
+        return types.SimpleNamespace(to_mesh64=lambda: types.SimpleNamespace(
+            vert_properties=P, tri_verts=again.astype(np.uint32)))
+
+    want = build_hull3(X, eps)
+    original = manifold3d.Manifold.hull_points
+    manifold3d.Manifold.hull_points = staticmethod(shuffled_hull)
+    try:
+        got = build_hull3(X, eps)
+    finally:
+        manifold3d.Manifold.hull_points = original
+    for mine, plain in zip(got, want):
+        assert np.array_equal(mine, plain)

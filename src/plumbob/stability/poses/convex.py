@@ -27,11 +27,14 @@ Its quickhull leaves out points within its own epsilon (about 1e-7 of the size) 
 facet, an order of magnitude below the contact tolerance (1e-6 of the size) at which
 faces are merged, so no pose can change.
 
-On large inputs manifold3d builds the hull in parallel: the same triangles come back
-in another order, each starting at another of its corners, from run to run. The order
-is made the geometry's own (:func:`_normal_order`); the starting corner still moves the
-last bits of each cross product, so answers on big meshes differ between runs by
-round-off (about 1e-14 relative, more in a quantity that is a small difference).
+On large inputs manifold3d builds the hull in parallel: the same triangles (through
+the same points, in the same order) come back in another order, each starting at
+another of its corners, from run to run. :func:`_canonical` makes both the points'
+own: each triangle starts at its least point and the triangles are in ascending
+order of their points, before :func:`_normal_order` orders them by normal. Every
+cross product and every sum then runs the same way in every run, so the answers are
+the same to the bit (they varied by round-off before, 1e-13 relative in a small
+pose's probability).
 """
 
 from __future__ import annotations
@@ -130,6 +133,19 @@ def _normal_order(normals: np.ndarray) -> np.ndarray:
     """
     q = (1e9 - np.rint(normals * 1e9)).astype(np.int64)  # 0 ..= 2e9: descending components
     return lex_order([q[:, 2], q[:, 1], q[:, 0]])
+
+
+def _canonical(tri: np.ndarray) -> np.ndarray:
+    """The triangles ``tri`` (F, 3) each starting at its least point (the winding kept),
+    in ascending order of (first, second, third) point: an order of the points' own,
+    whatever order and starting corners the hull library chose.
+
+    >>> _canonical(np.array([[5, 2, 7], [3, 1, 4], [2, 9, 6]])).tolist()
+    [[1, 4, 3], [2, 7, 5], [2, 9, 6]]
+    """
+    start = np.argmin(tri, axis=1)
+    tri = np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
+    return np.take(tri, lex_order([tri[:, 2], tri[:, 1], tri[:, 0]]), axis=0)
 
 
 def _planes(P: np.ndarray, tri: np.ndarray, solid_angles: bool = False
@@ -293,7 +309,7 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
 
     mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
     P = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    tri = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
+    tri = _canonical(np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3))
     if len(tri) < 4 or len(P) < 4:
         return None
     tn, off, norm = _planes(P, tri)
