@@ -374,3 +374,19 @@ def test_3000_identical_circles_are_one_disc_promptly(tmp_path):
 
 def test_3000_nested_circles_are_refused_before_they_are_flattened(tmp_path):
     assert_bad_input(run_limited("mass", _dxf(tmp_path, _nested_circles)), "pairs of outlines")
+
+
+@pytest.mark.parametrize("depth", [300, 3000])
+def test_svg_groups_nested_too_deeply_are_refused_by_a_named_limit(tmp_path, depth):
+    """svgelements follows groups by recursion and once ended in a bare RecursionError
+    near 1 000 levels: the depth is counted first, without recursion."""
+    body = "<g>" * depth + '<rect width="5" height="5"/>' + "</g>" * depth
+    assert_bad_input(run_limited("mass", _svg(tmp_path, body)),
+                     "depth of its element tree", "limit of 256", "ungroup")
+
+
+def test_svg_groups_nested_a_little_deeply_are_read(tmp_path):
+    body = "<g>" * 200 + '<rect width="4" height="5"/>' + "</g>" * 200
+    result = run_limited("mass", _svg(tmp_path, body), "--json", "--units", "mm")
+    assert result.status == 0, result.stderr
+    assert json.loads(result.stdout)["area"] == pytest.approx(20e-6, rel=1e-12)

@@ -18,6 +18,7 @@ __all__ = [
     "MAX_ARCHIVE_MEMBERS",
     "MAX_ARCHIVE_RATIO",
     "MAX_DENSITY_DEGREE",
+    "MAX_ELEMENT_DEPTH",
     "MAX_EXPRESSION_NODES",
     "MAX_FILE_BYTES",
     "MAX_FLAT_POINTS",
@@ -47,6 +48,9 @@ MAX_TRIANGLES = 50_000_000
 MAX_EXPRESSION_NODES = 2_000
 #: Depth of nesting: TOML tables and arrays, spec groups, SVG ``<use>``, DXF ``INSERT``.
 MAX_NESTING = 64
+#: Depth of an SVG's element tree (groups within groups): svgelements follows it by
+#: recursion and fails near 1 000 levels; drawing programs nest a few dozen.
+MAX_ELEMENT_DEPTH = 256
 #: Parts (or particles, or placed block copies) one spec or drawing may build.
 MAX_PARTS = 10_000
 #: Outlines (rings) one drawing may hold.

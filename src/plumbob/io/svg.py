@@ -30,7 +30,7 @@ import numpy as np
 from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError, fmt_point
 from ..files import read_bytes
-from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
+from ..limits import MAX_ELEMENT_DEPTH, MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
 from ..units import METRES_PER_UNIT, units_scale
 from .checks import ABSURD_COORDINATE
@@ -111,7 +111,20 @@ def _check_xml(data: bytes, path: str) -> None:
         raise FormatError(f"is not well-formed XML: {error}", path=path) from None
     if not root.tag.lower().endswith("svg"):
         raise FormatError(f"is XML but not SVG (its root element is <{root.tag}>)", path=path)
+    check_count("the depth of its element tree (groups within groups)", _depth(root),
+                MAX_ELEMENT_DEPTH, hint="ungroup the drawing (Inkscape: Object ▸ Ungroup) "
+                "or flatten it", path=path)
     _check_expansion(root, path)
+
+
+def _depth(root) -> int:
+    """How many levels deep the element tree under ``root`` goes (1: the root alone),
+    one level at a time, without recursion."""
+    depth, level = 0, [root]
+    while level:
+        depth += 1
+        level = [child for element in level for child in element]
+    return depth
 
 
 #: the sizes of shapes that SVG forbids to be negative
