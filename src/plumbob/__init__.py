@@ -34,8 +34,10 @@ __all__ = [
     "material",
     "check",
     "poses",
+    "drop_poses",
     "lift",
     "collide",
+    "balance",
     "batch",
 ]
 
@@ -55,8 +57,10 @@ _LAZY = {
     "material": ("plumbob.materials", "material"),
     "check": ("plumbob.stability", "check"),
     "poses": ("plumbob.stability", "resting_poses"),
+    "drop_poses": ("plumbob.stability", "drop_poses"),
     "lift": ("plumbob.energy", "lift_energy"),
     "collide": ("plumbob.dynamics.collisions", "collide"),
+    "balance": ("plumbob.balance", None),
     "batch": ("plumbob.batch", None),
 }
 
