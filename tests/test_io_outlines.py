@@ -496,3 +496,31 @@ def test_plumbob_polygon_bad_arguments_are_geometry_errors(vertices, holes, mess
 
     with pytest.raises(GeometryError, match=message):
         polygon(vertices, holes)
+
+
+@given(st.lists(st.tuples(st.integers(-50, 50), st.integers(-50, 50), st.integers(1, 9),
+                          st.booleans(), st.booleans()), min_size=1, max_size=12))
+@settings(max_examples=60, deadline=None)
+def test_a_region_from_shapely_has_each_polygons_oriented_rings_in_order(boxes):
+    """Region.from_shapely orients every polygon and takes every ring's coordinates in one
+    vectorised call each: the rings are those of orienting the polygons one by one,
+    exterior then interiors, the closing point dropped, in the same order."""
+    from plumbob.bodies.region import Region
+
+    polygons = []
+    for x, y, size, hole, clockwise in boxes:
+        shell = [(x, y), (x + size, y), (x + size, y + size), (x, y + size)]
+        shell = shell[::-1] if clockwise else shell
+        inner = [[(x + 0.25, y + 0.25), (x + 0.5, y + 0.25), (x + 0.5, y + 0.5)]] if hole else []
+        polygons.append(shapely.Polygon(shell, inner))
+    geometry = shapely.MultiPolygon(polygons) if len(polygons) > 1 else polygons[0]
+    want = []
+    for polygon in getattr(shapely.normalize(geometry), "geoms", [shapely.normalize(geometry)]):
+        polygon = shapely.geometry.polygon.orient(polygon, 1.0)
+        want.append(np.asarray(polygon.exterior.coords)[:-1])
+        want += [np.asarray(ring.coords)[:-1] for ring in polygon.interiors]
+    got = Region.from_shapely(geometry).rings
+    assert len(got) == len(want)
+    for ring, vertices in zip(got, want):
+        assert np.array_equal(ring.vertices, vertices) and not ring.vertices.flags.writeable
+        assert ring.bulges is None and ring.controls is None

@@ -94,6 +94,16 @@ class Ring:
             controls = None if not curved.any() else controls
         object.__setattr__(self, "controls", _frozen(controls))
 
+    @classmethod
+    def _checked(cls, vertices: np.ndarray) -> Ring:
+        """A straight ring from vertices already checked: (n, 2) finite floats, the first
+        not repeated at the end (a caller that checked many rings at once)."""
+        ring = object.__new__(cls)
+        object.__setattr__(ring, "vertices", _frozen(vertices))
+        object.__setattr__(ring, "bulges", None)
+        object.__setattr__(ring, "controls", None)
+        return ring
+
     # ----------------------------------------------------------- queries
     @property
     def is_curved(self) -> bool:
@@ -288,22 +298,32 @@ class Region:
 
     @classmethod
     def from_shapely(cls, geometry) -> Region:
-        """A region from a shapely Polygon or MultiPolygon (orientation normalised)."""
+        """A region from a shapely Polygon or MultiPolygon (orientation normalised).
+
+        Every polygon is oriented and every ring's coordinates are taken in one call
+        each (shapely's vectorised functions), so a drawing of 10⁵ polygons costs no
+        Python loop over them but the making of its rings.
+        """
         import shapely
 
         geometry = shapely.normalize(geometry)
-        polygons = getattr(geometry, "geoms", [geometry])
-        rings = []
-        for polygon in polygons:
-            if polygon.is_empty or polygon.geom_type != "Polygon":
-                continue
-            polygon = (
-                shapely.orient_polygons(polygon)
-                if hasattr(shapely, "orient_polygons")
-                else (shapely.geometry.polygon.orient(polygon, 1.0))
-            )
-            rings.append(Ring(np.asarray(polygon.exterior.coords)[:, :2]))
-            rings.extend(Ring(np.asarray(i.coords)[:, :2]) for i in polygon.interiors)
-        if not rings:
+        found = list(getattr(geometry, "geoms", [geometry]))
+        polygons = np.empty(len(found), dtype=object)
+        polygons[:] = found
+        if len(polygons):
+            polygons = polygons[~shapely.is_empty(polygons)
+                                & (shapely.get_type_id(polygons) == shapely.GeometryType.POLYGON)]
+        if not len(polygons):
             raise GeometryError("the geometry has no polygon with area")
-        return cls(tuple(rings))
+        if hasattr(shapely, "orient_polygons"):
+            polygons = shapely.orient_polygons(polygons)
+        else:  # shapely 2.0
+            polygons = np.array([shapely.geometry.polygon.orient(p, 1.0) for p in polygons],
+                                dtype=object)
+        # each polygon's exterior, then its interiors, as the rings of a Region run
+        xy, owner = shapely.get_coordinates(shapely.get_rings(polygons), return_index=True)
+        if not np.all(np.isfinite(xy)):
+            raise GeometryError("a ring has a coordinate that is not a finite number")
+        starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
+        ends = np.r_[starts[1:], len(owner)] - 1  # a ring repeats its first point last
+        return cls(tuple(Ring._checked(xy[a:b]) for a, b in zip(starts.tolist(), ends.tolist())))
