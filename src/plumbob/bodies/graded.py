@@ -38,7 +38,7 @@ from ..massprops import MassProperties
 from ..mesh.closure import require_sums_close
 from .base import Body, DensityCells, Grader
 from .density_field import FIELD_DENSITY, DensityField
-from .lamina import second_moments_to_inertia
+from .uniform import second_moments_to_inertia
 
 __all__ = ["GradedBody", "GradedLamina", "GradedSolid", "with_density_field"]
 

@@ -21,7 +21,7 @@ from ..mesh.closure import require_closed, require_sums_close, surface_summary
 from ..mesh.weld import merge_vertices
 from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
-from .lamina import lamina_mass_properties, uniform_mass_properties
+from .uniform import uniform_mass_properties
 
 if TYPE_CHECKING:
     from .region import Region
@@ -232,6 +232,8 @@ class Extrusion(_UniformSolid):
         object.__setattr__(self, "density", check_density(self.density))
 
     def mass_properties(self) -> MassProperties:
+        from .lamina import lamina_mass_properties
+
         area, centre2, central2 = lamina_mass_properties(self.profile)
         h = self.height
         central = np.zeros((3, 3))

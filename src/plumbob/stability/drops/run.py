@@ -14,8 +14,10 @@ import math
 
 import numpy as np
 
+from ...arguments import answering, instance, number
 from ...errors import StabilityError
 from ...limits import MAX_SAMPLES, check_count
+from ...massprops import MassProperties
 from ...tolerances import HULL_ROUND_OFF, sampling_tolerance
 from ..poses import Poses, resting_poses
 from ..poses.convex import hull_triangles
@@ -65,6 +67,10 @@ def check_settings(drops: int, drop_height: float, restitution: float, friction:
     """The number of drops, once every setting is in range; else a LimitError (too many
     drops) or StabilityError naming the setting. Cheap: called before any work."""
     drops = check_count("drops", drops, MAX_SAMPLES, hint="ask for fewer drops")
+    drop_height, restitution, friction, jobs = (
+        number(value, what, error=StabilityError) for value, what in (
+            (drop_height, "the drop height"), (restitution, "the restitution"),
+            (friction, "the friction coefficient"), (jobs, "jobs")))
     if drops < 1:
         raise StabilityError("dynamic drops need at least one drop")
     if not (math.isfinite(drop_height) and drop_height >= 0):
@@ -168,9 +174,12 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     >>> round(drops[0].quasi_static, 4)
     0.3225
     """
+    body = answering(body, "body", "mass_properties", error=StabilityError)
     drops = check_settings(drops, drop_height, restitution, friction, jobs, overdamped)
     mujoco = eng.require_mujoco()
-    props = body.mass_properties() if props is None else props
+    props = body.mass_properties() if props is None else instance(props, "props",
+                                                                  MassProperties)
+    poses = None if poses is None else instance(poses, "poses", Poses)
     if getattr(body, "dim", props.dim) != 3:
         raise StabilityError("dynamic drops need a solid; a lamina rests in its own plane")
     poses = resting_poses(body, g=g, props=props) if poses is None else poses

@@ -21,7 +21,6 @@ from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
 from ...tolerances import sampling_tolerance as sampling
 from ...units import STANDARD_GRAVITY
-from ..rocking import rocking
 from ..support import body_dim, body_size, hull_points, is_polytope
 from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
@@ -74,6 +73,8 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
         if fam.kind[f] == "rolling":
             t = 0.0
         elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
+            from ..rocking import rocking  # only a bowl's bottom needs it
+
             eps = 2.0 * max(float(fam.ripple[f]), HULL_SAMPLING * size)
             rocks = float(rocking(land.points, down, eps).tilts_deg.min())
             # no rocker holds a tilt steeper than the one rolling it over its lowest exit
