@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from test_poses_fans import solid_points
 
@@ -47,8 +47,11 @@ def poses_both_ways(X: np.ndarray, center: np.ndarray, monkeypatch) -> tuple:
 
 
 def same_poses(a, b) -> None:
+    """The same poses; the probabilities to round-off: the two ways sum the spherical
+    triangles of different boundaries (a family's outline, or every member's), and
+    their round-off reaches a few 1e-12 on a 47-gon frustum."""
     assert [p.kind for p in a] == [p.kind for p in b]
-    assert np.allclose(a.probabilities, b.probabilities, rtol=0, atol=1e-12)
+    assert np.allclose(a.probabilities, b.probabilities, rtol=0, atol=1e-10)
     for p, q in zip(a, b):
         assert p.members == q.members and p.com_height == pytest.approx(q.com_height, rel=1e-12)
         assert p.critical_tilt_deg == pytest.approx(q.critical_tilt_deg, rel=1e-9, abs=1e-12)
@@ -79,6 +82,7 @@ def test_rolling_families_traced_as_one_give_the_same_poses(shape, monkeypatch):
 
 @settings(max_examples=10, deadline=None)
 @given(st.integers(24, 120), st.floats(0.5, 4.0), st.floats(0.0, 1.0), st.floats(-0.4, 0.4))
+@example(47, 1.2734375, 0.404296875, 0.0)  # the probabilities differ by 3e-12 (round-off)
 def test_traced_as_one_anywhere(segments, height, top, shift):
     """Frusta of any proportions, centre of mass moved off the axis by a point mass."""
     X, center = solid_points(m3.cylinder(height, 1.0, top, segments))
