@@ -27,3 +27,16 @@ def test_bad_dynamic_settings_are_one_line(args, phrases, shapes_dir):
 def test_a_dynamic_setting_alone_is_one_line(option, shapes_dir):
     outcome = run_limited("poses", os.path.join(shapes_dir, "block.toml"), *option)
     assert_bad_input(outcome, option[0], "--dynamic")
+
+
+@pytest.mark.parametrize(("jobs", "phrase"), [(2.5, "whole number"), (0, "at least 1"),
+                                              (float("nan"), "finite"), ("two", "number")])
+def test_drop_poses_refuses_a_jobs_count_that_is_not_a_whole_number(jobs, phrase):
+    """Refused before any work, as a StabilityError naming the setting (a fractional
+    count once reached the process pool)."""
+    from plumbob.bodies.primitives import box
+    from plumbob.errors import StabilityError
+    from plumbob.stability import drop_poses
+
+    with pytest.raises(StabilityError, match=phrase):
+        drop_poses(box(1.0, 2.0, 3.0), drops=4, jobs=jobs)

@@ -83,8 +83,8 @@ def check_settings(drops: int, drop_height: float, restitution: float, friction:
     if overdamped and (restitution > 0 or drop_height > 0):
         raise StabilityError("the overdamped setting drops from rest on the ground without "
                              "bounce: leave the restitution and drop height at 0")
-    if int(jobs) < 1:
-        raise StabilityError(f"jobs must be at least 1, not {jobs}")
+    if jobs < 1 or jobs != int(jobs):
+        raise StabilityError(f"jobs must be a whole number, at least 1, not {jobs:g}")
     return drops
 
 
@@ -176,6 +176,7 @@ def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0
     """
     body = answering(body, "body", "mass_properties", error=StabilityError)
     drops = check_settings(drops, drop_height, restitution, friction, jobs, overdamped)
+    jobs = int(jobs)
     mujoco = eng.require_mujoco()
     props = body.mass_properties() if props is None else instance(props, "props",
                                                                   MassProperties)
