@@ -70,8 +70,13 @@ def arc_sides(h: Hull3, pole: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray
     """For directed edges ``edges`` with poles ``pole`` (k, 3): ``after_f = pole × n_F``
     (q·after_f ≥ 0 when q lies past n_F on the arc) and ``before_g = n_G × pole``
     (q·before_g ≥ 0 when q lies before n_G)."""
-    return (cross(pole, np.take(h.normals, np.take(h.ef, edges), axis=0)),
-            cross(np.take(h.normals, np.take(h.eg, edges), axis=0), pole))
+    return _sides(pole, np.take(h.normals, np.take(h.ef, edges), axis=0),
+                  np.take(h.normals, np.take(h.eg, edges), axis=0))
+
+
+def _sides(pole: np.ndarray, n_f: np.ndarray, n_g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`arc_sides` from the arcs' poles and their faces' normals."""
+    return cross(pole, n_f), cross(n_g, pole)
 
 
 def _foot_direction(A: np.ndarray, D: np.ndarray, t: np.ndarray
@@ -105,7 +110,7 @@ def edge_geometry(h: Hull3) -> Edges3:
         pole = D / L[:, None]
         s, _ = _foot_direction(A, D, t)
         n = np.take(N, ef[r], axis=0)
-        after_f, before_g = cross(pole, n), cross(np.take(N, eg[r], axis=0), pole)
+        after_f, before_g = _sides(pole, n, np.take(N, eg[r], axis=0))
         saddle = (t > 0) & (t < 1) & (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
         # the centre's foot on face F: how far inside this edge, and its nearest point
         foot = np.take(H, ef[r])[:, None] * n
