@@ -30,7 +30,7 @@ def test_a_dynamic_setting_alone_is_one_line(option, shapes_dir):
 
 
 @pytest.mark.parametrize(("jobs", "phrase"), [(2.5, "whole number"), (0, "at least 1"),
-                                              (float("nan"), "finite"), ("two", "number")])
+                                              (float("nan"), "whole number"), ("two", "whole number")])
 def test_drop_poses_refuses_a_jobs_count_that_is_not_a_whole_number(jobs, phrase):
     """Refused before any work, as a StabilityError naming the setting (a fractional
     count once reached the process pool)."""

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ...arguments import answering, instance, number
+from ...arguments import answering, count, instance, number
 from ...errors import StabilityError
 from ...limits import MAX_SAMPLES, check_count
 from ...massprops import MassProperties
@@ -67,10 +67,11 @@ def check_settings(drops: int, drop_height: float, restitution: float, friction:
     """The number of drops, once every setting is in range; else a LimitError (too many
     drops) or StabilityError naming the setting. Cheap: called before any work."""
     drops = check_count("drops", drops, MAX_SAMPLES, hint="ask for fewer drops")
-    drop_height, restitution, friction, jobs = (
+    drop_height, restitution, friction = (
         number(value, what, error=StabilityError) for value, what in (
             (drop_height, "the drop height"), (restitution, "the restitution"),
-            (friction, "the friction coefficient"), (jobs, "jobs")))
+            (friction, "the friction coefficient")))
+    count(jobs, "jobs", MAX_SAMPLES, minimum=1, error=StabilityError)
     if drops < 1:
         raise StabilityError("dynamic drops need at least one drop")
     if not (math.isfinite(drop_height) and drop_height >= 0):
@@ -83,8 +84,6 @@ def check_settings(drops: int, drop_height: float, restitution: float, friction:
     if overdamped and (restitution > 0 or drop_height > 0):
         raise StabilityError("the overdamped setting drops from rest on the ground without "
                              "bounce: leave the restitution and drop height at 0")
-    if jobs < 1 or jobs != int(jobs):
-        raise StabilityError(f"jobs must be a whole number, at least 1, not {jobs:g}")
     return drops
 
 
