@@ -31,6 +31,7 @@ from ..files import read_bytes
 from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, MAX_SIDES, check_count
 from ..mesh.topology import connected_components
 from ..reading import Reading
+from ..tolerances import size_of
 from ..units import units_scale
 from .checks import ABSURD_COORDINATE
 from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics
@@ -424,7 +425,7 @@ def _spline(entity, label, name):
     # rational or of high degree: flatten within a stated distance
     spans = len(np.unique(knots)) - 1
     check_count("segments of a flattened spline", spans * _SEGMENTS_PER_SPAN, MAX_SIDES)
-    size = float(np.linalg.norm(np.ptp(control, axis=0))) or 1.0
+    size = size_of(control) or 1.0
     distance = FLATTEN_TOLERANCE * size
     points = _xy(tool.flattening(distance))
     if len(points) < 2:
@@ -467,7 +468,7 @@ def _join_tolerance(pieces: list[_Piece]) -> float:
     """:data:`JOIN_TOLERANCE` of the drawing's size — of all its points, not only the pieces'
     ends (a full ellipse alone has both ends at one point, and a size of nothing)."""
     points = np.concatenate([p.points for p in pieces])
-    return JOIN_TOLERANCE * (float(np.linalg.norm(np.ptp(points, axis=0))) or 1.0)
+    return JOIN_TOLERANCE * (size_of(points) or 1.0)
 
 
 def _split_closed(pieces: list[_Piece]) -> tuple[list[_Piece], list[_Piece]]:
