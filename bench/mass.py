@@ -36,7 +36,7 @@ def main() -> None:
     import plumbob
     from plumbob.bodies.lamina import Lamina
     from plumbob.bodies.region import Region, Ring
-    from plumbob.io import read
+    from plumbob.formats import read
 
     print(compile_bytecode(os.path.dirname(plumbob.__file__)))
     with tempfile.TemporaryDirectory() as folder:

@@ -7,8 +7,8 @@ binary STL in a temporary folder, then times (best of several, file in the page
 cache):
 
 * ``numpy.fromfile`` of the same bytes — the floor;
-* ``plumbob.io.stl.load_stl`` — parsing: triangles, bounds, NaN check;
-* ``plumbob.io.stl.read_stl`` — the whole read: units, the closure and sign
+* ``plumbob.formats.stl.load_stl`` — parsing: triangles, bounds, NaN check;
+* ``plumbob.formats.stl.read_stl`` — the whole read: units, the closure and sign
   test, the body;
 * ``trimesh.load`` — for comparison.
 
@@ -38,7 +38,7 @@ def torus_stl(path: str, triangles: int) -> int:
 
 _RSS = """
 import sys
-from plumbob.io.stl import load_stl
+from plumbob.formats.stl import load_stl
 
 def high_water():  # this process's peak resident set, bytes (VmHWM starts afresh at exec)
     with open("/proc/self/status") as status:
@@ -55,7 +55,7 @@ print(high_water() - base)
 
 
 def main(triangles: int = 1 << 20) -> int:
-    from plumbob.io.stl import load_stl, read_stl
+    from plumbob.formats.stl import load_stl, read_stl
 
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.stl")

@@ -25,8 +25,8 @@ from test_hostile_meshes import CUBE_F, CUBE_V, binary_stl, obj_text
 
 from plumbob import limits
 from plumbob.errors import FormatError, LimitError, PlumbobError
-from plumbob.io import read
-from plumbob.io.archives import _safe_name
+from plumbob.formats import read
+from plumbob.formats.archives import _safe_name
 
 CUBE_STL = binary_stl(CUBE_V[CUBE_F])
 OPEN_STL = binary_stl(CUBE_V[CUBE_F[:-2]])  # a cube without one side

@@ -14,7 +14,7 @@ from hostile import assert_bad_input, run_limited
 
 from plumbob import limits
 from plumbob.errors import LimitError
-from plumbob.io import read
+from plumbob.formats import read
 
 # A unit cube: 8 vertices, 12 outward triangles (1-based OBJ faces below).
 CUBE_V = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)

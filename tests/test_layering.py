@@ -24,7 +24,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("mesh",),
     ("bodies",),
     ("reading",),
-    ("io",),
+    ("formats",),
     ("dynamics",),
     ("spec",),
     ("loading",),
@@ -123,7 +123,7 @@ def test_no_import_cycle_between_rooms(graph):
 def test_the_graph_sees_imports_inside_functions(graph):
     """The checker itself: a lazy import in a function body is an edge too."""
     assert ("plumbob.cli", "plumbob.errors") in graph.edges
-    lazy = [(a, b) for a, b in graph.edges if a.startswith("plumbob.commands") and "io" in b]
+    lazy = [(a, b) for a, b in graph.edges if a.startswith("plumbob.commands") and "formats" in b]
     assert lazy or any(a.startswith("plumbob.commands") and "loading" in b for a, b in graph.edges)
 
 

@@ -286,7 +286,7 @@ def test_one_particle_schema_force_acts_only_in_a_simulation(tmp_path):
 
 
 def test_io_reads_files_and_leaves_specs_to_loading(tmp_path):
-    from plumbob.io import read as read_file
+    from plumbob.formats import read as read_file
 
     with pytest.raises(InputFileError, match="plumbob.read"):
         read_file(write(tmp_path, '[[part]]\ntype = "disc"\nradius = 1\n'))

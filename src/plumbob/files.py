@@ -2,7 +2,7 @@
 
 A FIFO, a device such as ``/dev/zero`` or a folder given as input would otherwise
 block or be read forever; every reader goes through :func:`require_regular_file`
-(via :func:`plumbob.io.read_checked`) and reads whole files with :func:`read_bytes`.
+(via :func:`plumbob.formats.read_checked`) and reads whole files with :func:`read_bytes`.
 """
 
 from __future__ import annotations

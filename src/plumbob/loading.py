@@ -2,7 +2,7 @@
 
 :func:`read` chooses by the file's extension: ``.toml`` goes to the spec reader
 (:mod:`plumbob.spec`), every other known extension to the file-format readers
-(:mod:`plumbob.io`). Living above both, this dispatcher lets spec read its mesh
+(:mod:`plumbob.formats`). Living above both, this dispatcher lets spec read its mesh
 files through io while io never imports spec.
 """
 
@@ -10,15 +10,15 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from . import io
+from . import formats
 from .arguments import file_path
 from .errors import DensityError, SpecError
 from .reading import Reading
 
 __all__ = ["read", "with_default_density", "SUFFIXES"]
 
-#: file extension → reader family: specs, and every format :mod:`plumbob.io` reads
-SUFFIXES = {".toml": "spec", **io.SUFFIXES}
+#: file extension → reader family: specs, and every format :mod:`plumbob.formats` reads
+SUFFIXES = {".toml": "spec", **formats.SUFFIXES}
 
 
 def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
@@ -72,7 +72,7 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     plumbob.errors.InputFileError: missing.stl: no such file
     """
     path = file_path(path)
-    if io.file_family(path, SUFFIXES) == "spec":
+    if formats.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
         return load_spec(path, parameters=parameters, units=units, repair=repair,
@@ -80,7 +80,7 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     if parameters:
         raise SpecError(f"parameters ({', '.join(parameters)}) apply only to a TOML spec; "
                         "this file is not one", path=path)
-    return io.read(path, units=units, repair=repair)
+    return formats.read(path, units=units, repair=repair)
 
 
 def with_default_density(reading: Reading, density: float, option: str) -> Reading:

@@ -1,6 +1,6 @@
 """What reading a file or spec gives: the body, and what the user should be told.
 
-Readers (:mod:`plumbob.io`, :mod:`plumbob.spec`) return a :class:`Reading`;
+Readers (:mod:`plumbob.formats`, :mod:`plumbob.spec`) return a :class:`Reading`;
 commands print its notices and measure its body. It sits above the bodies and
 below every reader, so readers and commands share it without importing each other.
 """

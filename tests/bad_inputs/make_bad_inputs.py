@@ -29,7 +29,7 @@ class Case:
 
     error: the PlumbobError subclass name expected, or None when the file reads
         (then ``measure`` is the volume/area expected and ``message`` a notice fragment).
-    read: keyword arguments for ``plumbob.io.read``.
+    read: keyword arguments for ``plumbob.formats.read``.
     """
 
     name: str

@@ -34,7 +34,7 @@ class FileResult:
 
 
 def read_body(path: str, options: Options):
-    """The file's :class:`~plumbob.io.Reading`, with ``--density``/``--material`` applied to
+    """The file's :class:`~plumbob.formats.Reading`, with ``--density``/``--material`` applied to
     parts that give none (as the single-file commands do)."""
     from ..loading import read, with_default_density
     from ..materials import check_density

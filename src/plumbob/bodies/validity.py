@@ -3,7 +3,7 @@
 Green's theorem integrates whatever rings it is given: a bow-tie's two lobes
 cancel or add, a "hole" outside the outline is subtracted from nothing. So every
 outline is checked before it is integrated — the same check wherever it comes
-from (an outline file in :mod:`plumbob.io`, a spec's ``polygon`` or ``outline``,
+from (an outline file in :mod:`plumbob.formats`, a spec's ``polygon`` or ``outline``,
 :func:`plumbob.bodies.primitives.polygon`) — and a defect is one error naming it
 and a point where GEOS found it.
 """

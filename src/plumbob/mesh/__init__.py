@@ -6,7 +6,7 @@ of its unshared edges spans an area, once copies of a vertex closer than
 
 These functions take any triangle soup — an ``(n, 3, 3)`` array of corners in
 metres, as a reader, a generator or a user's own code makes it — and need
-nothing from files or bodies. The readers in :mod:`plumbob.io` call
+nothing from files or bodies. The readers in :mod:`plumbob.formats` call
 :func:`check_solid` on every mesh; call it yourself to check a mesh before
 you build a :class:`~plumbob.bodies.solid.MeshSolid` from it.
 

@@ -10,7 +10,7 @@ for overlap — runs when a cheap test fails, when ``repair`` is asked for, or
 when the mesh is small enough (:data:`FULL_CHECK_LIMIT`) that it costs little.
 The closure rule itself is :mod:`plumbob.mesh.closure`'s.
 
-Errors here name no file: a reader adds its path (see :mod:`plumbob.io.solids`).
+Errors here name no file: a reader adds its path (see :mod:`plumbob.formats.solids`).
 """
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ from ..bodies.base import Body
 from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import InputFileError, LimitError, SpecError
 from ..files import read_bytes
-from ..io import read_checked
+from ..formats import read_checked
 from ..limits import MAX_NESTING, MAX_PARTS, MAX_SEGMENTS, check_count
 from ..reading import Reading
 from ..units import length_scale

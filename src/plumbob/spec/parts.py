@@ -20,7 +20,7 @@ from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..bodies.validity import check_region
 from ..expr import Expression, parse
-from ..io import read as read_file
+from ..formats import read as read_file
 from ..massprops import rotation_matrix
 from ..materials import check_density
 from ..materials import material as lookup_material
@@ -150,7 +150,7 @@ MESH_NOTICE = "mesh "
 
 
 def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
-    """A mesh file in the spec's folder, read by :mod:`plumbob.io` (its errors name it).
+    """A mesh file in the spec's folder, read by :mod:`plumbob.formats` (its errors name it).
 
     Its unit, first found first: the part's ``units``; the unit the file declares
     (3MF); the spec's unit (``[shape] units``, or the caller's); else metres, said in

@@ -16,7 +16,7 @@ from make_bad_inputs import CASES, contents, generate  # noqa: E402
 
 from plumbob import cli, errors  # noqa: E402
 from plumbob.errors import InputFileError, PlumbobError  # noqa: E402
-from plumbob.io import read  # noqa: E402
+from plumbob.formats import read  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -69,7 +69,7 @@ def test_unreadable_file(tmp_path, monkeypatch):
     def refuse(*args, **kwargs):
         raise PermissionError(13, "Permission denied")
 
-    monkeypatch.setattr("plumbob.io.stl.open", refuse, raising=False)
+    monkeypatch.setattr("plumbob.formats.stl.open", refuse, raising=False)
     with pytest.raises(InputFileError, match="cannot be read: Permission denied"):
         read(str(path))
 

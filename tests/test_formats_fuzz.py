@@ -17,7 +17,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "bad_inputs"))
 from make_bad_inputs import ascii_stl, binary_stl, cube, model_xml, three_mf  # noqa: E402
 
 from plumbob.errors import PlumbobError  # noqa: E402
-from plumbob.io import SUFFIXES, read  # noqa: E402
+from plumbob.formats import SUFFIXES, read  # noqa: E402
 
 # PLUMBOB_FUZZ_EXAMPLES=2000 runs a deeper, randomised search (default: 15, repeatable).
 _DEEP = int(os.environ.get("PLUMBOB_FUZZ_EXAMPLES", "0"))

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from plumbob.bodies.csg import Assembly
 from plumbob.bodies.lamina import Lamina
 from plumbob.errors import FormatError, GeometryError
-from plumbob.io import read
+from plumbob.formats import read
 
 SVG = '<svg xmlns="http://www.w3.org/2000/svg"{attrs}>{body}</svg>'
 
@@ -406,7 +406,7 @@ def test_dxf_units_cover_every_insunits_code(tmp_path):
 def test_clamped_bspline_is_the_same_curve(degree, count, seed):
     from scipy.interpolate import BSpline
 
-    from plumbob.io.curves import clamped_bspline
+    from plumbob.formats.curves import clamped_bspline
 
     rng = np.random.default_rng(seed)
     control = rng.normal(size=(count, 2))

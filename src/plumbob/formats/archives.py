@@ -21,7 +21,7 @@ Every byte is counted while it is decompressed (streaming, never trusting the si
 an archive declares): past :data:`plumbob.limits.MAX_ARCHIVE_BYTES`, or past
 :data:`~plumbob.limits.MAX_ARCHIVE_RATIO` times the archive's own size (beyond a
 1 MiB allowance), the archive is refused as a possible bomb. A 3MF is a zip too but
-keeps its own reader (:mod:`plumbob.io.meshes`). An archive inside an archive is
+keeps its own reader (:mod:`plumbob.formats.meshes`). An archive inside an archive is
 refused. Errors name ``archive:member``; a notice says which member was read.
 """
 

@@ -24,9 +24,9 @@ def mesh_solid(triangles: np.ndarray, *, path: str | None = None, name: str | No
 
     See :func:`plumbob.mesh.check_solid` for ``repair``, ``label`` and ``scale``;
     errors name ``path``. ``extent`` adds the implausible-size check on the
-    mesh's bounding box (:func:`~plumbob.io.checks.check_extent`), for readers
+    mesh's bounding box (:func:`~plumbob.formats.checks.check_extent`), for readers
     that did not find the box while parsing; ``assumed``: the file has no unit and
-    metres were assumed (see :func:`~plumbob.io.checks.check_extent`).
+    metres were assumed (see :func:`~plumbob.formats.checks.check_extent`).
     """
     try:
         checked = check_solid(triangles, repair=repair, label=label, scale=scale)

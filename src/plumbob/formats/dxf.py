@@ -10,7 +10,7 @@ SPLINEs that are non-rational and clamped are split exactly into Bézier
 pieces (degree 3 as they are, degree 2 raised to cubic, degree 1 as lines);
 rational or unclamped ones are flattened within 1e-7 of the drawing's size and
 the lamina marked not exact. Elliptical arcs become cubic Béziers (see
-:func:`~plumbob.io.curves.elliptic_arc_cubics`).
+:func:`~plumbob.formats.curves.elliptic_arc_cubics`).
 
 Units come from the ``$INSUNITS`` header unless ``--units`` is given.
 Entities drawn in another plane than XY are ignored (with a notice); a mirrored

@@ -5,7 +5,7 @@ import pytest
 
 from plumbob import units
 from plumbob.errors import GeometryError
-from plumbob.io.checks import check_extent
+from plumbob.formats.checks import check_extent
 from plumbob.units import units_scale
 
 
@@ -21,7 +21,7 @@ def test_extent_and_units():
 
 
 def test_unitless_model_over_ten_metres_is_called_millimetres():
-    from plumbob.io.checks import ASSUMED_METRES_LIMIT, check_extent
+    from plumbob.formats.checks import ASSUMED_METRES_LIMIT, check_extent
 
     lo = np.zeros(3)
     tall = np.array([0.04, 0.03, 0.119]) * 1000  # a 119 mm figurine read as metres
@@ -34,7 +34,7 @@ def test_unitless_model_over_ten_metres_is_called_millimetres():
 
 
 def test_unitless_obj_over_ten_metres_gets_the_notice(tmp_path):
-    from plumbob.io import read
+    from plumbob.formats import read
 
     v = np.array([[0, 0, 0], [50, 0, 0], [0, 50, 0], [0, 0, 50]], dtype=float)
     faces = [[1, 3, 2], [1, 2, 4], [1, 4, 3], [2, 3, 4]]

@@ -15,8 +15,8 @@ from plumbob import limits  # noqa: E402
 from plumbob.bodies.csg import Assembly  # noqa: E402
 from plumbob.bodies.solid import MeshSolid  # noqa: E402
 from plumbob.errors import FormatError, GeometryError, LimitError  # noqa: E402
-from plumbob.io import read  # noqa: E402
-from plumbob.io.meshes import read_mesh  # noqa: E402
+from plumbob.formats import read  # noqa: E402
+from plumbob.formats.meshes import read_mesh  # noqa: E402
 
 
 def irregular() -> trimesh.Trimesh:

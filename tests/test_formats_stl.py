@@ -14,9 +14,9 @@ from make_bad_inputs import ascii_stl, binary_stl, cube  # noqa: E402
 from plumbob.bodies.csg import Assembly  # noqa: E402
 from plumbob.bodies.solid import MeshSolid  # noqa: E402
 from plumbob.errors import InputFileError  # noqa: E402
-from plumbob.io import read  # noqa: E402
-from plumbob.io import stl as stl_module  # noqa: E402
-from plumbob.io.stl import load_stl, read_stl  # noqa: E402
+from plumbob.formats import read  # noqa: E402
+from plumbob.formats import stl as stl_module  # noqa: E402
+from plumbob.formats.stl import load_stl, read_stl  # noqa: E402
 from plumbob.units import UNITS_ASSUMED  # noqa: E402
 
 

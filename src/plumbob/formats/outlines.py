@@ -3,8 +3,8 @@
 This module reads the polygon formats (GeoJSON, WKT, WKB) and CSV vertex
 lists itself, and hands SVG and DXF to their own readers (:mod:`.svg`,
 :mod:`.dxf`, imported when such a file is read). Polygons become laminas
-through :func:`~plumbob.io.laminas.body_from_polygons`, bare closed curves
-(CSV rings, drawings) through :func:`~plumbob.io.laminas.body_from_outlines`,
+through :func:`~plumbob.formats.laminas.body_from_polygons`, bare closed curves
+(CSV rings, drawings) through :func:`~plumbob.formats.laminas.body_from_outlines`,
 by the even-odd rule. A file with several laminas gives an
 :class:`~plumbob.bodies.csg.Assembly`.
 """

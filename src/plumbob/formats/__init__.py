@@ -11,7 +11,7 @@ Formats (see ``docs/formats.md``):
   3MF, GLB and glTF (through trimesh);
 * laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines;
 * any of these compressed (``.gz``, ``.bz2``, ``.xz``) or alone in an archive
-  (``.zip``, ``.tar``, ``.tgz``, ``.tar.gz``, …; :mod:`plumbob.io.archives`).
+  (``.zip``, ``.tar``, ``.tgz``, ``.tar.gz``, …; :mod:`plumbob.formats.archives`).
 
 Formats plumbob knows of but does not read (COLLADA, 3DXML, STEP, …: see
 :data:`FOREIGN`) are refused in one line naming the format and what to convert to.
