@@ -3,6 +3,7 @@ how the command modules depend on each other."""
 
 import ast
 import inspect
+import math
 import os
 
 import numpy as np
@@ -131,3 +132,56 @@ def test_report_only_formats_text():
     defined = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
     assert "json" not in imported
     assert not any("json" in name or "dict" in name for name in defined), defined
+
+
+def test_load_takes_a_material_or_a_density(tmp_path):
+    """1 cm³ of PLA (1240 kg/m³, the material table) is 1.24 g; the lamina's density is
+    kg/m²: 2 m² at 3 kg/m² is 6 kg."""
+    import trimesh
+
+    cube = tmp_path / "cube.stl"
+    trimesh.creation.box(extents=(10, 10, 10)).export(cube)
+    mass = plumbob.load(cube, units="mm", material="pla").mass_properties().mass
+    assert math.isclose(mass, 1240 * 1e-6, rel_tol=1e-12)
+    plate = tmp_path / "plate.wkt"
+    plate.write_text("POLYGON ((0 0, 2 0, 2 1, 0 1, 0 0))")
+    assert math.isclose(plumbob.load(plate, density=3.0).mass_properties().mass, 6.0,
+                        rel_tol=1e-12)
+    with pytest.raises(plumbob.PlumbobError, match="not both"):
+        plumbob.load(plate, density=3.0, material="pla")
+    with pytest.raises(plumbob.PlumbobError, match="material='oak' does not apply"):
+        plumbob.load("shapes/block.toml", material="oak")
+    with pytest.raises(plumbob.PlumbobError, match="unknown material"):
+        plumbob.load(plate, material="unobtainium")
+
+
+def test_balance_and_batch_are_callables_and_rooms():
+    """Importing a submodule sets the package's attribute to the module; the module
+    itself is callable, so the front door's verb survives it."""
+    import plumbob.balance.targets  # noqa: F401
+    import plumbob.batch.options  # noqa: F401
+    from plumbob.balance.result import balance
+    from plumbob.batch.runner import run
+
+    assert callable(plumbob.balance) and callable(plumbob.batch)
+    assert plumbob.balance.__call_target__ is balance and plumbob.batch.__call_target__ is run
+    assert inspect.signature(plumbob.balance) == inspect.signature(balance)
+    block = plumbob.load("shapes/block.toml")
+    through_door = plumbob.balance(block, require_tilt_deg=20)
+    assert through_door.passes and math.isclose(
+        through_door.ballast_mass, balance(block, require_tilt_deg=20).ballast_mass,
+        rel_tol=1e-12)
+
+
+def test_version_is_the_packages():
+    """One place: pyproject.toml reads it from plumbob.__version__."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    with open(os.path.join(ROOT, "pyproject.toml"), "rb") as handle:
+        project = tomllib.load(handle)
+    assert project["project"]["dynamic"] == ["version"]
+    assert project["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "plumbob.__version__"}
+    assert plumbob.__version__.count(".") == 2

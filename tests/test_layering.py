@@ -18,7 +18,8 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 #: Rooms from the bottom up: a room may import its own layer and the layers below it.
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
-    ("units", "tolerances", "results", "plot", "limits", "arguments", "blockwise"),
+    ("units", "tolerances", "results", "plot", "limits", "arguments", "blockwise",
+     "callable_module"),
     ("files",),
     ("expr", "integrals", "massprops", "materials"),
     ("mesh",),

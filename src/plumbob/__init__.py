@@ -10,12 +10,25 @@ The public API, imported lazily so ``plumbob mass part.stl`` pays only for numpy
     plumbob.lift(body).lift_energy  # J to raise its material into place
 
 Every result has ``as_dict()`` (the keys of the CLI's ``--json``) and a one-line repr.
+Every verb is a callable here: ``load``, ``mass_properties``, ``check``, ``poses``,
+``drop_poses``, ``lift``, ``balance``, ``batch``, ``collide`` (``balance`` and ``batch``
+are also rooms: ``plumbob.balance.hollow``, ``plumbob.batch.Options``).
+
+>>> import plumbob
+>>> plumbob.__version__
+'0.2.0'
+>>> all(callable(getattr(plumbob, verb)) for verb in
+...     ("load", "check", "poses", "lift", "balance", "batch", "collide"))
+True
 """
 
 from __future__ import annotations
 
 from importlib import import_module
 from typing import Any
+
+#: the release (pyproject.toml reads it from here: one place)
+__version__ = "0.2.0"
 
 __all__ = [
     "load",
@@ -65,7 +78,8 @@ _LAZY = {
 }
 
 
-def load(path: str, **options: Any):
+def load(path: str, *, units: str | None = None, material: str | None = None,
+         density: float | None = None, repair: bool = False, **unknown: Any):
     """The body described by a file: a shape spec, a mesh or an outline.
 
     Parameters
@@ -73,10 +87,17 @@ def load(path: str, **options: Any):
     path : str or os.PathLike
         A shape spec (``.toml``), a mesh (STL, OBJ, PLY, OFF, 3MF, GLB/glTF) or an
         outline (GeoJSON, WKT, WKB, SVG, DXF, CSV); the extension picks the reader.
-    **options
-        ``units`` (the length unit of the file's coordinates: ``m``, ``cm``, ``mm``,
-        ``km``, ``in``, ``ft``; default the file's own, else metres) and ``repair``
-        (close small holes and fix winding in meshes).
+    units : str, optional
+        The length unit of the file's coordinates (``m``, ``cm``, ``mm``, ``km``,
+        ``in``, ``ft``, or spelled out: ``"millimetre"``, ``"inch"``); default the
+        file's own, else metres.
+    material : str, optional
+        A material from ``plumbob materials`` (``"pla"``, ``"steel"``): its density
+        for every part of the file that gives none.
+    density : float, optional
+        The same as a number: kg/m³ for a solid, kg/m² for a lamina.
+    repair : bool
+        Close small holes and fix the winding of meshes (said in the body's notes).
 
     Returns
     -------
@@ -86,8 +107,9 @@ def load(path: str, **options: Any):
     Raises
     ------
     PlumbobError
-        For a missing, empty or unreadable file, an unknown extension or a bad shape;
-        the message names the file.
+        For a missing, empty or unreadable file, an unknown extension or a bad shape
+        (the message names the file); for a material or density that cannot apply
+        (every part gives its own) or both given at once.
 
     Examples
     --------
@@ -98,6 +120,14 @@ def load(path: str, **options: Any):
     'lamina'
     >>> load(path, units="mm").mass_properties().center_of_mass
     array([0.001 , 0.0005])
+    >>> load(path, density=3.0).mass_properties().mass
+    6.0
+    >>> import trimesh
+    >>> cube = os.path.join(tempfile.mkdtemp(), "cube.stl")
+    >>> trimesh.creation.box(extents=(10, 10, 10)).export(cube)  # doctest: +ELLIPSIS
+    b'...'
+    >>> round(load(cube, units="mm", material="pla").mass_properties().mass, 12)  # 1 cm³ of PLA
+    0.00124
     >>> load(path + ".png")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -106,10 +136,10 @@ def load(path: str, **options: Any):
     from .errors import ArgumentError
     from .loading import read
 
-    unknown = sorted(set(options) - {"units", "repair"})
     if unknown:
-        raise ArgumentError(f"load() takes the options units and repair, not {unknown[0]!r}")
-    return read(path, **options).body
+        raise ArgumentError(f"load() takes the options units, material, density and repair, "
+                            f"not {sorted(unknown)[0]!r}")
+    return read(path, units=units, repair=repair, material=material, density=density).body
 
 
 def mass_properties(body):

@@ -23,7 +23,8 @@ SUFFIXES = {".toml": "spec", **formats.SUFFIXES}
 
 def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
          units: str | None = None, repair: bool = False,
-         allow_outside_files: bool = False) -> Reading:
+         allow_outside_files: bool = False, material: str | None = None,
+         density: float | None = None) -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -48,6 +49,9 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     allow_outside_files : bool
         Let a spec read files outside its own folder (an absolute path, ``..``);
         refused by default, so a spec from elsewhere cannot read any file you can.
+    material, density : optional
+        A material name (``"pla"``) or a density (kg/m³ for solids, kg/m² for laminas)
+        for every part that gives none (:func:`with_default_density`); at most one.
 
     Returns
     -------
@@ -66,21 +70,39 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     ('lamina', [0.8333, 0.8333])
     >>> read("shapes/l_shape.toml", parameters={"a": 2}).body.mass_properties().area
     12.0
+    >>> read("shapes/l_shape.toml", density=2.0).body.mass_properties().mass  # kg/m², 3 m²
+    6.0
+    >>> read("shapes/block.toml", material="oak")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: shapes/block.toml: material='oak' does not apply: every part ...
     >>> read("missing.stl")
     Traceback (most recent call last):
     ...
     plumbob.errors.InputFileError: missing.stl: no such file
     """
     path = file_path(path)
+    if material is not None and density is not None:
+        raise DensityError("give a material or a density, not both", path=path)
     if formats.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
-        return load_spec(path, parameters=parameters, units=units, repair=repair,
-                         allow_outside_files=allow_outside_files)
-    if parameters:
+        reading = load_spec(path, parameters=parameters, units=units, repair=repair,
+                            allow_outside_files=allow_outside_files)
+    elif parameters:
         raise SpecError(f"parameters ({', '.join(parameters)}) apply only to a TOML spec; "
                         "this file is not one", path=path)
-    return formats.read(path, units=units, repair=repair)
+    else:
+        reading = formats.read(path, units=units, repair=repair)
+    if material is not None:
+        from .materials import material as named
+
+        return with_default_density(reading, named(material).density, f"material={material!r}")
+    if density is not None:
+        from .materials import check_density
+
+        return with_default_density(reading, check_density(density, "density"), "density")
+    return reading
 
 
 def with_default_density(reading: Reading, density: float, option: str) -> Reading:

@@ -9,13 +9,27 @@
   so it meets the target (:class:`HollowResult`), and the carved body and void written
   and checked again from the file (:class:`WrittenHollow`).
 
-Built on :mod:`plumbob.stability`; scipy loads only when a function needs it.
+Built on :mod:`plumbob.stability`; scipy loads only when a function needs it. The room
+is callable as its main verb: ``plumbob.balance(body, margin=0.01)`` is
+:func:`balance`.
+
+>>> import plumbob
+>>> from plumbob.bodies.primitives import box
+>>> result = plumbob.balance(box(1, 1, 4, density=1000.0), require_tilt_deg=20)
+>>> result.passes, round(result.ballast_mass)
+(True, 1824)
+>>> plumbob.balance.target_for is target_for
+True
 """
 
 from .hollow import HollowResult, WrittenHollow, hollow, write_hollow
 from .result import BalanceResult, balance
 from .solve import ParameterSolution, solve_parameter
 from .targets import Target, target_for
+
+from ..callable_module import make_callable  # noqa: I001 (after the room's own names)
+
+make_callable(__name__, balance)
 
 __all__ = ["BalanceResult", "HollowResult", "ParameterSolution", "Target", "WrittenHollow",
            "balance", "hollow", "solve_parameter", "target_for", "write_hollow"]

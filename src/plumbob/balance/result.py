@@ -148,8 +148,10 @@ def balance(body, down=None, *, margin: float | None = None,
     >>> r.passes, round(r.ballast_mass), round(float(r.ballast_point[2]), 2)
     (True, 1824, 0.0)
     """
+    from ..arguments import answering
     from ..units import STANDARD_GRAVITY
 
+    body = answering(body, "body", "mass_properties")
     g = STANDARD_GRAVITY if g is None else g
     props = body.mass_properties() if props is None else props
     if toward is not None:

@@ -13,6 +13,7 @@ it comes (``out``: .csv, .jsonl or .parquet) and can ``resume`` an interrupted r
 To drive Ray, Dask or your own scheduler, map :func:`process_file` over paths with
 one :class:`Options`: it never raises, and its ``row`` is the table's row.
 
+The room is callable as :func:`run`: ``plumbob.batch(["parts/"], check=True)``.
 This package imports only the standard library until a batch runs.
 """
 
@@ -21,5 +22,9 @@ from __future__ import annotations
 from .options import Options
 from .rows import FileResult, process_file
 from .runner import BatchResult, default_jobs, run
+
+from ..callable_module import make_callable  # noqa: I001 (after the room's own names)
+
+make_callable(__name__, run)
 
 __all__ = ["run", "Options", "process_file", "FileResult", "BatchResult", "default_jobs"]

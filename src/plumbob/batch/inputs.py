@@ -7,7 +7,7 @@ import glob
 import os
 from collections.abc import Iterable
 
-from ..errors import InputFileError
+from ..errors import ArgumentError, InputFileError
 
 __all__ = ["discover"]
 
@@ -42,6 +42,8 @@ def discover(inputs: Iterable[str], exclude: Iterable[str] = ()) -> list[str]:
     seen: set[str] = set()
     files: list[str] = []
     for item in inputs:
+        if not isinstance(item, (str, os.PathLike)):
+            raise ArgumentError(f"inputs must be files, folders or globs, not {item!r}")
         item = os.fspath(item)
         if os.path.isdir(item):
             found = _walk(item)
