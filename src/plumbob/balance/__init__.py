@@ -22,12 +22,11 @@ is callable as its main verb: ``plumbob.balance(body, margin=0.01)`` is
 True
 """
 
+from ..callable_module import make_callable
 from .hollow import HollowResult, WrittenHollow, hollow, write_hollow
 from .result import BalanceResult, balance
 from .solve import ParameterSolution, solve_parameter
 from .targets import Target, target_for
-
-from ..callable_module import make_callable  # noqa: I001 (after the room's own names)
 
 make_callable(__name__, balance)
 

@@ -19,11 +19,10 @@ This package imports only the standard library until a batch runs.
 
 from __future__ import annotations
 
+from ..callable_module import make_callable
 from .options import Options
 from .rows import FileResult, process_file
 from .runner import BatchResult, default_jobs, run
-
-from ..callable_module import make_callable  # noqa: I001 (after the room's own names)
 
 make_callable(__name__, run)
 
