@@ -11,10 +11,11 @@ import pytest
 from _hollow_target import target_for
 
 from plumbob.balance.cells import box_union, grid_cells, manifold_rows
-from plumbob.balance.hollow import _stl_bytes, hollow, write_hollow
+from plumbob.balance.hollow import hollow, write_hollow
 from plumbob.bodies.csg import union
 from plumbob.bodies.primitives import box, cylinder, sphere
 from plumbob.errors import GeometryError, StabilityError
+from plumbob.formats.writers import stl_bytes
 from plumbob.massprops import rotation_matrix
 
 MM = 1e-3
@@ -56,7 +57,7 @@ def carved_files(tmp_path_factory):
 
     folder = tmp_path_factory.mktemp("figurine")
     source = folder / "figurine.stl"
-    source.write_bytes(_stl_bytes(figurine().shape.triangles, MM, "figurine"))
+    source.write_bytes(stl_bytes(figurine().shape.triangles, "figurine", MM))
     body = read(str(source), units="mm").body.with_default_density(RHO)
     plan = hollow(body, wall=2 * MM, target=target_for(body, margin=3 * MM))
     written = write_hollow(plan, str(folder / "carved.stl"), void=str(folder / "void.stl"),
@@ -159,7 +160,7 @@ def test_write_takes_stl_or_3mf(tmp_path):
     assert not (tmp_path / "carved.obj").exists()
     written = write_hollow(plan, str(tmp_path / "carved.3mf"), void=str(tmp_path / "void.3mf"))
     assert (tmp_path / "void.3mf").exists()
-    # a 3MF is in millimetres: read back at the same size and mass
+    # a 3MF states its unit: read back at the same size and mass
     assert written.mass_properties.mass == pytest.approx(plan.after.mass, rel=1e-6)
     assert np.allclose(written.mass_properties.center_of_mass, plan.after.center_of_mass, atol=1e-6)
     assert written.verdict.stands

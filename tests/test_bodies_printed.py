@@ -211,9 +211,9 @@ def test_parse_length_and_fraction():
 
 # ---------------------------------------------------------------- command line and spec
 def _write_cube_stl(path, side_mm):
-    from plumbob.balance.hollow import _stl_bytes
+    from plumbob.formats.writers import stl_bytes
 
-    path.write_bytes(_stl_bytes(box(side_mm, side_mm, side_mm).triangles, 1.0, "cube"))
+    path.write_bytes(stl_bytes(box(side_mm, side_mm, side_mm).triangles, "cube"))
 
 
 def _json(capsys, *argv):

@@ -1,8 +1,12 @@
-"""Opening input files safely: regular files only, read with a bound.
+"""Files in and out, safely: inputs are regular files read with a bound, outputs are
+written whole or not at all.
 
 A FIFO, a device such as ``/dev/zero`` or a folder given as input would otherwise
 block or be read forever; every reader goes through :func:`require_regular_file`
 (via :func:`plumbob.formats.read_checked`) and reads whole files with :func:`read_bytes`.
+Every output file (pictures, pose meshes, hollowed bodies, HTML reports) is written by
+:func:`write_atomic`: to a temporary file beside the target, renamed over it once
+complete, so an interrupted or failed run never leaves a partial file.
 """
 
 from __future__ import annotations
@@ -10,10 +14,10 @@ from __future__ import annotations
 import os
 import stat
 
-from .errors import InputFileError
+from .errors import InputFileError, PlumbobError
 from .limits import MAX_FILE_BYTES
 
-__all__ = ["read_bytes", "require_regular_file"]
+__all__ = ["read_bytes", "require_regular_file", "write_atomic"]
 
 
 def require_regular_file(path: str) -> int:
@@ -60,3 +64,31 @@ def read_bytes(path: str, limit: int = MAX_FILE_BYTES) -> bytes:
     if len(data) > limit:
         raise InputFileError(f"grew past the limit of {limit} bytes while being read", path=path)
     return data
+
+
+def write_atomic(path: str, data: bytes | None = None, writer=None) -> None:
+    """Write ``data`` (or call ``writer(file)``) to ``path`` through a temporary file in the
+    same folder, renamed over ``path`` only once complete."""
+    import tempfile  # here: the commands import this module on every run
+
+    folder = os.path.dirname(os.path.abspath(path))
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".plumbob-", suffix=os.path.splitext(path)[1],
+                                   dir=folder)
+    except OSError as exc:
+        raise PlumbobError(f"cannot write {path}: {exc.strerror or exc}") from None
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            if writer is not None:
+                writer(handle)
+            else:
+                handle.write(data or b"")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # as an ordinary new file, not mkstemp's private mode
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise PlumbobError(f"cannot write {path}: {exc.strerror or exc}") from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)

@@ -26,7 +26,6 @@ stability from the file, as ``plumbob check`` would.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -272,34 +271,6 @@ class WrittenHollow(Result):
         return out
 
 
-def _stl_bytes(triangles: np.ndarray, scale: float, name: str) -> bytes:
-    """A binary STL of ``triangles`` (m) in units of ``scale`` m."""
-    tri = np.asarray(triangles, dtype=float) / scale
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    length = np.linalg.norm(normal, axis=1, keepdims=True)
-    normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
-    record = np.zeros(len(tri), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    record["n"], record["v"] = normal, tri
-    header = f"plumbob {name}".encode()[:80].ljust(80, b" ")
-    return header + np.uint32(len(tri)).tobytes() + record.tobytes()
-
-
-def _three_mf_bytes(triangles: np.ndarray) -> bytes:
-    """A 3MF of ``triangles`` (m), in millimetres (3MF's default unit), via trimesh."""
-    import trimesh
-
-    from ..mesh.weld import merge_vertices
-
-    vertices, index = merge_vertices(np.asarray(triangles, dtype=float).reshape(-1, 3))
-    mesh = trimesh.Trimesh(vertices / 1e-3, index.reshape(-1, 3), process=False)
-    return mesh.export(file_type="3mf")
-
-
-def _mesh_bytes(path: str, triangles: np.ndarray, scale: float, name: str) -> bytes:
-    kind = os.path.splitext(str(path))[1].lower()
-    return _stl_bytes(triangles, scale, name) if kind == ".stl" else _three_mf_bytes(triangles)
-
-
 def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units: str | None = None,
                  down=None) -> WrittenHollow:
     """Write the carved body to ``out`` (and the void to ``void``), each atomically, then
@@ -311,9 +282,9 @@ def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units
     out, void : str
         Paths, ``.stl`` (binary) or ``.3mf``; ``void`` optional.
     units : str, optional
-        The unit of an STL's coordinates (that of the file the body came from: ``mm``
-        for most prints); default metres. A 3MF is written in millimetres, its
-        format's default unit, whatever ``units`` says.
+        The unit of the files' coordinates (that of the file the body came from: ``mm``
+        for most prints); default metres. A 3MF states it
+        (:func:`plumbob.formats.writers.write_mesh`).
     down : array_like, optional
         The direction of gravity for the stability check of the written body
         (default −z).
@@ -322,22 +293,20 @@ def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units
     -------
     WrittenHollow
     """
+    from ..formats.writers import mesh_format, write_mesh
     from ..loading import read
-    from ..plot.files import write_atomic
     from ..stability import check
-    from ..units import LENGTH_UNITS
 
-    scale = LENGTH_UNITS[units] if units else 1.0
     for path in (out, void):
-        if path is not None and os.path.splitext(str(path))[1].lower() not in (".stl", ".3mf"):
+        if path is not None and mesh_format(path) is None:
             raise GeometryError(f"hollowing writes STL or 3MF files (.stl, .3mf), not {path!r}")
-    write_atomic(str(out), _mesh_bytes(out, plan.carved.triangles, scale, "carved"))
+    unit = write_mesh(str(out), plan.carved.triangles, units, "plumbob carved")
     written_void = None
     if void is not None and plan.void is not None:
-        write_atomic(str(void), _mesh_bytes(void, plan.void.triangles, scale, "void"))
+        write_mesh(str(void), plan.void.triangles, units, "plumbob void")
         written_void = str(void)
-    stl = os.path.splitext(str(out))[1].lower() == ".stl"
-    back = read(str(out), units=(units or "m") if stl else None).body
+    stl = mesh_format(out) == "stl"
+    back = read(str(out), units=unit if stl else None).body
     density = plan.before.mass / plan.before.measure
     back = back.with_default_density(density)
     props = back.mass_properties()

@@ -48,7 +48,7 @@ def _attempt(what: str, compute, notes: list[str]):
 
 def run(args) -> int:
     from ..errors import printable
-    from ..plot.files import write_atomic
+    from ..files import write_atomic
     from ..plot.html import report_page
     from ..stability.poses import resting_poses
     from ..stability.verdict import check

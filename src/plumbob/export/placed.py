@@ -2,31 +2,23 @@
 
 :func:`export_poses` writes, for each pose, the body's surface moved by the pose's
 ``transform`` (resting on z = 0, centre of mass above the origin) to
-``pose-01-p0.4123.stl`` (rank, then probability) in a folder: binary STL in the
-length unit the body was read in, or 3MF, which states its unit. Each file is
-written to a temporary name and renamed once complete, so a folder never holds a
-partial file.
+``pose-01-p0.4123.stl`` (rank, then probability) in a folder, through
+:func:`plumbob.formats.writers.write_mesh`: binary STL in the length unit the body was
+read in, or 3MF, which states its unit; each file whole or not at all.
 """
 
 from __future__ import annotations
 
-import io
 import os
-import struct
 
 import numpy as np
 
 from ..errors import GeometryError, PlumbobError
-from ..plot.files import write_atomic
-from ..units import LENGTH_UNITS
+from ..formats.writers import MESH_FORMATS, mesh_unit, write_mesh
 
-__all__ = ["FORMATS", "UNIT_NAMES_3MF", "body_triangles", "stl_bytes", "threemf_bytes",
-           "export_poses"]
+__all__ = ["FORMATS", "body_triangles", "export_poses"]
 
-FORMATS = ("stl", "3mf")
-#: the 3MF spelling of each unit a user may name (3MF has no kilometre: written in metres)
-UNIT_NAMES_3MF = {"m": "meter", "cm": "centimeter", "mm": "millimeter", "in": "inch",
-                  "ft": "foot", "km": "meter"}
+FORMATS = MESH_FORMATS
 
 
 def body_triangles(body) -> np.ndarray:
@@ -45,50 +37,6 @@ def body_triangles(body) -> np.ndarray:
     return verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
 
 
-def stl_bytes(triangles: np.ndarray, name: str = "plumbob") -> bytes:
-    """Binary STL of ``triangles`` (n, 3, 3), in whatever unit they are given."""
-    tri = np.asarray(triangles, dtype=np.float64)
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    length = np.linalg.norm(normal, axis=1, keepdims=True)
-    normal = normal / np.where(length > 0, length, 1.0)
-    record = np.zeros(len(tri), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    record["n"], record["v"] = normal, tri
-    head = name.encode("ascii", "replace")[:80].ljust(80, b" ")
-    return head + struct.pack("<I", len(tri)) + record.tobytes()
-
-
-def threemf_bytes(triangles: np.ndarray, unit: str) -> bytes:
-    """A 3MF archive of ``triangles`` (n, 3, 3) given in ``unit`` (a 3MF unit name)."""
-    import zipfile
-
-    verts, index = np.unique(np.asarray(triangles, dtype=float).reshape(-1, 3), axis=0,
-                             return_inverse=True)
-    index = index.reshape(-1, 3)
-    # one formatting pass each (no loop over vertices in Python)
-    vtext = ('<vertex x="%.17g" y="%.17g" z="%.17g"/>' * len(verts)) % tuple(verts.ravel())
-    ttext = ('<triangle v1="%d" v2="%d" v3="%d"/>' * len(index)) % tuple(index.ravel().tolist())
-    model = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-             f'<model unit="{unit}" xml:lang="en-US" '
-             'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
-             f'<resources><object id="1" type="model"><mesh><vertices>{vtext}</vertices>'
-             f'<triangles>{ttext}</triangles></mesh></object></resources>'
-             '<build><item objectid="1"/></build></model>')
-    types = ('<?xml version="1.0" encoding="UTF-8"?>\n<Types xmlns="http://schemas.openxmlformats'
-             '.org/package/2006/content-types"><Default Extension="rels" ContentType="application/'
-             'vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" '
-             'ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>')
-    rels = ('<?xml version="1.0" encoding="UTF-8"?>\n<Relationships xmlns="http://schemas.'
-            'openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.'
-            'model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/'
-            '3dmodel"/></Relationships>')
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
-        archive.writestr("[Content_Types].xml", types)
-        archive.writestr("_rels/.rels", rels)
-        archive.writestr("3D/3dmodel.model", model)
-    return buffer.getvalue()
-
-
 def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None = None
                  ) -> list[str]:
     """Write each of ``poses`` (most probable first, ranked from 1) as the body placed by
@@ -97,12 +45,7 @@ def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None =
     paths written."""
     if fmt not in FORMATS:
         raise PlumbobError(f"cannot export poses as {fmt!r}: use one of {', '.join(FORMATS)}")
-    unit = units or "m"
-    if unit not in LENGTH_UNITS:
-        raise PlumbobError(f"unknown length unit {unit!r}: use one of {', '.join(LENGTH_UNITS)}")
-    if fmt == "3mf" and UNIT_NAMES_3MF[unit] == "meter":
-        unit = "m"
-    scale = 1.0 / LENGTH_UNITS[unit]
+    unit = mesh_unit(fmt, units)
     if any(np.asarray(p.down).size != 3 for p in poses):
         raise GeometryError("cannot export a lamina's poses as meshes: it stands in its own "
                             "plane and has no surface of triangles (--plot draws them)")
@@ -121,11 +64,8 @@ def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None =
     paths = []
     for rank, pose in enumerate(poses, 1):
         T = np.asarray(pose.transform, dtype=float)
-        placed = (tri @ T[:3, :3].T + T[:3, 3]) * scale
         name = f"pose-{rank:0{width}d}-p{pose.probability:.4f}.{fmt}"
         path = os.path.join(folder, name)
-        data = (stl_bytes(placed, name) if fmt == "stl"
-                else threemf_bytes(placed, UNIT_NAMES_3MF[unit]))
-        write_atomic(path, data)
+        write_mesh(path, tri @ T[:3, :3].T + T[:3, 3], unit, name)
         paths.append(path)
     return paths

@@ -2,8 +2,8 @@
 
 This module imports no plotting library at load time: the commands import its
 argument helper on every run, and matplotlib loads only when a picture is drawn.
-A picture is written to a temporary file beside the target and renamed over it, so
-an interrupted or failed run never leaves a partial file.
+A picture is written by :func:`plumbob.files.write_atomic`, so an interrupted or
+failed run never leaves a partial file.
 """
 
 from __future__ import annotations
@@ -14,9 +14,10 @@ import os
 from importlib import import_module
 
 from ..errors import PlumbobError
+from ..files import write_atomic
 
 __all__ = ["FORMATS", "plot_path", "add_plot_argument", "save_figure", "png_bytes",
-           "write_plot", "write_atomic"]
+           "write_plot"]
 
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 _DRAW = {"mass": ("body", "plot_body"), "check": ("check", "plot_check"),
@@ -35,34 +36,6 @@ def add_plot_argument(parser: argparse.ArgumentParser) -> None:
     """``--plot FILE``."""
     parser.add_argument("--plot", type=plot_path, metavar="FILE",
                         help="also draw the result to FILE (.png, .svg or .pdf)")
-
-
-def write_atomic(path: str, data: bytes | None = None, writer=None) -> None:
-    """Write ``data`` (or call ``writer(file)``) to ``path`` through a temporary file in the
-    same folder, renamed over ``path`` only once complete."""
-    import tempfile  # here: the commands import this module on every run
-
-    folder = os.path.dirname(os.path.abspath(path))
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".plumbob-", suffix=os.path.splitext(path)[1],
-                                   dir=folder)
-    except OSError as exc:
-        raise PlumbobError(f"cannot write {path}: {exc.strerror or exc}") from None
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            if writer is not None:
-                writer(handle)
-            else:
-                handle.write(data or b"")
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # as an ordinary new file, not mkstemp's private mode
-        os.replace(tmp, path)
-    except OSError as exc:
-        raise PlumbobError(f"cannot write {path}: {exc.strerror or exc}") from None
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def save_figure(fig, path: str, dpi: int = 150) -> None:
