@@ -14,7 +14,10 @@ rows).
 
 ``PLUMBOB_THREADS`` (an integer ≥ 1) sets the number of threads; by default it is the
 number of cores the process may use. Processes that already run side by side (a batch's
-workers) set it to 1 with :func:`set_workers`.
+workers, the drops' workers) call :func:`limit_threads` ``(1)``: plumbob's blocks and
+every BLAS/OpenMP library in the process (through ``threadpoolctl``) then run on one
+thread each, whatever the environment asked for — N workers each starting a thread per
+core would fight N × cores threads over the cores.
 """
 
 from __future__ import annotations
@@ -25,7 +28,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["BLOCK_ROWS", "MIN_THREADED_ROWS", "blockwise", "set_workers", "workers"]
+__all__ = ["BLOCK_ROWS", "MIN_THREADED_ROWS", "THREAD_VARIABLES", "blockwise", "limit_threads",
+           "set_workers", "workers"]
 
 #: rows per block: a block's (rows, 3) float64 temporaries (384 KB) fit in a core's cache
 BLOCK_ROWS = 16_384
@@ -64,6 +68,27 @@ def set_workers(count: int | None) -> None:
     """Use ``count`` threads from now on (None: back to the default)."""
     global _workers
     _workers = None if count is None else max(1, min(int(count), _MAX_WORKERS))
+
+
+#: the environment variables through which BLAS and OpenMP libraries read their thread
+#: count when they are loaded
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+                    "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
+
+
+def limit_threads(count: int) -> None:
+    """Run this process on ``count`` threads from now on: plumbob's blocks, and every BLAS
+    and OpenMP library, those loaded already (``threadpoolctl``) and those loaded later
+    (their environment variables). For a worker process, whose cores are shared with
+    its siblings; the change lasts for the process's life.
+    """
+    import threadpoolctl
+
+    count = max(1, int(count))
+    for name in THREAD_VARIABLES:
+        os.environ[name] = str(count)
+    set_workers(count)
+    threadpoolctl.threadpool_limits(limits=count)
 
 
 def blockwise(n: int, work: Callable[[slice], Sequence[np.ndarray]],

@@ -17,18 +17,23 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-from ..blockwise import set_workers
+from ..blockwise import limit_threads
 from .extra import require
 from .options import Options
 from .rows import FileResult, failure, lost_row, process_file
 
 __all__ = ["run_dask", "dask_task"]
 
+_threads: int | None = None  # the thread count this worker process was limited to
 
-def dask_task(path: str, shown: str, options: Options) -> FileResult:
+
+def dask_task(path: str, shown: str, options: Options, threads: int = 1) -> FileResult:
     """One file on a Dask worker, within the time limit (the worker's threads share its
-    cores already: plumbob's own blocks run in the task's thread alone)."""
-    set_workers(1)
+    cores already: BLAS, OpenMP and plumbob's own blocks run on ``threads`` threads)."""
+    global _threads
+    if _threads != threads:  # once per worker process, not per file
+        limit_threads(threads)
+        _threads = threads
     if options.timeout is None:
         return process_file(path, options, shown)
     box: list[FileResult] = []
@@ -43,8 +48,9 @@ def dask_task(path: str, shown: str, options: Options) -> FileResult:
 
 
 def run_dask(tasks: list[tuple[int, str, str]], options: Options,
-             scheduler: Any) -> Iterator[tuple[int, FileResult]]:
-    """(index, result) for every task as the cluster finishes it.
+             scheduler: Any, threads: int = 1) -> Iterator[tuple[int, FileResult]]:
+    """(index, result) for every task as the cluster finishes it, each on ``threads``
+    BLAS/OpenMP/plumbob threads.
 
     scheduler: the scheduler's address (``tcp://HOST:PORT``) or a ``distributed.Client``.
     """
@@ -52,7 +58,8 @@ def run_dask(tasks: list[tuple[int, str, str]], options: Options,
     own = not isinstance(scheduler, distributed.Client)
     client = distributed.Client(scheduler, timeout="30s") if own else scheduler
     try:
-        futures = [client.submit(dask_task, os.path.abspath(path), shown, options, pure=False)
+        futures = [client.submit(dask_task, os.path.abspath(path), shown, options, threads,
+                                 pure=False)
                    for _, path, shown in tasks]
         index_of = {future.key: task[0] for future, task in zip(futures, tasks)}
         shown_of = {future.key: task[2] for future, task in zip(futures, tasks)}

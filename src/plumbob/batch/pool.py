@@ -7,6 +7,11 @@ at once, and when a file overruns ``--timeout`` kills that worker and starts ano
 Only paths go out and small rows come back: meshes are read where they are measured,
 never copied between processes. Workers come from a fork server that has already
 imported numpy and plumbob, so a restart costs milliseconds.
+
+The workers own their threads: each runs BLAS, OpenMP and plumbob's own blocks on
+``threads`` threads (default 1, ``--threads-per-job``) whatever the environment says,
+since ``jobs`` processes already share the cores (:func:`~plumbob.blockwise.limit_threads`).
+One job without a time limit runs in this process, on every core it was given.
 """
 
 from __future__ import annotations
@@ -17,20 +22,34 @@ import time
 from collections import deque
 from collections.abc import Iterator
 
-from ..blockwise import set_workers
+from ..blockwise import limit_threads, set_workers
+from ..blockwise import workers as block_threads
 from .options import Options
 from .rows import FileResult, lost_row, process_file
 
-__all__ = ["Task", "run_pool"]
+__all__ = ["Task", "run_pool", "worker_threads"]
 
 #: (position in the input list, path to read, path to report)
 Task = tuple[int, str, str]
 
 
-def _serve(conn, options: Options) -> None:
-    """A worker's life: measure each path it is sent until told to stop."""
+def thread_report(imports: tuple[str, ...] = ()) -> dict:
+    """The threads this process runs: plumbob's blocks and each BLAS/OpenMP library's
+    (``threadpoolctl.threadpool_info()``), once ``imports`` (module names) are imported."""
+    import importlib
+
+    import threadpoolctl
+
+    for name in imports:
+        importlib.import_module(name)
+    return {"plumbob": block_threads(), "libraries": threadpoolctl.threadpool_info()}
+
+
+def _serve(conn, options: Options, threads: int) -> None:
+    """A worker's life: measure each path it is sent until told to stop (the message
+    ``("threads", imports)`` asks for its :func:`thread_report`)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
-    set_workers(1)  # the pool's processes share the cores already: no threads of its own
+    limit_threads(threads)  # the pool's processes share the cores already
     while True:
         try:
             task = conn.recv()
@@ -38,6 +57,9 @@ def _serve(conn, options: Options) -> None:
             return
         if task is None:
             return
+        if task[0] == "threads":
+            conn.send(thread_report(task[1]))
+            continue
         index, path, shown = task
         conn.send((index, process_file(path, options, shown)))
 
@@ -52,9 +74,10 @@ def _context():
 
 
 class _Worker:
-    def __init__(self, context, options: Options) -> None:
+    def __init__(self, context, options: Options, threads: int = 1) -> None:
         self.conn, child = context.Pipe()
-        self.process = context.Process(target=_serve, args=(child, options), daemon=True)
+        self.process = context.Process(target=_serve, args=(child, options, threads),
+                                       daemon=True)
         self.process.start()
         child.close()
         self.task: Task | None = None
@@ -78,25 +101,52 @@ class _Worker:
         self.conn.close()
 
 
-def _in_process(tasks: list[Task], options: Options) -> Iterator[tuple[int, FileResult]]:
-    for index, path, shown in tasks:
-        yield index, process_file(path, options, shown)
+def worker_threads(threads: int = 1, imports: tuple[str, ...] = ()) -> dict:
+    """The :func:`thread_report` of a live pool worker started with ``threads``, once it
+    has imported ``imports``: what BLAS, OpenMP and plumbob run on in a batch's workers."""
+    worker = _Worker(_context(), Options(), threads)
+    try:
+        worker.conn.send(("threads", tuple(imports)))
+        return worker.conn.recv()
+    finally:
+        worker.stop()
 
 
-def run_pool(tasks: list[Task], options: Options, jobs: int) -> Iterator[tuple[int, FileResult]]:
-    """(index, result) for every task, as they finish, on ``jobs`` processes.
+def _in_process(tasks: list[Task], options: Options,
+                threads: int | None) -> Iterator[tuple[int, FileResult]]:
+    if threads is None:  # the cores this process was given, as the environment says
+        for index, path, shown in tasks:
+            yield index, process_file(path, options, shown)
+        return
+    import threadpoolctl
+
+    before = block_threads()
+    try:
+        with threadpoolctl.threadpool_limits(limits=threads):
+            set_workers(threads)
+            for index, path, shown in tasks:
+                yield index, process_file(path, options, shown)
+    finally:
+        set_workers(before)
+
+
+def run_pool(tasks: list[Task], options: Options, jobs: int,
+             threads: int | None = None) -> Iterator[tuple[int, FileResult]]:
+    """(index, result) for every task, as they finish, on ``jobs`` processes of
+    ``threads`` threads each (None: one each; in this process, its own cores).
 
     With one job and no time limit the files are measured in this process (nothing to
     stop, nothing to gain from a second process).
     """
     if jobs <= 1 and options.timeout is None:
-        yield from _in_process(tasks, options)
+        yield from _in_process(tasks, options, threads)
         return
     from multiprocessing.connection import wait
 
     context = _context()
     pending = deque(tasks)
-    workers = [_Worker(context, options) for _ in range(min(jobs, len(tasks)))]
+    threads = threads or 1
+    workers = [_Worker(context, options, threads) for _ in range(min(jobs, len(tasks)))]
     try:
         for w in workers:
             if pending:
@@ -127,7 +177,7 @@ def run_pool(tasks: list[Task], options: Options, jobs: int) -> Iterator[tuple[i
                 index = w.task[0]
                 if result.row.get("status") in ("crashed", "timeout"):
                     w.stop(kill=True)
-                    w = workers[i] = _Worker(context, options)
+                    w = workers[i] = _Worker(context, options, threads)
                 w.task = None
                 if pending:
                     w.give(pending.popleft(), options.timeout)

@@ -74,7 +74,8 @@ def _normal(row: Row, fields: list[Field]) -> Row:
 
 
 def run(inputs, options: Options | None = None, *, out: str | None = None,
-        pose_out: str | None = None, jobs: int | None = None, scheduler: Any = None,
+        pose_out: str | None = None, jobs: int | None = None,
+        threads_per_job: int | None = None, scheduler: Any = None,
         resume: bool = False, resume_by: str = "mtime", progress: bool | None = None,
         **values: Any) -> BatchResult:
     """Measure every file the inputs name; see :mod:`plumbob.batch`."""
@@ -90,6 +91,8 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
     if isinstance(inputs, (str, bytes, os.PathLike)) or not hasattr(inputs, "__iter__"):
         raise ArgumentError(f"inputs must be a list of files, folders or globs, not {inputs!r}")
     jobs = None if jobs is None else count(jobs, "jobs", MAX_PARTS, minimum=1)
+    if threads_per_job is not None:
+        threads_per_job = count(threads_per_job, "threads_per_job", MAX_PARTS, minimum=1)
     fields, pfields = result_fields(options), pose_fields()
     writer = open_writer(out, fields) if out else None
     pose_writer = open_writer(pose_out, pfields) if pose_out else None
@@ -132,11 +135,11 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
         if scheduler is not None:
             from .dask import run_dask
 
-            results = run_dask(tasks, options, scheduler)
+            results = run_dask(tasks, options, scheduler, threads_per_job or 1)
         else:
             from .pool import run_pool
 
-            results = run_pool(tasks, options, jobs or default_jobs())
+            results = run_pool(tasks, options, jobs or default_jobs(), threads_per_job)
         with Progress(len(tasks), progress) as bar:
             for index, result in results:
                 row = _normal(result.row, fields)

@@ -78,6 +78,10 @@ def register(subparsers) -> None:
                          help="seconds allowed per file (default: no limit)")
     harness.add_argument("--jobs", type=count, metavar="N",
                          help="worker processes (default: every core)")
+    harness.add_argument("--threads-per-job", type=count, metavar="N",
+                         help="BLAS/OpenMP and plumbob threads in each worker (default: 1 "
+                              "with several jobs, whatever the environment says; every core "
+                              "with --jobs 1)")
     harness.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                          help="run on this Dask distributed cluster (pip install "
                               "'plumbob[batch]')")
@@ -126,7 +130,8 @@ def run(args: argparse.Namespace) -> int:
         require_tilt=args.require_tilt, g=args.g, poses=args.poses or bool(args.pose_table),
         pose_table=bool(args.pose_table), inertial=args.inertial, timeout=args.timeout)
     result = run_batch(args.inputs, options, out=args.out, pose_out=args.pose_table,
-                       jobs=args.jobs, scheduler=args.scheduler, resume=args.resume,
+                       jobs=args.jobs, threads_per_job=args.threads_per_job,
+                       scheduler=args.scheduler, resume=args.resume,
                        resume_by=args.resume_by, progress=False if args.quiet else None)
     if not args.quiet:
         print("\n".join(map(printable, result.summary.text().splitlines())), file=sys.stderr)

@@ -87,20 +87,29 @@ def check_settings(drops: int, drop_height: float, restitution: float, friction:
     return drops
 
 
+def worker_pool(jobs: int):
+    """The process pool the drops run on: ``jobs`` workers of one BLAS/OpenMP/plumbob
+    thread each (they share the cores; :func:`~plumbob.blockwise.limit_threads`)."""
+    import multiprocessing  # here, not at the top: `plumbob poses` without --dynamic
+    from concurrent.futures import ProcessPoolExecutor  # starts faster without them
+
+    from ...blockwise import limit_threads
+
+    # fork where there is one: a spawned worker would re-run a user's script that has no
+    # ``if __name__ == "__main__"`` guard; the parent has built no MuJoCo model to share
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("fork" if "fork" in methods else "spawn")
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=limit_threads,
+                               initargs=(1,))
+
+
 def _simulate(engine: eng.Engine, quats: np.ndarray, heights: np.ndarray, jobs: int
               ) -> tuple[np.ndarray, np.ndarray]:
     """Run every drop, on ``jobs`` processes; the answer is the same for any ``jobs``."""
     if jobs <= 1 or len(quats) < 2:
         return eng.run_drops(engine, quats, heights)
-    import multiprocessing  # here, not at the top: `plumbob poses` without --dynamic
-    from concurrent.futures import ProcessPoolExecutor  # starts faster without them
-
     parts = np.array_split(np.arange(len(quats)), min(len(quats), jobs * _CHUNKS_PER_JOB))
-    # fork where there is one: a spawned worker would re-run a user's script that has no
-    # ``if __name__ == "__main__"`` guard; the parent has built no MuJoCo model to share
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("fork" if "fork" in methods else "spawn")
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+    with worker_pool(jobs) as pool:
         done = list(pool.map(eng.run_drops, [engine] * len(parts),
                              [quats[p] for p in parts], [heights[p] for p in parts]))
     return (np.concatenate([d[0] for d in done]), np.concatenate([d[1] for d in done]))

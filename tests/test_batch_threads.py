@@ -1,0 +1,81 @@
+"""The worker pools own their threads: one BLAS/OpenMP/plumbob thread per worker
+whatever the environment asks for, unless ``--threads-per-job`` says otherwise."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+from conftest import ROOT
+
+# Run in a fresh process whose environment asks for 8 threads everywhere: the fork server
+# and the workers start from it (a test process's own fork server may predate the setting).
+PROBE = """
+import json
+import threadpoolctl
+import numpy  # its OpenBLAS loads here, reading the environment's 8
+from plumbob.blockwise import workers
+from plumbob.batch.pool import thread_report, worker_threads
+from plumbob.stability.drops.run import worker_pool
+
+if __name__ == "__main__":
+    with worker_pool(2) as pool:
+        drops = pool.submit(thread_report, ("scipy.linalg",)).result()
+    print(json.dumps({
+        "parent": {"plumbob": workers(), "libraries": threadpoolctl.threadpool_info()},
+        "batch": worker_threads(imports=("scipy.linalg",)),
+        "batch_two": worker_threads(2, imports=("scipy.linalg",)),
+        "drops": drops}))
+"""
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+@pytest.fixture(scope="module")
+def reports(tmp_path_factory):
+    script = tmp_path_factory.mktemp("threads") / "probe.py"  # forkserver needs a real main
+    script.write_text(PROBE)
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), PLUMBOB_THREADS="8",
+               **{name: "8" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
+                                         "MKL_NUM_THREADS")})
+    out = subprocess.run([sys.executable, str(script)], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def _threads(report: dict) -> list[int]:
+    return [lib["num_threads"] for lib in report["libraries"]]
+
+
+def test_the_environment_asks_for_many_threads(reports):
+    """The control: outside the pools the same environment gives more than one thread
+    (OpenBLAS caps its 8 at the machine's cores), so the checks below can fail."""
+    parent = reports["parent"]
+    assert parent["plumbob"] == 8
+    assert parent["libraries"], "numpy's BLAS is seen by threadpoolctl"
+    if _cores() > 1:
+        assert max(_threads(parent)) > 1
+
+
+@pytest.mark.parametrize("pool", ["batch", "drops"])
+def test_a_live_worker_runs_one_thread_per_library(reports, pool):
+    report = reports[pool]
+    apis = {lib["internal_api"] for lib in report["libraries"]}
+    assert "openblas" in apis
+    # numpy's OpenBLAS (loaded before the limit) and scipy's (loaded after) alike
+    assert len(report["libraries"]) >= 2
+    assert _threads(report) == [1] * len(report["libraries"])
+    assert report["plumbob"] == 1
+
+
+def test_threads_per_job_asks_for_more(reports):
+    report = reports["batch_two"]
+    assert report["plumbob"] == 2
+    assert set(_threads(report)) == {min(2, _cores())}
