@@ -92,3 +92,54 @@ def test_bad_report_units_are_refused(text):
 
 def test_parse_order_does_not_matter():
     assert ReportUnits.parse("g,mm") == ReportUnits.parse("mm,g") == ReportUnits("mm", "g")
+
+
+@pytest.fixture
+def box_mm(tmp_path):
+    """A 40 × 20 × 60 mm box with a corner at the origin, as an STL (no unit inside)."""
+    import trimesh
+
+    path = tmp_path / "box.stl"
+    trimesh.creation.box(extents=(40, 20, 60)).apply_translation((20, 10, 30)).export(path)
+    return str(path)
+
+
+@pytest.mark.parametrize("spelling", ["mm", "MM", "millimetre", "Millimeter", " millimetres "])
+def test_a_part_read_in_mm_reports_in_mm_and_g(capsys, box_mm, spelling):
+    """48 cm³ of PLA (1240 kg/m³) is 59.52 g; its centre (20, 10, 30) mm; the JSON SI."""
+    text = _run(capsys, "mass", box_mm, "--units", spelling, "--material", "pla")
+    assert _row(text, "mass").split()[1:] == ["59.52", "g"]
+    assert _row(text, "centre of mass").endswith("(20, 10, 30) mm")
+    assert "g·mm²" in _row(text, "inertia")
+    si = json.loads(_run(capsys, "mass", box_mm, "--units", spelling, "--material", "pla",
+                         "--json"))
+    assert si["mass"] == pytest.approx(0.05952, rel=1e-12)
+    assert si["center_of_mass"] == pytest.approx([0.02, 0.01, 0.03], rel=1e-12)
+    check = _run(capsys, "check", box_mm, "--units", spelling, "--material", "pla")
+    assert _row(check, "stability margin").split()[-2:] == ["10", "mm"]
+    lift = _run(capsys, "lift", box_mm, "--units", spelling, "--material", "pla")
+    assert _row(lift, "centre of mass above it").split()[-2:] == ["30", "mm"]
+
+
+def test_inches_report_in_inches_and_pounds_unless_asked_otherwise(capsys, box_mm):
+    """The same numbers read as inches: 48 000 in³ of PLA is 48 000 × 0.0254³ × 1240 kg."""
+    kg = 48_000 * 0.0254 ** 3 * 1240
+    text = _run(capsys, "mass", box_mm, "--units", '"', "--material", "pla")
+    assert _numbers(_row(text, "mass"))[0] == pytest.approx(kg / 0.45359237, rel=1e-5)
+    assert _row(text, "mass").endswith("lb")
+    text = _run(capsys, "mass", box_mm, "--units", "inch", "--material", "pla",
+                "--report-units", "m,kg")
+    assert _numbers(_row(text, "mass"))[0] == pytest.approx(kg, rel=1e-5)
+
+
+def test_a_part_in_metres_or_of_unknown_unit_stays_si(capsys, shapes_dir):
+    text = _run(capsys, "mass", os.path.join(shapes_dir, "block.toml"))
+    assert _row(text, "mass").endswith("kg")
+
+
+def test_an_unknown_unit_is_one_line_naming_the_choices(capsys, box_mm):
+    with pytest.raises(SystemExit) as exit_status:
+        main(["mass", box_mm, "--units", "furlong"])
+    assert exit_status.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "furlong" in err and "mm" in err

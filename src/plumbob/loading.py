@@ -9,10 +9,11 @@ files through io while io never imports spec.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 
 from . import formats
 from .arguments import file_path
-from .errors import DensityError, SpecError
+from .errors import ArgumentError, DensityError, PlumbobError, SpecError
 from .reading import Reading
 
 __all__ = ["read", "with_default_density", "SUFFIXES"]
@@ -82,6 +83,13 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     plumbob.errors.InputFileError: missing.stl: no such file
     """
     path = file_path(path)
+    if units is not None:  # one spelling from here on: "Millimetre" and "MM" are "mm"
+        from .units import unit_symbol
+
+        try:
+            units = unit_symbol(units)
+        except PlumbobError as error:
+            raise ArgumentError(f"units: {error.message}", path=path) from None
     if material is not None and density is not None:
         raise DensityError("give a material or a density, not both", path=path)
     if formats.file_family(path, SUFFIXES) == "spec":
@@ -124,13 +132,13 @@ density (5 kg/m³); remove the option, or a density from the file
     """
     own = reading.body.densities()
     if None in own:
-        return Reading(reading.body.with_default_density(density), reading.notices, reading.path)
+        return replace(reading, body=reading.body.with_default_density(density))
     if not own:
         raise DensityError(f"{option} does not apply: a body of particles has its masses "
                            "given; remove the option", path=reading.path)
     if own == {density}:
         note = f"{option}: every part already has this density; the option changes nothing"
-        return Reading(reading.body, reading.notices + (note,), reading.path)
+        return replace(reading, notices=reading.notices + (note,))
     unit = "kg/m²" if reading.body.kind == "lamina" else "kg/m³"
     given = ", ".join(sorted(f"{d:g} {unit}" if isinstance(d, float) else "a density field"
                              for d in own))

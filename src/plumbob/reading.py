@@ -20,8 +20,13 @@ class Reading:
 
     body: what the file describes. notices: assumed units, repaired defects,
     implausible sizes, one line each. path: the file, when there is one.
+    length_unit: the unit the file's coordinates were read in (``"mm"``, ``"in"``:
+    given by the user or declared by the file); None when metres were assumed or the
+    file's own scale has no unit name. The body is in metres either way; text reports
+    show the part in this unit (:func:`plumbob.report.natural_units`).
     """
 
     body: Body
     notices: tuple[str, ...] = ()
     path: str | None = None
+    length_unit: str | None = None

@@ -68,6 +68,24 @@ def table(rows: Sequence[tuple[str, str]], title: str | None = None) -> str:
 
 _POWERS = {2: "²", 3: "³"}
 
+#: the mass unit people pair with a length unit: a part drawn in mm is weighed in g
+_NATURAL_MASS = {"mm": "g", "cm": "g", "in": "lb", "ft": "lb"}
+
+
+def natural_units(length_unit: str | None) -> ReportUnits:
+    """The report units for a part read in ``length_unit`` (the user's ``--units`` or
+    the file's declared unit): millimetres and grams for a part drawn in mm, inches and
+    pounds for one in inches, SI otherwise (metres, kilometres, or no unit known).
+
+    >>> natural_units("mm"), natural_units("in")
+    (ReportUnits(length_unit='mm', mass_unit='g'), ReportUnits(length_unit='in', mass_unit='lb'))
+    >>> natural_units(None).si, natural_units("km").si
+    (True, True)
+    """
+    if length_unit in _NATURAL_MASS:
+        return ReportUnits(length_unit, _NATURAL_MASS[length_unit])
+    return ReportUnits()
+
 
 @dataclass(frozen=True)
 class ReportUnits:

@@ -20,6 +20,8 @@ __all__ = [
     "UNITS_ASSUMED",
     "STANDARD_GRAVITY",
     "length_scale",
+    "unit_symbol",
+    "reading_unit",
     "file_unit_scale",
     "units_scale",
 ]
@@ -52,14 +54,14 @@ LENGTH_UNITS: dict[str, float] = {
 
 #: unit names files spell out → the symbol in :data:`METRES_PER_UNIT`
 UNIT_SPELLINGS: dict[str, str] = {
-    "micron": "um", "micrometer": "um",
-    "millimeter": "mm", "millimetre": "mm", "millimeters": "mm",
-    "centimeter": "cm", "centimetre": "cm",
+    "micron": "um", "micrometer": "um", "micrometre": "um", "µm": "um",
+    "millimeter": "mm", "millimetre": "mm", "millimeters": "mm", "millimetres": "mm",
+    "centimeter": "cm", "centimetre": "cm", "centimeters": "cm", "centimetres": "cm",
     "decimeter": "dm",
-    "meter": "m", "metre": "m", "meters": "m",
-    "kilometer": "km",
-    "inch": "in",
-    "foot": "ft", "feet": "ft",
+    "meter": "m", "metre": "m", "meters": "m", "metres": "m",
+    "kilometer": "km", "kilometre": "km", "kilometers": "km", "kilometres": "km",
+    "inch": "in", "inches": "in", '"': "in", "″": "in",
+    "foot": "ft", "feet": "ft", "'": "ft", "′": "ft",
     "yard": "yd",
     "mile": "mi",
 }
@@ -68,20 +70,60 @@ UNIT_SPELLINGS: dict[str, str] = {
 UNITS_ASSUMED = "units: none in file; metres assumed (use --units)"
 
 
+def unit_symbol(unit: str) -> str:
+    """The symbol of a length unit a person may type: any case, spelled out or as a
+    symbol (``MM``, ``millimetre``, ``Inch``, ``"``), one of :data:`LENGTH_UNITS`.
+
+    >>> unit_symbol("MM"), unit_symbol(" Millimetre "), unit_symbol('"'), unit_symbol("feet")
+    ('mm', 'mm', 'in', 'ft')
+    >>> unit_symbol("furlong")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.PlumbobError: unknown length unit 'furlong'; use one of m, cm, mm, km, in, \
+ft (or spelled out: millimetre, inch, …)
+    """
+    if not isinstance(unit, str):
+        raise PlumbobError(f"a length unit must be text such as 'mm', not {unit!r}")
+    key = unit.strip().lower()
+    key = UNIT_SPELLINGS.get(key, key)
+    if key not in LENGTH_UNITS:
+        known = ", ".join(LENGTH_UNITS)
+        raise PlumbobError(f"unknown length unit {unit!r}; use one of {known} "
+                           "(or spelled out: millimetre, inch, …)")
+    return key
+
+
 def length_scale(unit: str | None, default: str = "m") -> float:
-    """Metres per ``unit``, one of :data:`LENGTH_UNITS` (None: ``default``).
+    """Metres per ``unit``, one of :data:`LENGTH_UNITS` in any spelling
+    :func:`unit_symbol` reads (None: ``default``).
 
     >>> length_scale("mm")
     0.001
+    >>> length_scale("Inch")
+    0.0254
     >>> length_scale(None)
     1.0
     """
-    name = default if unit is None else unit.strip().lower()
-    try:
-        return LENGTH_UNITS[name]
-    except KeyError:
-        known = ", ".join(LENGTH_UNITS)
-        raise PlumbobError(f"unknown length unit {unit!r}; use one of {known}") from None
+    return LENGTH_UNITS[unit_symbol(default if unit is None else unit)]
+
+
+def reading_unit(units: str | None, file_units: str | None = None) -> str | None:
+    """The length unit a file's coordinates were read in, as a symbol: the one the user
+    gave, else the one the file declares, else None (metres assumed or no unit known).
+    Reports show a part in its own unit (:class:`plumbob.reading.Reading`).
+
+    >>> reading_unit("Millimetre"), reading_unit(None, "inch"), reading_unit(None)
+    ('mm', 'in', None)
+    >>> reading_unit(None, "furlong") is None
+    True
+    """
+    if units is not None:
+        return unit_symbol(units)
+    if file_units is None:
+        return None
+    key = file_units.strip().lower()
+    key = UNIT_SPELLINGS.get(key, key)
+    return key if key in METRES_PER_UNIT else None
 
 
 def file_unit_scale(name: str | None) -> float | None:

@@ -11,9 +11,10 @@ import argparse
 import math
 import sys
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
-from ..errors import ArgumentError, DynamicsError, SpecError, printable
+from ..errors import ArgumentError, DynamicsError, PlumbobError, SpecError, printable
 from ..loading import read, with_default_density
 from ..materials import check_density
 from ..reading import Reading
@@ -160,6 +161,16 @@ def number_option(text: str, label: str, *, infinite: bool = False) -> float:
     return value
 
 
+def length_unit(text: str) -> str:
+    """``--units``: a length unit in any spelling a person types, as its symbol."""
+    from ..units import unit_symbol
+
+    try:
+        return unit_symbol(text)
+    except PlumbobError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
+
+
 # ------------------------------------------------------------ body arguments
 def add_body_arguments(parser: argparse.ArgumentParser) -> None:
     """PATH, --density/--material, --units, --repair, --set, --json, --shell/--infill."""
@@ -179,8 +190,10 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--units",
-        choices=sorted(LENGTH_UNITS),
-        help="length unit of the file's coordinates (default m)",
+        type=length_unit,
+        metavar="UNIT",
+        help="length unit of the file's coordinates: m, cm, mm, km, in or ft, in any case or "
+        "spelled out (millimetre, inch); default: the unit the file declares, else metres",
     )
     parser.add_argument(
         "--repair",
@@ -225,16 +238,18 @@ def _report_units(text: str):
         raise argparse.ArgumentTypeError(str(error)) from None
 
 
-def report_units(args: argparse.Namespace):
-    """The units of the text report: ``--report-units``, else SI. Asked for with
-    ``--json`` it is an error (the JSON is always SI), never silently ignored."""
-    from ..report import ReportUnits
+def report_units(args: argparse.Namespace, reading: Reading | None = None):
+    """The units of the text report: ``--report-units``, else the part's own (a part
+    read in millimetres is shown in mm and g: :func:`~plumbob.report.natural_units`),
+    else SI. Asked for with ``--json`` it is an error (the JSON is always SI), never
+    silently ignored."""
+    from ..report import natural_units
 
     units = getattr(args, "report_units", None)
     if units is not None and getattr(args, "json", False):
         raise ArgumentError("--report-units changes the text report only; the JSON is always "
                             "in SI units (leave out one of them)")
-    return units or ReportUnits()
+    return units or natural_units(reading.length_unit if reading is not None else None)
 
 
 def assignment(text: str) -> tuple[str, str]:
@@ -323,7 +338,7 @@ def load_body(args: argparse.Namespace) -> Reading:
 
         body = printed_from_options(reading.body, args.shell, args.infill,
                                     scale=length_scale(getattr(args, "units", None)))
-        reading = Reading(body, reading.notices, reading.path)
+        reading = replace(reading, body=body)
     return reading
 
 

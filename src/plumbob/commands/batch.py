@@ -9,8 +9,17 @@ import argparse
 import sys
 
 from ..errors import printable
-from ..units import LENGTH_UNITS, STANDARD_GRAVITY
-from ._common import count, direction, material_name, non_negative, number, positive, tilt_limit
+from ..units import STANDARD_GRAVITY
+from ._common import (
+    count,
+    direction,
+    length_unit,
+    material_name,
+    non_negative,
+    number,
+    positive,
+    tilt_limit,
+)
 
 __all__ = ["register", "run"]
 
@@ -60,8 +69,9 @@ def register(subparsers) -> None:
                          help="density in kg/m³ (kg/m² for a lamina) for parts that give none")
     density.add_argument("--material", type=material_name, metavar="NAME",
                          help="a material from 'plumbob materials' for parts that give none")
-    body.add_argument("--units", choices=sorted(LENGTH_UNITS),
-                      help="length unit of the files' coordinates (default: each file's, else m)")
+    body.add_argument("--units", type=length_unit, metavar="UNIT",
+                      help="length unit of the files' coordinates: m, cm, mm, km, in or ft, "
+                      "any case or spelled out (default: each file's own, else m)")
     body.add_argument("--repair", action="store_true", help="repair small mesh defects")
     body.add_argument("--down", type=direction, metavar="X,Y,Z",
                       help="direction of gravity for --check (default -z; -y for a lamina)")

@@ -275,8 +275,8 @@ def run(args) -> int:
                              "--margin M")
     if args.solve_for is not None:
         _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
-    units = report_units(args)
     reading, props, notes = open_body(args)
+    units = report_units(args, reading)
     body = reading.body
     v = _verdict(args, body, props)
     require_finite(v.as_dict())

@@ -55,8 +55,8 @@ def run(args) -> int:
     from ..report import format_number as num
     from ..report import table
 
-    u = report_units(args)
     reading, props, notes = open_body(args)
+    u = report_units(args, reading)
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
     if args.plot:

@@ -34,8 +34,8 @@ def register(subparsers) -> None:
 def run(args: argparse.Namespace) -> int:
     from .mass_report import MassReport
 
-    units = report_units(args)
     reading = load_body(args)
+    units = report_units(args, reading)
     print_notices(reading)
     report = MassReport.of(reading)
     require_finite(report.as_dict())

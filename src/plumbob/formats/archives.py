@@ -37,6 +37,7 @@ import tempfile
 import zipfile
 import zlib
 from collections.abc import Callable
+from dataclasses import replace
 from typing import IO
 
 from .. import limits
@@ -240,6 +241,6 @@ def read_archive(path: str, read_member: Callable[[str], Reading],
             raise
         notices = tuple(n.replace(inner, shown) for n in reading.notices)
         note = f"{kind}: read {printable(member)} from the archive"
-        return Reading(reading.body, (note, *notices), path)
+        return replace(reading, notices=(note, *notices), path=path)
     finally:
         shutil.rmtree(folder, ignore_errors=True)

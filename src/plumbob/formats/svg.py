@@ -32,7 +32,7 @@ from ..errors import FormatError, GeometryError, fmt_point
 from ..files import read_bytes
 from ..limits import MAX_ELEMENT_DEPTH, MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
 from ..reading import Reading
-from ..units import METRES_PER_UNIT, units_scale
+from ..units import METRES_PER_UNIT, reading_unit, units_scale
 from .checks import ABSURD_COORDINATE
 from .curves import arc_bulges, elliptic_arc_cubics
 from .laminas import Outline, body_from_outlines
@@ -87,7 +87,7 @@ def read_svg(path: str, units: str | None = None) -> Reading:
         raise FormatError("has no closed path or shape", path=path)
     file_axes = np.array([scale, -scale])  # metres per file unit along x and y (flipped)
     body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=file_axes)
-    return Reading(body, tuple(notices) + more, path)
+    return Reading(body, tuple(notices) + more, path, reading_unit(units))
 
 
 def _check_xml(data: bytes, path: str) -> None:

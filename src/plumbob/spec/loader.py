@@ -106,7 +106,7 @@ def build_spec(data: dict, path: str = "<spec>", *,
     body = _shape(data, spec)
     if repair and not any(n.startswith(_MESH_NOTICE) for n in spec.notices):
         spec.notices.append("repair: the spec reads no mesh files; nothing to repair")
-    return Reading(body, tuple(dict.fromkeys(spec.notices)), path)
+    return Reading(body, tuple(dict.fromkeys(spec.notices)), path, spec.unit)
 
 
 def parse_simulation(data: dict, path: str | None = None, *,

@@ -19,7 +19,7 @@ import numpy as np
 from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import LimitError, PlumbobError, SpecError
 from ..expr import CONSTANTS, parse
-from ..units import LENGTH_UNITS
+from ..units import LENGTH_UNITS, unit_symbol
 
 __all__ = ["SpecContext", "LoadOptions", "suggest", "shown", "read_parameters", "RESERVED_NAMES"]
 
@@ -145,9 +145,11 @@ class SpecContext:
         if not isinstance(value, str):
             raise self.error(where, f"expected a length unit as text ({', '.join(LENGTH_UNITS)}),"
                              f" not {shown(value)}")
-        if value not in LENGTH_UNITS:
-            raise self.error(where, f"unknown unit {value!r}; use one of {', '.join(LENGTH_UNITS)}")
-        return value
+        try:
+            return unit_symbol(value)
+        except PlumbobError:
+            raise self.error(where, f"unknown unit {value!r}; use one of "
+                             f"{', '.join(LENGTH_UNITS)}") from None
 
     def points(
         self, value: Any, where: str, dims: tuple[int, ...] = (2,), length: bool = True
