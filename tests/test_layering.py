@@ -19,7 +19,7 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
     ("units", "tolerances", "results", "plot", "limits", "arguments", "blockwise",
-     "callable_module", "files"),
+     "callable_module", "files", "arrays"),
     ("expr", "integrals", "massprops", "materials"),
     ("mesh",),
     ("bodies",),

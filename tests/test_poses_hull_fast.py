@@ -9,7 +9,7 @@ import numpy as np
 from hypothesis import example, given
 from hypothesis import strategies as st
 
-from plumbob.mesh.sorting import lex_order, stable_order
+from plumbob.arrays import cross, dot, expand, lex_order, row_max, row_min, stable_order, unit
 from plumbob.mesh.weld import merge_vertices, unique_first
 from plumbob.stability.poses.convex import (
     _normal_order,
@@ -19,7 +19,6 @@ from plumbob.stability.poses.convex import (
 )
 from plumbob.stability.poses.hull import build_hull3
 from plumbob.stability.poses.rolling import arc_sides, edge_geometry
-from plumbob.stability.poses.vectors import cross, dot, expand, row_max, row_min, unit
 
 
 def _unit_rows(rng: np.random.Generator, n: int, quantum: float) -> np.ndarray:
@@ -115,7 +114,7 @@ def test_merge_vertices_matches_the_exact_merge():
 def _plain_faces(X: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
     """Faces and heights the slow way: triangles joined across edges whose far corners lie
     within eps of both planes, areas summed, the largest corner height per face."""
-    from plumbob.mesh.graph import connected_components
+    from plumbob.arrays import connected_components
 
     hm = hull_mesh(X, eps)
     P, tri, tn, off, twin = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins

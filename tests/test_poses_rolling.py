@@ -9,10 +9,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_poses_fans import boss_points
 
+from plumbob.arrays import group_first
 from plumbob.stability.poses import basins, poses_from_points
 from plumbob.stability.poses.hull import build_hull3
 from plumbob.stability.poses.rolling import first_least_sorted
-from plumbob.stability.poses.vectors import group_first
 
 
 @settings(max_examples=60, deadline=None)

@@ -23,8 +23,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import plumbob.stability as stability
+from plumbob.arrays import unique
 from plumbob.bodies.primitives import box, pyramid
-from plumbob.stability.poses.vectors import unique
 
 #: Never needed by a command on a mesh: other commands' libraries, plots, the
 #: MuJoCo drops, the outline and quadrature code, numpy's masked arrays and series.

@@ -34,6 +34,7 @@ plumbob.errors.GeometryError: is open with a hole too large to close safely (3 b
 
 from __future__ import annotations
 
+from ..arrays import connected_components
 from .closure import (
     CLOSURE_TOLERANCE,
     Holes,
@@ -44,7 +45,6 @@ from .closure import (
     require_closed,
     surface_summary,
 )
-from .graph import connected_components
 from .repair import HOLE_AREA_FRACTION, fill_holes
 from .shells import resolve_shells, unite_shells
 from .solid import FULL_CHECK_LIMIT, CheckedSolid, check_solid

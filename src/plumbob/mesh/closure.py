@@ -26,10 +26,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..arrays import connected_components
 from ..errors import GeometryError, fmt_point
 from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..tolerances import weld_tolerance
-from .graph import connected_components
 from .topology import Topology, mesh_topology
 from .weld import point_keys
 

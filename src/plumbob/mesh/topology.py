@@ -11,7 +11,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .graph import connected_components
+from ..arrays import connected_components
 from .weld import merge_vertices, weld_near
 
 __all__ = ["connected_components", "Topology", "mesh_topology"]

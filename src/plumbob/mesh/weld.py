@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .graph import connected_components
+from ..arrays import connected_components
 
 __all__ = ["merge_vertices", "point_keys", "unique_first", "weld_near"]
 

@@ -12,22 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["cross", "solid_angle", "solid_angles", "winding_numbers"]
+from ..arrays import cross
+
+__all__ = ["solid_angle", "solid_angles", "winding_numbers"]
 
 #: corner vectors formed per pass of :func:`winding_numbers` (points × triangles)
 WINDING_BLOCK = 2_000_000
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross products of (…, 3) arrays: ``np.cross``'s numbers, bit for bit, without its
-    per-call cost (which dominates for the few vectors of each step of a trace).
-
-    >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
-    [0.0, 0.0, 1.0]
-    """
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
 
 
 def _dot(x: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import unit_vector as _checked_unit_vector
 from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
@@ -68,17 +69,16 @@ def unit_vector(vector, dim: int, what: str = "down") -> np.ndarray:
     >>> unit_vector([1, -1, 0], 2)
     array([ 0.70710678, -0.70710678])
     """
-    v = np.asarray(vector, dtype=float).reshape(-1)
-    if dim == 2 and v.size == 3:
-        if v[2] != 0:
-            raise StabilityError(f"a lamina stands in its own plane: {what} needs z = 0")
-        v = v[:2]
-    if v.size != dim:
-        raise StabilityError(f"{what} needs {dim} components, not {v.size}")
-    norm = np.linalg.norm(v)
-    if not np.isfinite(norm) or norm == 0:
-        raise StabilityError(f"{what} must be a non-zero finite vector")
-    return v / norm
+    try:
+        v = np.asarray(vector, dtype=float).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        v = vector  # arguments.unit_vector says what is wrong with it
+    else:
+        if dim == 2 and v.size == 3:
+            if v[2] != 0:
+                raise StabilityError(f"a lamina stands in its own plane: {what} needs z = 0")
+            v = v[:2]
+    return _checked_unit_vector(v, what, (dim,), error=StabilityError)
 
 
 def default_down(dim: int) -> np.ndarray:

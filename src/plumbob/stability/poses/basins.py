@@ -17,12 +17,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...arrays import cross, dot, fibonacci_sphere, unit
 from ...errors import StabilityError
 from ...mesh.winding import solid_angle
 from .fans import FAN_CORNERS, Fans
 from .hull import Hull3
 from .rolling import Edges3, Roller, edge_geometry, step
-from .vectors import cross, dot, fibonacci_sphere, unit
 
 __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 

@@ -44,11 +44,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...arrays import cross, dot, lex_order, stable_order
 from ...blockwise import blockwise
 from ...errors import GeometryError
-from ...mesh.sorting import lex_order, stable_order
 from ...mesh.winding import solid_angle
-from .vectors import cross, dot
 
 __all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
            "corner_levels", "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
@@ -126,7 +125,7 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
 def _normal_order(normals: np.ndarray) -> np.ndarray:
     """The triangles ordered by their normals rounded to 1e-9, largest x first, then y,
     then z, then as given: ``np.lexsort`` of the rounded components, as three stable
-    integer sorts (:func:`~plumbob.mesh.sorting.lex_order`) instead of three float ones.
+    integer sorts (:func:`~plumbob.arrays.lex_order`) instead of three float ones.
 
     ``np.round(x, 9)`` is ``rint(x · 1e9) / 1e9``, so the integers ``rint(x · 1e9)``
     (|·| ≤ 1e9) sort the same way.

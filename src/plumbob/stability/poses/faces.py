@@ -22,9 +22,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...mesh.sorting import stable_order
+from ...arrays import around, cross, dot, expand, stable_order, unique
 from .hull import Hull3
-from .vectors import around, cross, dot, expand, unique
 
 __all__ = ["PhysicalFaces", "physical_faces"]
 

@@ -36,9 +36,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...mesh.topology import connected_components
+from ...arrays import connected_components, dot, group_first
 from .landscape import Landscape
-from .vectors import dot, group_first
 
 __all__ = ["Families", "families", "ROLL_ANGLE_DEG", "ROLL_EXTENT_DEG", "ROLL_MEMBERS",
            "LEVEL_RIPPLES", "CIRCLE_RESIDUAL"]

@@ -25,9 +25,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...arrays import around, dot, unit
 from .hull import Hull3
 from .rolling import Edges3, arc_sides, step
-from .vectors import around, dot, unit
 
 __all__ = ["FAN_CORNERS", "prefix_products", "Fans"]
 

@@ -17,11 +17,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...arrays import connected_components, dot, row_max, row_min, stable_order, unit
 from ...errors import GeometryError
-from ...mesh.sorting import stable_order
-from ...mesh.topology import connected_components
 from .convex import HullMesh, corner_levels, hull_mesh
-from .vectors import dot, row_max, row_min, unit
 
 __all__ = ["Hull3", "build_hull3", "shifted"]
 

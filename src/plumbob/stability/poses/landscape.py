@@ -19,6 +19,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ...arrays import dot, pointer_sinks, unit
 from ...errors import StabilityError
 from ...tolerances import HULL_ROUND_OFF, size_of
 from ..planar import drop_collinear, planar_hull
@@ -26,7 +27,6 @@ from .basins import basins3
 from .faces import physical_faces
 from .hull import Hull3, build_hull3, shifted
 from .rolling import Edges3, Roller, edge_geometry
-from .vectors import dot, pointer_sinks, unit
 
 __all__ = ["Landscape", "landscape3", "landscape2"]
 

@@ -19,10 +19,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...arrays import cross, dot, expand, group_first, unique, unit
 from ...blockwise import blockwise
 from ...errors import StabilityError
 from .hull import Hull3
-from .vectors import cross, dot, expand, group_first, unique, unit
 
 __all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step", "Roller"]
 

@@ -1,20 +1,47 @@
-"""Vectorised array helpers shared by the pose pieces.
+"""Small array helpers, the one home of them: pure numpy over whole arrays, no plumbob
+concept but an error class.
 
-Row-wise vector algebra on (…, 3) arrays, the signed area of spherical triangles,
-per-group minima and ragged expansions of index arrays, pointer jumping to the roots
-of a forest, and a Fibonacci lattice of directions. Each works on whole arrays, so
-the hull, the roller and the basin tracer never loop over faces or edges in Python.
+* row-wise vector algebra on (…, 3) arrays: :func:`cross`, :func:`dot`, :func:`unit`,
+  :func:`row_max`, :func:`row_min`, :func:`around`;
+* stable sorts of integer keys by sorting packed words (:func:`stable_order`,
+  :func:`lex_order`): numpy's ``np.sort`` of int64 is SIMD-accelerated and 3× faster
+  than ``np.argsort``, and 5–10× faster than a stable ``np.argsort``. Packing each key
+  above its index (``key << bits | index``) makes one plain sort a stable argsort
+  whenever key and index fit in 63 bits together; otherwise the plain stable
+  ``np.argsort`` answers. Same orders, to the element;
+* graphs and groups: :func:`connected_components` (without scipy), :func:`group_first`,
+  ragged expansions (:func:`expand`), pointer jumping to the roots of a forest
+  (:func:`pointer_sinks`), :func:`unique` without ``numpy.ma``;
+* a Fibonacci lattice of directions (:func:`fibonacci_sphere`).
+
+Each works on whole arrays, so the mesh checks, the hull, the roller and the basin
+tracer never loop over faces or edges in Python. Checking a public function's
+arguments (unit vectors included) is :mod:`plumbob.arguments`'s job, not this module's.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
-from ...errors import StabilityError
-from ...mesh.winding import cross  # one copy, shared with the solid angles
+from .errors import StabilityError
 
-__all__ = ["unit", "cross", "dot", "row_max", "row_min", "group_first", "expand",
-           "pointer_sinks", "fibonacci_sphere", "unique", "around"]
+__all__ = ["cross", "dot", "unit", "row_max", "row_min", "around", "stable_order", "lex_order",
+           "connected_components", "group_first", "expand", "pointer_sinks", "unique",
+           "fibonacci_sphere"]
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross products of (…, 3) arrays: ``np.cross``'s numbers, bit for bit, without its
+    per-call cost (which dominates for the few vectors of each step of a trace).
+
+    >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
+    [0.0, 0.0, 1.0]
+    """
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
 
 
 def unit(v: np.ndarray) -> np.ndarray:
@@ -146,3 +173,81 @@ def around(points: np.ndarray, normal: np.ndarray) -> np.ndarray:
     e2 = cross(normal, e1)
     rel = points - points.mean(axis=0)
     return np.argsort(np.arctan2(rel @ e2, rel @ e1), kind="stable")
+
+
+def stable_order(keys: np.ndarray) -> np.ndarray:
+    """``np.argsort(keys, kind="stable")`` of integer keys (1-D).
+
+    >>> stable_order(np.array([3, -1, 3, 0])).tolist()
+    [1, 3, 0, 2]
+    """
+    keys = np.asarray(keys).reshape(-1)
+    n = len(keys)
+    if n < 2:
+        return np.arange(n, dtype=np.intp)
+    lo, hi = int(keys.min()), int(keys.max())
+    bits = (n - 1).bit_length()
+    if (hi - lo).bit_length() + bits > 63:
+        return np.argsort(keys, kind="stable")
+    packed = np.subtract(keys, lo, dtype=np.int64)
+    packed <<= bits
+    packed |= np.arange(n, dtype=np.int64)
+    packed.sort()
+    packed &= (1 << bits) - 1
+    return packed
+
+
+def lex_order(keys: Sequence[np.ndarray]) -> np.ndarray:
+    """``np.lexsort(keys)`` of integer keys (the last the primary one), one stable sort
+    per key from the first.
+
+    >>> lex_order([np.array([1, 0, 2, 1]), np.array([5, 5, 4, 4])]).tolist()
+    [3, 2, 1, 0]
+    """
+    order = stable_order(keys[0])
+    for key in keys[1:]:
+        order = order[stable_order(np.asarray(key)[order])]
+    return order
+
+
+def connected_components(n: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Component labels of a graph on nodes ``0..n-1`` with edges ``u[i]–v[i]``.
+
+    Vectorised hooking and pointer jumping: as fast as scipy's, without scipy.
+
+    Parameters
+    ----------
+    n : int
+        Number of nodes.
+    u, v : (e,) array_like of int
+        The edges' ends.
+
+    Returns
+    -------
+    (n,) int ndarray
+        Label ``0..k-1`` of each node's component, numbered in the order of
+        each component's smallest node.
+
+    Examples
+    --------
+    >>> connected_components(5, [0, 3], [1, 4]).tolist()
+    [0, 0, 1, 2, 2]
+    >>> connected_components(3, [], []).tolist()  # no edges: every node alone
+    [0, 1, 2]
+    """
+    parent = np.arange(n)
+    u = np.asarray(u, dtype=np.int64)
+    v = np.asarray(v, dtype=np.int64)
+    while len(u):
+        pu, pv = parent[u], parent[v]
+        live = pu != pv
+        if not live.any():
+            break
+        u, v, pu, pv = u[live], v[live], pu[live], pv[live]
+        np.minimum.at(parent, np.maximum(pu, pv), np.minimum(pu, pv))
+        while True:  # point every node at its root
+            grand = parent[parent]
+            if np.array_equal(grand, parent):
+                break
+            parent = grand
+    return np.unique(parent, return_inverse=True)[1].reshape(-1)
