@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import StabilityError
-from ..stability.support import Support, default_down, support_polygon, unit_vector
+from ..stability.support import Support, support_polygon
 
 __all__ = ["Target", "target_for"]
 
@@ -148,9 +148,3 @@ def target_for(body, *, down=None, margin: float | None = None,
         kinds += ["tilt"] * int(keep.sum())
     return Target(np.concatenate(rows), np.concatenate(offsets), frame.down.copy(), margin,
                   require_tilt, support, tuple(kinds))
-
-
-def resolve_down(body, down) -> np.ndarray:
-    """``down`` as a unit vector for ``body`` (default −z, or −y for a lamina)."""
-    dim = getattr(body, "dim", 3)
-    return default_down(dim) if down is None else unit_vector(down, dim)

@@ -16,7 +16,6 @@ __all__ = ["STATUS_COLOURS", "PART_COLOURS", "status", "new_figure", "label_axes
 STATUS_COLOURS = {"stands": "#1a7f37", "amber": "#f0b400", "topples": "#c62828"}
 STATUS_WORDS = {"stands": "stands", "amber": "below the required tilt", "topples": "topples"}
 PART_COLOURS = ("#8fa8c8", "#d9a066", "#9cc89a", "#c79ac7", "#c8c070", "#e08f8f", "#7fc8c8")
-BODY_COLOUR = PART_COLOURS[0]
 COM_STYLE = dict(marker="o", markersize=9, markerfacecolor="white", markeredgecolor="black",
                  markeredgewidth=2.0, linestyle="none", zorder=20)
 INK = "#222222"

@@ -39,11 +39,9 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 __all__ = ["load_spec", "build_spec", "spec_parameters", "load_simulation", "parse_simulation",
-           "spec_kind", "KINDS"]
+           "spec_kind"]
 
 MAX_SPEC_BYTES = 4 << 20
-#: the values of a spec's top-level ``kind``
-KINDS = ("shape", "simulation")
 #: the top-level keys of a shape spec
 TOP_KEYS = {"kind", "shape", "parameters", "part", "particle"}
 #: the keys of [shape] in a spec of particles

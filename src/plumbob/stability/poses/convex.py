@@ -1,20 +1,11 @@
 """Convex hulls for the pose code, chosen by measurement: manifold3d first, qhull as fallback.
 
-Measured on this project's 2-core machine (``python bench/poses.py --hulls``), welded
-points of float32 STL files:
-
-=============================  =======  ==========  ===========
-mesh                           points   manifold3d  scipy qhull
-=============================  =======  ==========  ===========
-box with cylinder, 10k faces     5 002       12 ms       381 ms
-box with cylinder, 100k faces   50 008       12 ms    18 194 ms
-capsule, 100k faces             49 730      151 ms       443 ms
-counter.unitsmm.STL, 84k        41 837        2 ms        12 ms
-=============================  =======  ==========  ===========
-
-(qhull slows badly on the nearly co-circular points of a finely tessellated circle),
-and manifold3d imports in 3–11 ms where ``scipy.spatial`` takes 300–850 ms, which
-alone would be a large part of the start-up of ``plumbob poses``. So
+manifold3d's quickhull is the faster by one to three orders of magnitude on finely
+tessellated meshes (qhull slows badly on the nearly co-circular points of a
+tessellated circle), and manifold3d imports in milliseconds where ``scipy.spatial``
+takes hundreds, which alone would be a large part of the start-up of ``plumbob
+poses``: the figures are in ``docs/stability.md`` (*Speed*), measured by
+``python bench/poses.py --hulls``. So
 :func:`hull_triangles` asks manifold3d, checks its answer (a closed surface of
 non-degenerate triangles, every edge convex to rounding error, a volume) and falls
 back to qhull only when that check fails. A closed mesh that is its own hull (a

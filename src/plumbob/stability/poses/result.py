@@ -2,7 +2,7 @@
 
 Frozen dataclasses in SI units. ``as_dict()`` gives the JSON object of
 ``plumbob poses --json`` (keys documented in ``docs/cli.md``; numpy arrays are
-left as arrays, :func:`plumbob.report.jsonable` turns them into lists), and the
+left as arrays, :func:`plumbob.results.jsonable` turns them into lists), and the
 reprs are one short line each.
 """
 
