@@ -30,7 +30,7 @@ from .errors import ArgumentError
 from .massprops import MassProperties
 from .results import Result
 from .tolerances import contact_tolerance
-from .units import STANDARD_GRAVITY
+from .units import SEED_GRAVITY
 
 __all__ = [
     "DAYS_PER_YEAR",
@@ -48,7 +48,7 @@ __all__ = [
 DAYS_PER_YEAR = 365.25
 
 
-def seed_work_per_day(g: float = STANDARD_GRAVITY) -> float:
+def seed_work_per_day(g: float = SEED_GRAVITY) -> float:
     """The seed's day of work: lifting 1000 kg through 1 m, ``1000 g`` J.
 
     >>> seed_work_per_day()
@@ -93,7 +93,7 @@ class PotentialEnergy(Result):
     g: float
 
 
-def potential_energy(body_or_props, *, datum: float = 0.0, g: float = STANDARD_GRAVITY,
+def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVITY,
                      up=None) -> PotentialEnergy:
     """The potential energy ``Mg(h − datum)`` of a body, J.
 
@@ -159,7 +159,7 @@ def _rest_height(body, props: MassProperties, down) -> tuple[float, np.ndarray]:
     return float(np.max(pts @ d) - props.center_of_mass @ d), d
 
 
-def pose_energy_change(body, down_from, down_to, *, g: float = STANDARD_GRAVITY,
+def pose_energy_change(body, down_from, down_to, *, g: float = SEED_GRAVITY,
                        props: MassProperties | None = None) -> PoseChange:
     """The change in potential energy between two resting poses, J.
 
@@ -215,7 +215,7 @@ class LiftEnergy(Result):
     g: float
 
 
-def lift_energy(body, *, datum: float | None = None, g: float = STANDARD_GRAVITY, up=None,
+def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, up=None,
                 props: MassProperties | None = None) -> LiftEnergy:
     """The lift (build) energy ``M g z_G`` of a structure, J.
 

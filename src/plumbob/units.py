@@ -18,6 +18,7 @@ __all__ = [
     "LENGTH_UNITS",
     "UNIT_SPELLINGS",
     "UNITS_ASSUMED",
+    "SEED_GRAVITY",
     "STANDARD_GRAVITY",
     "length_scale",
     "unit_symbol",
@@ -26,8 +27,12 @@ __all__ = [
     "units_scale",
 ]
 
-#: m/s², the seed unit's value of g, the default wherever gravity enters
-STANDARD_GRAVITY = 9.81
+#: m/s², the value of g the seed's worked answers use: the default wherever gravity enters
+#: (``--g`` and every ``g=`` argument), so those answers come out as the seed prints them
+SEED_GRAVITY = 9.81
+#: m/s², standard gravity gₙ as defined (CGPM 1901, exact); pass it as ``g`` (``--g 9.80665``)
+#: for answers in the standard's terms
+STANDARD_GRAVITY = 9.80665
 
 #: metres per unit, for every length unit plumbob knows (px, pt, pc and q are CSS's)
 METRES_PER_UNIT: dict[str, float] = {

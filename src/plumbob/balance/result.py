@@ -149,10 +149,10 @@ def balance(body, down=None, *, margin: float | None = None,
     (True, 1824, 0.0)
     """
     from ..arguments import answering
-    from ..units import STANDARD_GRAVITY
+    from ..units import SEED_GRAVITY
 
     body = answering(body, "body", "mass_properties")
-    g = STANDARD_GRAVITY if g is None else g
+    g = SEED_GRAVITY if g is None else g
     props = body.mass_properties() if props is None else props
     if toward is not None:
         toward = np.asarray(toward, dtype=float)

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 from ..arguments import in_range, non_negative, number, optional, positive, unit_vector
 from ..errors import PlumbobError
-from ..units import STANDARD_GRAVITY
+from ..units import SEED_GRAVITY
 
 __all__ = ["Options", "INERTIAL_FORMATS"]
 
@@ -45,7 +45,7 @@ class Options:
     tilt: float | None = None
     toward: float | None = None
     require_tilt: float | None = None
-    g: float = STANDARD_GRAVITY
+    g: float = SEED_GRAVITY
     poses: bool = False
     pose_table: bool = False
     inertial: tuple[str, ...] = ()

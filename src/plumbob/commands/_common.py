@@ -20,7 +20,7 @@ from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..tolerances import TEXT_ROUND_OFF
-from ..units import LENGTH_UNITS, STANDARD_GRAVITY, length_scale
+from ..units import LENGTH_UNITS, SEED_GRAVITY, length_scale
 
 __all__ = [
     "number",
@@ -281,8 +281,8 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
     """The body arguments (PATH, --density/--material, --units, --repair, --json) and --g,
     for the commands that put the body in a gravity field."""
     add_body_arguments(parser)
-    parser.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
-                        help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
+    parser.add_argument("--g", type=positive, default=SEED_GRAVITY, metavar="G",
+                        help=f"gravitational acceleration, m/s² (default {SEED_GRAVITY})")
 
 
 def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--pose",

@@ -9,7 +9,7 @@ import argparse
 import sys
 
 from ..errors import printable
-from ..units import STANDARD_GRAVITY
+from ..units import SEED_GRAVITY
 from ._common import (
     count,
     direction,
@@ -81,8 +81,8 @@ def register(subparsers) -> None:
                       help="the tilted plane descends toward this direction (default: worst)")
     body.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                       help="design check: it must not topple when tilted DEG degrees")
-    body.add_argument("--g", type=positive, default=STANDARD_GRAVITY, metavar="G",
-                      help=f"gravitational acceleration, m/s² (default {STANDARD_GRAVITY})")
+    body.add_argument("--g", type=positive, default=SEED_GRAVITY, metavar="G",
+                      help=f"gravitational acceleration, m/s² (default {SEED_GRAVITY})")
     harness = parser.add_argument_group("running")
     harness.add_argument("--timeout", type=_timeout, metavar="S",
                          help="seconds allowed per file (default: no limit)")

@@ -21,7 +21,7 @@ import numpy as np
 from ..arguments import positive
 from ..errors import DynamicsError
 from ..results import Result
-from ..units import STANDARD_GRAVITY
+from ..units import SEED_GRAVITY
 
 __all__ = [
     "PulleyLift",
@@ -80,7 +80,7 @@ class PulleyLift(Result):
         return math.sqrt(2.0 * distance / abs(self.acceleration))
 
 
-def pulley_lift(counterweight: float, lift: float, g: float = STANDARD_GRAVITY) -> PulleyLift:
+def pulley_lift(counterweight: float, lift: float, g: float = SEED_GRAVITY) -> PulleyLift:
     """The seed's lift (Exercise 1): masses in kg, ``g`` in m/s².
 
     Part (d): lift and counterweight 1000 kg, a 65 kg passenger in the lift.

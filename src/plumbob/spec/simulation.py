@@ -33,7 +33,7 @@ import numpy as np
 
 from ..dynamics.motion import Link, MotionModel, Spring
 from ..errors import DynamicsError, PlumbobError
-from ..units import STANDARD_GRAVITY
+from ..units import SEED_GRAVITY
 from .particles import read_particles
 from .values import SpecContext
 
@@ -114,7 +114,7 @@ def build_simulation(spec: SpecContext, data: dict) -> SimulationSpec:
     default_mu = 0.0
     if "surface" in data:
         surface = spec.table(data["surface"], _SURFACE, "surface")
-        surface_g = spec.number(surface.get("g", STANDARD_GRAVITY), "surface.g")
+        surface_g = spec.number(surface.get("g", SEED_GRAVITY), "surface.g")
         default_mu = spec.number(surface.get("friction", 0.0), "surface.friction")
     mu = np.array([default_mu if f is None else f for f in particles.frictions])
     options = _solver_options(spec, data)

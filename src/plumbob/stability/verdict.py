@@ -39,7 +39,7 @@ from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
 from ..tolerances import sampling_tolerance
-from ..units import STANDARD_GRAVITY
+from ..units import SEED_GRAVITY
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
 
@@ -336,7 +336,7 @@ def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
     return weight * d * d / (np.hypot(d, h) + h)
 
 
-def verdict_from_support(sup: Support, mass: float, g: float = STANDARD_GRAVITY, *,
+def verdict_from_support(sup: Support, mass: float, g: float = SEED_GRAVITY, *,
                          tilt_deg: float | None = None, toward_deg: float | None = None,
                          friction: float | None = None,
                          require_tilt_deg: float | None = None,
@@ -432,7 +432,7 @@ def _slope(result: Verdict, tilt_deg: float, toward_deg: float | None,
     return SlopeCheck(tilt, toward, direction, limit, topples, friction, slides, slides_first)
 
 
-def check(body, down=None, *, g: float = STANDARD_GRAVITY, tilt_deg: float | None = None,
+def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = None,
           toward_deg: float | None = None, friction: float | None = None,
           require_tilt_deg: float | None = None, tolerance: float | None = None,
           props: MassProperties | None = None) -> Verdict:

@@ -19,10 +19,10 @@ from ...errors import StabilityError
 from ...limits import MAX_SAMPLES, check_count
 from ...massprops import MassProperties
 from ...tolerances import HULL_ROUND_OFF, sampling_tolerance
+from ...units import SEED_GRAVITY
 from ..poses import Poses, resting_poses
 from ..poses.convex import hull_triangles
 from ..support import body_size, hull_points
-from ..verdict import STANDARD_GRAVITY
 from . import engine as eng
 from .result import DropPose, Drops, wilson_interval
 
@@ -117,7 +117,7 @@ def _simulate(engine: eng.Engine, quats: np.ndarray, heights: np.ndarray, jobs: 
 
 def drop_poses(body, *, drops: int = 1000, seed: int = 0, drop_height: float = 0.0,
                restitution: float = 0.0, friction: float = 1.0, overdamped: bool = False,
-               jobs: int = 1, g: float = STANDARD_GRAVITY, poses: Poses | None = None,
+               jobs: int = 1, g: float = SEED_GRAVITY, poses: Poses | None = None,
                props=None) -> Drops:
     """Drop a solid from random orientations in MuJoCo and count where it comes to rest.
 

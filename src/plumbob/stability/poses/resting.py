@@ -20,7 +20,7 @@ from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
 from ...tolerances import sampling_tolerance as sampling
-from ...units import STANDARD_GRAVITY
+from ...units import SEED_GRAVITY
 from ..support import body_dim, body_size, hull_points, is_polytope
 from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
@@ -128,7 +128,7 @@ def _triangle_indices(surface, n: int) -> np.ndarray:
 
 
 def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
-                      g: float = STANDARD_GRAVITY, tolerance: float | None = None,
+                      g: float = SEED_GRAVITY, tolerance: float | None = None,
                       roll_angle_deg: float = ROLL_ANGLE_DEG, neutral_height: float = 0.0,
                       samples: int = FALLBACK_SAMPLES,
                       notes: tuple[str, ...] = (), surface=None) -> Poses:
@@ -149,7 +149,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     mass : float, optional
         kg, for the energy barriers (default 1).
     g : float, optional
-        Gravitational acceleration, m/s² (default standard gravity).
+        Gravitational acceleration, m/s² (default 9.81, the seed's g: ``units.SEED_GRAVITY``).
     tolerance : float, optional
         Faces whose corners lie within it of a stable face's plane are one physical face,
         m; default 1e-6 of the points' size (and at least 8 float32 round-offs of their
@@ -243,7 +243,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                     float(neutral_height), list(notes))
 
 
-def resting_poses(body, *, g: float = STANDARD_GRAVITY, tolerance: float | None = None,
+def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = None,
                   sampling_tolerance: float | None = None,
                   roll_angle_deg: float = ROLL_ANGLE_DEG,
                   props=None) -> Poses:
