@@ -20,11 +20,11 @@ import numpy as np
 from ..integrals.mesh import triangle_soup_moments
 from ..limits import MAX_PARTS, check_count
 
-__all__ = ["Cells", "box_union", "grid_cells", "manifold_rows"]
+__all__ = ["GridCells", "box_union", "grid_cells", "manifold_rows"]
 
 
 @dataclass(frozen=True, eq=False)
-class Cells:
+class GridCells:
     """Pieces of a body's interior.
 
     pieces: the cells, manifold3d ``Manifold`` objects.
@@ -64,7 +64,7 @@ def _slices(manifold, axis: int, planes: np.ndarray) -> list[tuple[int, object]]
     return pieces
 
 
-def grid_cells(interior, size: float) -> Cells:
+def grid_cells(interior, size: float) -> GridCells:
     """The interior (a manifold3d ``Manifold``) cut into cells of a ``size`` m grid.
 
     Parameters
@@ -75,7 +75,7 @@ def grid_cells(interior, size: float) -> Cells:
 
     Returns
     -------
-    Cells
+    GridCells
 
     Examples
     --------
@@ -107,7 +107,7 @@ def grid_cells(interior, size: float) -> Cells:
             centres.append(m.origin + m.m1 / m.m0)
     lattice = tuple(np.concatenate(([lower[k] - size / 2], planes[k], [upper[k] + size / 2]))
                     for k in range(3))
-    return Cells(tuple(kept), np.array(volumes), np.array(centres).reshape(-1, 3), float(size),
+    return GridCells(tuple(kept), np.array(volumes), np.array(centres).reshape(-1, 3), float(size),
                  np.array(index, dtype=np.int64).reshape(-1, 3), lattice)
 
 
@@ -123,7 +123,7 @@ _FACES = (
 )
 
 
-def box_union(cells: Cells, chosen: np.ndarray):
+def box_union(cells: GridCells, chosen: np.ndarray):
     """The union of the chosen cells' grid boxes, a manifold3d ``Manifold`` built face by
     face: the faces between a chosen cell and one that is not, on the lattice's shared
     corners. No boolean of touching boxes is computed (those leave coincident slivers),
@@ -157,7 +157,7 @@ def box_union(cells: Cells, chosen: np.ndarray):
     return manifold3d.Manifold(mesh)
 
 
-def manifold_rows(cells: Cells):
+def manifold_rows(cells: GridCells):
     """Linear rows ``A x ≤ b`` (a sparse ``A``) that keep the emptied cells' union — and so
     the carved body — a 2-manifold: no two emptied cells (nor two kept ones) touching
     only along an edge or at a corner.

@@ -38,7 +38,7 @@ from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
 from ..results import Result
 from ..tolerances import size_of
-from .cells import Cells, box_union, grid_cells, manifold_rows
+from .cells import GridCells, box_union, grid_cells, manifold_rows
 
 __all__ = ["HollowResult", "WrittenHollow", "hollow", "write_hollow", "CELLS_ALONG"]
 
@@ -68,7 +68,7 @@ class HollowResult(Result):
     void: MeshSolid | None
     wall: float
     offset: InwardOffset
-    cells: Cells
+    cells: GridCells
     emptied: np.ndarray
     before: MassProperties
     after: MassProperties
@@ -107,7 +107,7 @@ def _density(body: Body) -> float | None:
     return density if isinstance(density, float) else None
 
 
-def _choose(cells: Cells, density: float, mass: float, centre: np.ndarray, target,
+def _choose(cells: GridCells, density: float, mass: float, centre: np.ndarray, target,
             lightest: bool, safety: float) -> np.ndarray:
     """Which cells to empty (n,) bool: the 0–1 program of the module's doc."""
     from scipy.optimize import Bounds, LinearConstraint, milp
