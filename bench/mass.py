@@ -11,7 +11,8 @@ benchmark imports), as an installed package has it, like trimesh and shapely: wi
 ``PYTHONDONTWRITEBYTECODE`` set each plumbob process would otherwise recompile every
 module it loads. All processes run with the same environment.
 
-Run: PYTHONPATH=src python bench/mass.py [--triangles N]
+Run: PYTHONPATH=src python bench/mass.py [--triangles N] [--vertices N] [--smoke]
+(``--smoke``: tiny sizes, each step once; it judges nothing and compiles no bytecode).
 """
 
 from __future__ import annotations
@@ -24,11 +25,15 @@ import numpy as np
 from _common import PYTHON, compile_bytecode, time_call, time_process, torus_triangles, write_binary_stl
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--triangles", type=int, default=1_000_000)
     parser.add_argument("--vertices", type=int, default=1_000_000)
-    args = parser.parse_args()
+    parser.add_argument("--smoke", action="store_true", help="tiny sizes, each step once")
+    args = parser.parse_args(argv)
+    repeat = 1 if args.smoke else 3
+    if args.smoke:
+        args.triangles, args.vertices = 2_000, 1_000
 
     import shapely
     import trimesh
@@ -38,7 +43,8 @@ def main() -> None:
     from plumbob.bodies.region import Region, Ring
     from plumbob.formats import read
 
-    print(compile_bytecode(os.path.dirname(plumbob.__file__)))
+    if not args.smoke:
+        print(compile_bytecode(os.path.dirname(plumbob.__file__)))
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "torus.stl")
         triangles = torus_triangles(args.triangles)
@@ -47,12 +53,13 @@ def main() -> None:
         print(f"binary STL: {len(triangles):,} triangles, {size / 1e6:.1f} MB")
 
         read_only = time_process(
-            [PYTHON, "-c", f"import numpy; numpy.fromfile({path!r}, dtype=numpy.uint8)"]
+            [PYTHON, "-c", f"import numpy; numpy.fromfile({path!r}, dtype=numpy.uint8)"],
+            repeat,
         )
-        ours = time_process([PYTHON, "-m", "plumbob", "mass", path, "--json"])
+        ours = time_process([PYTHON, "-m", "plumbob", "mass", path, "--json"], repeat)
         theirs = time_process(
             [PYTHON, "-c", f"import trimesh; m = trimesh.load({path!r}); m.mass_properties"],
-            repeat=2,
+            repeat=min(repeat, 2),
         )
         print("whole processes (best of runs):")
         print(f"  numpy.fromfile           {read_only:8.3f} s")
@@ -61,8 +68,9 @@ def main() -> None:
         speedup = theirs / ours
         print(f"  trimesh load + mass      {theirs:8.3f} s   plumbob is {speedup:5.1f}× faster (target ≥ 10)")
 
-        ours_call = time_call(lambda: read(path).body.mass_properties())
-        theirs_call = time_call(lambda: trimesh.load(path).mass_properties, repeat=2)
+        ours_call = time_call(lambda: read(path).body.mass_properties(), repeat)
+        theirs_call = time_call(lambda: trimesh.load(path).mass_properties,
+                                repeat=min(repeat, 2))
         print("library calls:")
         print(f"  plumbob read + mass_properties  {ours_call:8.3f} s")
         print(
@@ -76,8 +84,8 @@ def main() -> None:
     ring = np.stack((radii * np.cos(angles), radii * np.sin(angles)), axis=1) + [1e3, -2e3]
     polygon = shapely.Polygon(ring)
     lamina = Lamina(Region((Ring(ring),)))
-    ours_2d = time_call(lamina.mass_properties, repeat=5)
-    theirs_2d = time_call(lambda: shapely.centroid(polygon), repeat=5)
+    ours_2d = time_call(lamina.mass_properties, repeat=1 if args.smoke else 5)
+    theirs_2d = time_call(lambda: shapely.centroid(polygon), repeat=1 if args.smoke else 5)
     props = lamina.mass_properties()
     assert np.allclose(props.center_of_mass, polygon.centroid.coords[0], rtol=1e-12)
     print(f"lamina: {n:,} vertices")
@@ -86,7 +94,8 @@ def main() -> None:
         f"  plumbob full second moments      {ours_2d * 1e3:8.2f} ms   "
         f"{ours_2d / theirs_2d:5.2f}× shapely (target ≤ 3)"
     )
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

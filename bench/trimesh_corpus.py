@@ -19,7 +19,8 @@ the file in this one. Each file ends in one of:
               disagreement, a traceback, an exit status other than 0 or 2, or more
               than one line.
 
-Run: python bench/trimesh_corpus.py [FOLDER]   (default /work/trimesh_models/models)
+Run: python bench/trimesh_corpus.py [FOLDER]   (default /work/trimesh_models/models);
+``--smoke``: a folder of two small generated meshes instead (a torus and a truncated one).
 """
 
 from __future__ import annotations
@@ -127,10 +128,26 @@ def judge(path: str) -> tuple[str, str, str]:
     return "WRONG", verdict, f"differs from trimesh by {error:.2g}"
 
 
-def main() -> None:
+def _smoke_folder() -> str:
+    """A folder of two small STL files: a closed torus and the same torus cut open."""
+    import tempfile
+
+    from _common import torus_triangles, write_binary_stl
+
+    folder = tempfile.mkdtemp(prefix="plumbob-corpus-")
+    triangles = torus_triangles(400)
+    write_binary_stl(os.path.join(folder, "torus.stl"), triangles)
+    write_binary_stl(os.path.join(folder, "open.stl"), triangles[:-10])
+    return folder
+
+
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder", nargs="?", default="/work/trimesh_models/models")
-    args = parser.parse_args()
+    parser.add_argument("--smoke", action="store_true", help="two small generated meshes")
+    args = parser.parse_args(argv)
+    if args.smoke:
+        args.folder = _smoke_folder()
     files = mesh_files(args.folder)
     counts: Counter = Counter()
     width = max(len(os.path.basename(f)) for f in files)
@@ -143,8 +160,12 @@ def main() -> None:
     print(f"\n{len(files)} mesh files: " + ", ".join(f"{counts[k]} {k}" for k in
                                                      ("agree", "united", "read", "refused",
                                                       "foreign", "WRONG")))
-    sys.exit(1 if counts["WRONG"] else 0)
+    if args.smoke:
+        import shutil
+
+        shutil.rmtree(args.folder, ignore_errors=True)
+    return 1 if counts["WRONG"] else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
