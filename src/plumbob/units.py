@@ -9,6 +9,8 @@ spec's ``units``); files may also declare the others (DXF's ``$INSUNITS``, 3MF's
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from .errors import PlumbobError
@@ -25,6 +27,8 @@ __all__ = [
     "reading_unit",
     "file_unit_scale",
     "units_scale",
+    "split_length",
+    "parse_length",
 ]
 
 #: m/s², the value of g the seed's worked answers use: the default wherever gravity enters
@@ -170,3 +174,50 @@ def units_scale(units: str | None, file_units: str | None = None,
     if file_units is not None and file_scale is not None:
         return file_scale, (f"units: {file_units} (from the file)",)
     return 1.0, (UNITS_ASSUMED,)
+
+
+#: a number with an optional length unit: ``3mm``, ``0.5 in``, ``-2.5e-3``, ``30 cm``
+_QUANTITY = re.compile(
+    r"\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>[A-Za-z]*)\s*")
+
+
+def split_length(text: str) -> tuple[float, str] | None:
+    """The number and the unit (``""`` when none is written) of a length such as
+    ``"3mm"`` or ``"0.5 in"``, as written; ``None`` for text of another form. The one
+    grammar of a length in text, for the command line, specs and printed parts.
+
+    >>> split_length("3mm"), split_length(" -2.5e-3 in "), split_length("0.2"), split_length("2*pi")
+    ((3.0, 'mm'), (-0.0025, 'in'), (0.2, ''), None)
+    """
+    match = _QUANTITY.fullmatch(str(text))
+    return None if match is None else (float(match["number"]), match["unit"])
+
+
+def parse_length(text: str, scale: float = 1.0, *, what: str = "a length",
+                 error: type[PlumbobError] = PlumbobError) -> float:
+    """A length such as ``"1.2mm"``, ``"0.05 in"`` or ``"0.0012"`` in metres; a bare
+    number is in units of ``scale`` m (a file's or a spec's unit). Raises ``error``
+    naming what is wrong.
+
+    >>> parse_length("1.2mm"), parse_length("2", scale=1e-3), parse_length("0.5 in")
+    (0.0012, 0.002, 0.0127)
+    >>> parse_length("2 furlongs")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.PlumbobError: unknown length unit 'furlongs' in '2 furlongs'; use one of m, \
+cm, mm, km, in, ft
+    >>> parse_length("three", what="--margin")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.PlumbobError: --margin must be a number with an optional unit (m, cm, mm, \
+km, in, ft; e.g. 0.003 or 3mm), not 'three'
+    """
+    parts = split_length(text)
+    if parts is None:
+        raise error(f"{what} must be a number with an optional unit "
+                    f"({', '.join(LENGTH_UNITS)}; e.g. 0.003 or 3mm), not {text!r}")
+    value, unit = parts
+    if unit and unit not in LENGTH_UNITS:
+        raise error(f"unknown length unit {unit!r} in {text!r}; use one of "
+                    f"{', '.join(LENGTH_UNITS)}")
+    return value * (LENGTH_UNITS[unit] if unit else scale)

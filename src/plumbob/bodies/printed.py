@@ -19,14 +19,14 @@ contact, containment, booleans — is the solid's, so ``mass``, ``check`` and
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties, combine
-from ..units import LENGTH_UNITS
+from ..units import parse_length as units_parse_length
+from ..units import split_length
 from .base import Body, DensityCells, Grader, density_words
 from .offset import InwardOffset, inward_offset
 
@@ -163,27 +163,14 @@ def printed(body: Body, shell: float, infill: float, *, step: float | None = Non
     return Printed(body, inward_offset(body, shell, step=step), f, name=getattr(body, "name", None))
 
 
-_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
-
-
 def parse_length(text: str, scale: float = 1.0, *, what: str = "a length") -> float:
-    """A length such as ``"1.2mm"``, ``"0.05 in"`` or ``"0.0012"`` in metres; a bare
-    number is in units of ``scale`` m (the file's units).
+    """A length such as ``"1.2mm"`` or ``"0.0012"`` (a bare number in units of ``scale``
+    m) in metres, by :func:`plumbob.units.parse_length`; a :class:`GeometryError` if not.
 
     >>> parse_length("1.2mm"), parse_length("2", scale=1e-3), parse_length("0.5 in")
     (0.0012, 0.002, 0.0127)
-    >>> parse_length("2 furlongs")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    plumbob.errors.GeometryError: a length must be a number with an optional unit (m, ...), not '2 furlongs'
     """
-    match = re.fullmatch(rf"\s*({_NUMBER})\s*([a-z]*)\s*", str(text))
-    if not match or (match.group(2) and match.group(2) not in LENGTH_UNITS):
-        raise GeometryError(f"{what} must be a number with an optional unit "
-                            f"({', '.join(LENGTH_UNITS)}), not {text!r}")
-    value = float(match.group(1))
-    unit = match.group(2)
-    return value * (LENGTH_UNITS[unit] if unit else scale)
+    return units_parse_length(text, scale, what=what, error=GeometryError)
 
 
 def parse_fraction(text: str) -> float:
@@ -192,11 +179,12 @@ def parse_fraction(text: str) -> float:
     >>> parse_fraction("20%"), parse_fraction("0.35"), parse_fraction("100 %")
     (0.2, 0.35, 1.0)
     """
-    match = re.fullmatch(rf"\s*({_NUMBER})\s*(%?)\s*", str(text))
-    if not match:
+    text = str(text)
+    percent = text.rstrip().endswith("%")
+    parts = split_length(text.rstrip()[:-1] if percent else text)
+    if parts is None or parts[1]:
         raise GeometryError(f"an infill must be a fraction (0.2) or a percentage (20%), not {text!r}")
-    value = float(match.group(1))
-    return value / 100 if match.group(2) else value
+    return parts[0] / 100 if percent else parts[0]
 
 
 def printed_from_options(body: Body, shell: str | None, infill: str | None, *,

@@ -20,7 +20,7 @@ from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..tolerances import TEXT_ROUND_OFF
-from ..units import LENGTH_UNITS, SEED_GRAVITY, length_scale
+from ..units import SEED_GRAVITY
 
 __all__ = [
     "number",
@@ -92,18 +92,19 @@ def non_negative(text: str) -> float:
 
 
 def length(text: str) -> float:
-    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``)."""
-    import re
+    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``), read
+    by :func:`plumbob.units.parse_length`."""
+    from ..units import parse_length
 
-    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Z]*)\s*", text)
-    if not match:
-        raise argparse.ArgumentTypeError(f"not a length: {text!r} (e.g. 0.003 or 3mm)")
-    value = non_negative(match.group(1))
-    unit = match.group(2) or "m"
-    if unit not in LENGTH_UNITS:
-        raise argparse.ArgumentTypeError(
-            f"unknown length unit {unit!r}; use one of {', '.join(sorted(LENGTH_UNITS))}")
-    return value * length_scale(unit)
+    try:
+        value = parse_length(text)
+    except PlumbobError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite length, not {text}")
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
+    return value
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:

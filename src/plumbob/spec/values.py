@@ -8,7 +8,6 @@ place (``part 2.radius``), so a user can find and fix it.
 from __future__ import annotations
 
 import difflib
-import re
 from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -19,7 +18,7 @@ import numpy as np
 from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import LimitError, PlumbobError, SpecError
 from ..expr import CONSTANTS, parse
-from ..units import LENGTH_UNITS, unit_symbol
+from ..units import LENGTH_UNITS, parse_length, split_length, unit_symbol
 
 __all__ = ["SpecContext", "LoadOptions", "suggest", "shown", "read_parameters", "RESERVED_NAMES"]
 
@@ -247,22 +246,15 @@ def read_parameters(
     return names
 
 
-#: a number followed by a length unit: ``30cm``, ``0.3 m``, ``-2.5e-3 in``
-_QUANTITY = re.compile(
-    r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>[A-Za-z]+)\s*$"
-)
-
-
 def _override(context: SpecContext, value: Any, where: str, scale: float) -> float:
     """An override's value: a number, an expression, or a number with a length unit
     in the spec's unit."""
     if isinstance(value, str):
-        match = _QUANTITY.match(value)
-        if match and match["unit"] not in CONSTANTS:
-            unit = match["unit"]
-            if unit not in LENGTH_UNITS:
-                raise context.error(
-                    where, f"unknown length unit {unit!r} in {value!r}; use one of "
-                    f"{', '.join(LENGTH_UNITS)}")
-            return context.number(float(match["number"]) * LENGTH_UNITS[unit] / scale, where)
+        parts = split_length(value)
+        if parts is not None and parts[1] and parts[1] not in CONSTANTS:  # not "2pi"
+            try:
+                metres = parse_length(value)
+            except PlumbobError as error:
+                raise context.error(where, str(error)) from None
+            return context.number(metres / scale, where)
     return context.number(value, where)
