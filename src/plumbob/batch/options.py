@@ -78,3 +78,11 @@ class Options:
             object.__setattr__(self, "check", True)
         if self.pose_table:
             object.__setattr__(self, "poses", True)
+
+    def requirement(self):
+        """The check's :class:`~plumbob.stability.requirement.Requirement` (the same for
+        every file)."""
+        from ..stability.requirement import Requirement
+
+        return Requirement(self.down, self.g, self.tilt, self.toward,
+                           require_tilt_deg=self.require_tilt)

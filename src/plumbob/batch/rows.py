@@ -73,8 +73,7 @@ def check_row(reading, props, options: Options) -> dict[str, Any]:
     keys with a ``slope_`` prefix)."""
     from ..stability import check
 
-    v = check(reading.body, options.down, g=options.g, tilt_deg=options.tilt,
-              toward_deg=options.toward, require_tilt_deg=options.require_tilt, props=props)
+    v = check(reading.body, requirement=options.requirement(), props=props)
     row = {"verdict": v.verdict, "stands": v.stands, "margin": v.margin,
            "critical_tilt_deg": v.critical_tilt_deg, "critical_direction": v.critical_direction,
            "energy_to_topple": v.energy_to_topple, "com_height": v.com_height, "down": v.down,

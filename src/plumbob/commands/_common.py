@@ -42,6 +42,7 @@ __all__ = [
     "add_stability_arguments",
     "add_orientation_arguments",
     "pose_down",
+    "requirement",
     "load_body",
     "open_body",
     "print_notices",
@@ -315,6 +316,19 @@ def pose_down(body, index: int, option: str, g: float, props):
         raise StabilityError(f"{option} must be between 1 and {len(poses)} (the body has "
                              f"{len(poses)} resting poses)")
     return poses[index - 1].down
+
+
+def requirement(args: argparse.Namespace, down=None):
+    """The :class:`~plumbob.stability.requirement.Requirement` the options ask (``--g``,
+    ``--tilt``, ``--toward``, ``--friction``, ``--margin``, ``--require-tilt``), with
+    gravity along ``down`` (``--down``, or a resting pose's, resolved by the command)."""
+    from ..stability.requirement import Requirement
+
+    return Requirement(
+        down, getattr(args, "g", SEED_GRAVITY), getattr(args, "tilt", None),
+        getattr(args, "toward", None), getattr(args, "friction", None),
+        getattr(args, "margin", None), getattr(args, "require_tilt", None),
+        tuple(getattr(args, "loads", None) or ()))
 
 
 def load_body(args: argparse.Namespace) -> Reading:

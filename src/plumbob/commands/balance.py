@@ -19,6 +19,7 @@ from ._common import (
     open_body,
     pose_down,
     print_json,
+    requirement,
     tilt_limit,
 )
 
@@ -73,24 +74,23 @@ def register(subparsers) -> None:
 
 
 def _target(args, body, props):
-    """(down, margin, tilt in degrees, toward vector or None) from the options."""
+    """(down, margin, tilt in degrees, toward vector or None) from the options, checked
+    once as a :class:`~plumbob.stability.requirement.Requirement`."""
     from ..errors import StabilityError
-    from ..stability.support import default_down, ground_frame, unit_vector
 
     if args.tilt is not None and args.require_tilt is not None:
         raise StabilityError("give --require-tilt DEG or --tilt DEG (with --toward), not both")
     if args.toward is not None and args.tilt is None:
         raise StabilityError("--toward needs --tilt DEG")
-    tilt = args.require_tilt if args.require_tilt is not None else args.tilt
-    if args.margin is None and tilt is None:
+    if args.margin is None and args.tilt is None and args.require_tilt is None:
         raise StabilityError("give a target: --margin M, --require-tilt DEG or --tilt DEG")
-    dim = getattr(body, "dim", 3)
     down = args.down
     if args.target_pose is not None:
         down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
-    down = default_down(dim) if down is None else unit_vector(down, dim)
-    toward = None if args.toward is None else ground_frame(down).direction(args.toward)
-    return down, args.margin, tilt, toward
+    req = requirement(args, down)
+    dim = getattr(body, "dim", 3)
+    tilt = req.require_tilt_deg if req.require_tilt_deg is not None else req.tilt_deg
+    return req.gravity_down(dim), req.margin, tilt, req.toward_direction(dim)
 
 
 def _hollow(args, reading, props):

@@ -24,6 +24,7 @@ from ._common import (
     print_json,
     report_units,
     require_finite,
+    requirement,
     tilt_limit,
 )
 
@@ -198,13 +199,8 @@ def _verdict(args, body, props):
 
     down = args.down if args.pose is None else pose_down(body, args.pose, "--pose", args.g,
                                                          props)
-    return check(body, down, g=args.g, tilt_deg=args.tilt, toward_deg=args.toward,
-                 friction=args.friction, require_tilt_deg=args.require_tilt,
-                 tolerance=args.tolerance, props=props)
-
-
-def _margin_passes(v, required: float) -> bool:
-    return bool(v.verdict == "stands" and v.margin >= required)
+    return check(body, requirement=requirement(args, down), tolerance=args.tolerance,
+                 props=props)
 
 
 def _spec_parameters(path: str) -> dict:
@@ -284,21 +280,19 @@ def run(args) -> int:
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
-    margin_ok = None if args.margin is None else _margin_passes(v, args.margin)
     if args.json:
         out = {**header(reading, kind), **v.as_dict()}
-        if args.margin is not None:
-            out.update(required_margin=args.margin, margin_passes=margin_ok)
         if solution is not None:
             out["solution"] = solution.as_dict()
         print_json(out, reading, notes)
     else:
         lines = [_text(v, args.path, kind, notes, units, args.all_edges)]
-        if args.margin is not None:
-            status = "PASS" if margin_ok else (
-                f"FAIL ({max(args.margin - v.margin, 0.0):.6g} m short)")
-            lines.append(f"design check, stability margin at least {args.margin:g} m: {status}")
+        if v.required_margin is not None:
+            status = "PASS" if v.margin_passes else (
+                f"FAIL ({max(v.required_margin - v.margin, 0.0):.6g} m short)")
+            lines.append(f"design check, stability margin at least {v.required_margin:g} m: "
+                         f"{status}")
         if solution is not None:
             lines.append(_solution_text(solution))
         print("\n".join(lines))
-    return 1 if v.passes is False or margin_ok is False else 0
+    return 1 if v.meets_requirement is False else 0

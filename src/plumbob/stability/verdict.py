@@ -29,21 +29,25 @@ depends on its curvature, which this verdict does not judge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from ..arguments import answering, finite_result, in_range, instance, number, optional, positive, vector
+from ..arguments import answering, finite_result, instance
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
 from ..tolerances import sampling_tolerance
 from ..units import SEED_GRAVITY
+from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
+from .requirement import Requirement
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
+from .tipping import tipping_angle_deg, tipping_angles_deg
 
 __all__ = [
+    "DesignCheck",
     "EdgeGroup",
     "TippingEdge",
     "SlopeCheck",
@@ -126,53 +130,13 @@ def _arc_runs(starts: np.ndarray, ends: np.ndarray, normals: np.ndarray) -> list
 
 
 @dataclass(frozen=True, repr=False)
-class SlopeCheck(Result):
-    """The body on a plane tilted by ``tilt_deg`` toward ``direction``.
-
-    toward_deg: the direction's angle in the ground plane from e1 toward e2, degrees.
-    direction: horizontal unit vector (body frame) the plane descends toward.
-    tipping_angle_deg: the tilt at which it goes over in that direction, degrees.
-    topples: whether it goes over at ``tilt_deg``.
-    friction: the friction coefficient, or None.
-    slides: whether it slides at ``tilt_deg`` (``tan θ > μ``), or None without friction.
-    slides_first: whether, tilting ever further that way, it slides before it topples.
-    """
-
-    tilt_deg: float
-    toward_deg: float
-    direction: np.ndarray
-    tipping_angle_deg: float
-    topples: bool
-    friction: float | None = None
-    slides: bool | None = None
-    slides_first: bool | None = None
-
-    _repr_fields = ("tilt_deg", "toward_deg", "verdict", "tipping_angle_deg", "friction",
-                    "slides_first")
-
-    @property
-    def verdict(self) -> str:
-        """``"topples"``, ``"slides"`` or ``"stands"`` at ``tilt_deg``."""
-        if self.topples:
-            return "topples"
-        if self.slides:
-            return "slides"
-        return "stands"
-
-    def as_dict(self) -> dict[str, Any]:
-        """The ``slope`` object of ``plumbob check --json`` (degrees, unit vector); the
-        friction coefficient itself is the verdict's."""
-        out = {"tilt_deg": self.tilt_deg, "toward_deg": self.toward_deg,
-               "direction": self.direction, "tipping_angle_deg": self.tipping_angle_deg,
-               "topples": self.topples, "verdict": self.verdict}
-        if self.friction is not None:
-            out.update(slides=self.slides, slides_first=self.slides_first)
-        return out
-
-
-@dataclass(frozen=True, repr=False)
 class Verdict(Result):
     """Whether a body stands on a horizontal plane, and how far from toppling it is.
+
+    Four concerns, each in its place: how it stands on level ground (the fields below
+    down to ``rocking``), what it was asked (``requirement``: orientation, g, tilt,
+    friction, design checks, loads), the tilted plane (``slope``) and the design checks
+    (``design``).
 
     verdict: ``"stands"``, ``"topples"`` or ``"neutral"``.
     margin: static stability margin (McGhee and Frank), m, negative when the foot of
@@ -184,15 +148,13 @@ class Verdict(Result):
     energy_to_topple: the least energy to tip it over an edge, J (Messuri and Klein).
     com_height: height of the centre of mass above the plane, m.
     center_of_mass: (dim,) m, body frame.
-    mass: kg. g: m/s².
+    mass: kg.
     support: the support polygon and its edges.
     edges: per edge, the tipping angle and energy.
+    rocking: for a body over a point or line of a curved surface, how it rocks.
+    requirement: what was asked (g, m/s², is ``requirement.g``).
     slope: the check on a tilted plane, when asked for.
-    friction: the friction coefficient, when given.
-    slides_first: with friction, whether it slides before it topples whichever way
-        the plane is tilted (``μ < margin / h``) — or along the slope's direction.
-    required_tilt_deg, passes: the design check — it passes when it stands and its
-        critical tilt is at least the required one (which checks every direction).
+    design: the design checks, when asked for.
     """
 
     verdict: str
@@ -203,18 +165,62 @@ class Verdict(Result):
     com_height: float
     center_of_mass: np.ndarray
     mass: float
-    g: float
     support: Support
     edges: tuple[TippingEdge, ...]
-    slope: SlopeCheck | None = None
-    friction: float | None = None
-    slides_first: bool | None = None
-    required_tilt_deg: float | None = None
-    passes: bool | None = None
     rocking: Rocking | None = None
+    requirement: Requirement = Requirement()
+    slope: SlopeCheck | None = None
+    design: DesignCheck | None = None
 
     _repr_fields = ("verdict", "margin", "critical_tilt_deg", "critical_direction",
                     "energy_to_topple", "com_height", "mass", "passes")
+
+    @property
+    def g(self) -> float:
+        """Gravitational acceleration, m/s²."""
+        return self.requirement.g
+
+    @property
+    def friction(self) -> float | None:
+        """The friction coefficient, when given."""
+        return self.requirement.friction
+
+    @property
+    def slides_first(self) -> bool | None:
+        """With friction, whether it slides before it topples whichever way the plane is
+        tilted (``μ < margin / h``) — or along the slope's direction."""
+        if self.friction is None:
+            return None
+        if self.slope is not None:
+            return self.slope.slides_first
+        return bool(self.verdict == "stands"
+                    and self.friction < np.tan(np.radians(self.critical_tilt_deg)))
+
+    @property
+    def required_tilt_deg(self) -> float | None:
+        """The tilt it must withstand in every direction, degrees, when asked."""
+        return self.requirement.require_tilt_deg
+
+    @property
+    def passes(self) -> bool | None:
+        """The tilt design check: it stands and its critical tilt is at least the required
+        one (None when not asked)."""
+        return None if self.design is None else self.design.passes
+
+    @property
+    def required_margin(self) -> float | None:
+        """The static stability margin it must have, m, when asked."""
+        return self.requirement.margin
+
+    @property
+    def margin_passes(self) -> bool | None:
+        """The margin design check: it stands with at least the required margin."""
+        return None if self.design is None else self.design.margin_passes
+
+    @property
+    def meets_requirement(self) -> bool | None:
+        """Whether every design check asked is met (None when none is asked)."""
+        return None if self.design is None else self.design.met
 
     @property
     def stands(self) -> bool:
@@ -277,7 +283,8 @@ class Verdict(Result):
             ``normal``, ``distance``, ``tipping_angle_deg``, ``energy``); with a tilted
             plane ``slope``; with friction ``friction`` and ``slides_first``; with a
             design check ``required_tilt_deg`` and ``passes`` (and ``shortfall_deg`` when
-            it fails); for a body that topples ``overhang`` (m) and ``over_by_deg``.
+            it fails), with a margin check ``required_margin`` and ``margin_passes``;
+            for a body that topples ``overhang`` (m) and ``over_by_deg``.
         """
         out = {
             "verdict": self.verdict, "stands": self.stands, "margin": self.margin,
@@ -299,6 +306,8 @@ class Verdict(Result):
             out.update(required_tilt_deg=self.required_tilt_deg, passes=self.passes)
             if self.passes is False:
                 out["shortfall_deg"] = self.shortfall_deg
+        if self.required_margin is not None:
+            out.update(required_margin=self.required_margin, margin_passes=self.margin_passes)
         return out
 
     def plot(self, ax=None, *, body=None, **options):
@@ -316,18 +325,7 @@ class Verdict(Result):
     def tipping_angle_deg(self, direction) -> float:
         """The tilt, degrees, that topples the body when the plane descends toward the
         horizontal ``direction`` (body frame, (dim,)); ≤ 0 when it does not stand."""
-        if self.rocking is not None and self.verdict == "stands":
-            # a plane descending toward d turns the contact direction toward −d
-            d = np.asarray(direction, dtype=float)
-            k = int(np.argmax(-self.rocking.directions @ (d / np.linalg.norm(d))))
-            return float(self.rocking.tilts_deg[k])
-        frame = self.support.frame
-        d = frame.to_ground(np.asarray(direction, dtype=float))
-        d = d / np.linalg.norm(d)
-        s = self.support.ray_distance(d)
-        if self.verdict != "stands":
-            s = min(s, self.margin)
-        return float(np.degrees(np.arctan2(s, self.com_height)))
+        return tipping_toward(self.support, self.verdict, self.margin, self.rocking, direction)
 
 
 def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
@@ -336,17 +334,16 @@ def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
     return weight * d * d / (np.hypot(d, h) + h)
 
 
-def verdict_from_support(sup: Support, mass: float, g: float = SEED_GRAVITY, *,
-                         tilt_deg: float | None = None, toward_deg: float | None = None,
-                         friction: float | None = None,
-                         require_tilt_deg: float | None = None,
-                         rocked: tuple[Rocking, float] | None = None) -> Verdict:
-    """The verdict for a body of ``mass`` kg with support ``sup`` (see :func:`check`).
+def verdict_from_support(sup: Support, mass: float, requirement: Requirement | None = None,
+                         *, rocked: tuple[Rocking, float] | None = None) -> Verdict:
+    """The verdict for a body of ``mass`` kg with support ``sup`` under ``requirement``
+    (g, tilted plane, friction, design checks; see :func:`check`).
 
     rocked: for a body on a curved surface, how it responds to being turned and the
         height noise (m) of its sampling: a centre of mass over a point or line of
         contact then rocks back (stands), rolls (neutral) or topples by curvature.
     """
+    req = Requirement() if requirement is None else requirement
     h, tol = sup.com_height, sup.tolerance
     frame = sup.frame
     distances = sup.edge_distances
@@ -370,8 +367,8 @@ def verdict_from_support(sup: Support, mass: float, g: float = SEED_GRAVITY, *,
         verdict = "topples"
     else:
         verdict = "neutral"
-    weight = finite_result(mass * g, "the weight M g", error=StabilityError)
-    angle = float(np.degrees(np.arctan2(margin, h))) if verdict != "neutral" else 0.0
+    weight = finite_result(mass * req.g, "the weight M g", error=StabilityError)
+    angle = tipping_angle_deg(margin, h) if verdict != "neutral" else 0.0
     energy = float(_energy(weight, margin, h)) if verdict == "stands" else 0.0
     roll = None
     if verdict == "neutral" and rocked is not None:
@@ -381,61 +378,33 @@ def verdict_from_support(sup: Support, mass: float, g: float = SEED_GRAVITY, *,
         direction = -roll.directions[k]  # the plane descends this way to turn it
         if verdict == "stands":
             angle, energy = float(roll.tilts_deg[k]), weight * roll.barrier()
-    angles = np.degrees(np.arctan2(distances, h))
+    angles = tipping_angles_deg(distances, h)
     energies = _energy(weight, distances, h)
     edges = tuple(
         TippingEdge(sup.to_body(a), sup.to_body(b), frame.from_ground(n), float(d), float(t),
                     float(e))
         for a, b, n, d, t, e in zip(sup.edge_starts, sup.edge_ends, sup.edge_normals,
                                     distances, angles, energies))
-    result = Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass, g,
-                     sup, edges, rocking=roll)
     slope = None
-    if tilt_deg is not None or toward_deg is not None:
-        slope = _slope(result, 0.0 if tilt_deg is None else tilt_deg,
-                       None if toward_deg is None else toward_deg, friction)
-    slides_first = None
-    if friction is not None:
-        if friction < 0 or not np.isfinite(friction):
-            raise StabilityError(f"a friction coefficient must be ≥ 0, not {friction:g}")
-        slides_first = (slope.slides_first if slope is not None
-                        else bool(verdict == "stands" and friction < np.tan(np.radians(angle))))
-    passes = None
-    if require_tilt_deg is not None:
-        passes = bool(verdict == "stands" and angle >= float(require_tilt_deg))
-    return replace(result, slope=slope, friction=friction, slides_first=slides_first,
-                   required_tilt_deg=require_tilt_deg, passes=passes)
-
-
-def _slope(result: Verdict, tilt_deg: float, toward_deg: float | None,
-           friction: float | None) -> SlopeCheck:
-    tilt = float(tilt_deg)
-    if not (np.isfinite(tilt) and 0 <= tilt < 90):
-        raise StabilityError(f"a tilt must be between 0° and 90°, not {tilt:g}°")
-    frame = result.support.frame
-    if toward_deg is None:  # the worst way
-        direction = result.critical_direction
-        g = frame.to_ground(direction)
-        toward = float(np.degrees(np.arctan2(g[1], g[0]))) if frame.dim == 3 else (
-            0.0 if g[0] > 0 else 180.0)
-    else:
-        toward = float(toward_deg)
-        direction = frame.direction(toward)
-    limit = result.tipping_angle_deg(direction)
-    topples = bool(tilt > limit) if result.verdict == "stands" else (
-        result.verdict == "topples" or tilt > 0)
-    slides = slides_first = None
-    if friction is not None:
-        slides = bool(np.tan(np.radians(tilt)) > friction)
-        s = np.tan(np.radians(limit)) * result.com_height
-        slides_first = bool(result.verdict == "stands" and friction * result.com_height < s)
-    return SlopeCheck(tilt, toward, direction, limit, topples, friction, slides, slides_first)
+    if req.tilt_deg is not None or req.toward_deg is not None:
+        slope = slope_check(sup, verdict, margin, roll, direction, req)
+    design = None
+    if req.asks_design:
+        design = DesignCheck(
+            req.require_tilt_deg,
+            None if req.require_tilt_deg is None else bool(
+                verdict == "stands" and angle >= req.require_tilt_deg),
+            req.margin,
+            None if req.margin is None else bool(verdict == "stands" and margin >= req.margin))
+    return Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass,
+                   sup, edges, roll, req, slope, design)
 
 
 def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = None,
           toward_deg: float | None = None, friction: float | None = None,
-          require_tilt_deg: float | None = None, tolerance: float | None = None,
-          props: MassProperties | None = None) -> Verdict:
+          require_tilt_deg: float | None = None, margin: float | None = None,
+          tolerance: float | None = None, props: MassProperties | None = None,
+          requirement: Requirement | None = None) -> Verdict:
     """Will ``body`` stand on a horizontal plane with gravity along ``down``?
 
     Parameters
@@ -456,6 +425,10 @@ def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = 
     require_tilt_deg : float, optional
         The design check: it must not topple when tilted this much in any direction
         (IEC 62368-1: 10°).
+    margin : float, optional
+        The design check: its static stability margin must be at least this, m.
+    requirement : Requirement, optional
+        All of the above (``down`` to ``margin``) as one value, instead of the keywords.
     tolerance : float, optional
         Contact tolerance, m (default 1e-6 of the body's size).
     props : MassProperties, optional
@@ -498,16 +471,19 @@ friction=0.3, slides_first=False)
     >>> check(block, down=[1, 0, -1]).verdict, check(sphere(1.0)).verdict
     ('topples', 'neutral')
     """
-    body, g = answering(body, "body", "mass_properties"), positive(g, "g", error=StabilityError)
-    down = optional(vector, down, "down", (2, 3), error=StabilityError)
-    toward_deg = optional(number, toward_deg, "toward_deg", error=StabilityError)
-    require_tilt_deg = optional(in_range, require_tilt_deg, "require_tilt_deg", 0, 90, unit="°",
-                                error=StabilityError)
+    body = answering(body, "body", "mass_properties")
+    if requirement is None:
+        requirement = Requirement(down, g, tilt_deg, toward_deg, friction, margin,
+                                  require_tilt_deg)
+    else:
+        requirement = instance(requirement, "requirement", Requirement, error=StabilityError)
+        given = (down, tilt_deg, toward_deg, friction, require_tilt_deg, margin)
+        if any(v is not None for v in given) or g != SEED_GRAVITY:
+            raise StabilityError("give a requirement or its keywords (down, g, tilt_deg, ...), "
+                                 "not both")
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
-    sup = support_polygon(body, down, tolerance=tolerance, props=props)
-    options = dict(tilt_deg=tilt_deg, toward_deg=toward_deg, friction=friction,
-                   require_tilt_deg=require_tilt_deg)
-    result = verdict_from_support(sup, props.mass, g, **options)
+    sup = support_polygon(body, requirement.down, tolerance=tolerance, props=props)
+    result = verdict_from_support(sup, props.mass, requirement)
     if result.verdict != "neutral":
         return result
     size = body_size(body)
@@ -517,4 +493,4 @@ friction=0.3, slides_first=False)
     sampling = sampling_tolerance(size)
     points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
     rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
-    return verdict_from_support(sup, props.mass, g, rocked=rocked, **options)
+    return verdict_from_support(sup, props.mass, requirement, rocked=rocked)

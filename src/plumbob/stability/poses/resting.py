@@ -22,6 +22,7 @@ from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
 from ...tolerances import sampling_tolerance as sampling
 from ...units import SEED_GRAVITY
 from ..support import body_dim, body_size, hull_points, is_polytope
+from ..tipping import tipping_angle_deg
 from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
 from .landscape import Landscape, landscape2, landscape3
@@ -67,9 +68,7 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
     for f in order.tolist():
         r = int(fam.rep[f])
         down, height = land.normals[r].copy(), float(land.heights[r])
-        # per pose in scalar math: numpy's vectorised arctan2 may round an element
-        # differently by where it lies in memory (a worker would disagree with its parent)
-        t = math.degrees(math.atan2(max(float(land.margin[r]), 0.0), height))
+        t = tipping_angle_deg(max(float(land.margin[r]), 0.0), height)
         if fam.kind[f] == "rolling":
             t = 0.0
         elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
