@@ -15,7 +15,7 @@ from plumbob.energy import (
     potential_energy,
     seed_work_per_day,
 )
-from plumbob.errors import PlumbobError
+from plumbob.errors import ArgumentError, PlumbobError
 from plumbob.massprops import point_mass, rotation_matrix
 
 G = 9.81
@@ -108,3 +108,18 @@ def test_bad_gravity(kw):
 def test_bad_crew_time(args):
     with pytest.raises(PlumbobError):
         crew_time(*args)
+
+
+def test_down_is_the_one_spelling_of_the_orientation_and_up_its_old_opposite():
+    """``down`` as check and poses take it; ``up`` still read; the same heights either way."""
+    block = box(2, 2, 10, density=1.0)
+    tilted = np.array([1.0, -2.0, -3.0])
+    assert lift_energy(block, down=tilted).lift_energy == pytest.approx(
+        lift_energy(block, up=-tilted).lift_energy, rel=1e-12)
+    assert lift_energy(block, down=[0, 0, -1]).lift_energy == lift_energy(block).lift_energy
+    # a 40 kg block on its side (down = −x): its centre 1 m above the lowest point
+    assert lift_energy(block, down=[-1, 0, 0], g=10.0).lift_energy == pytest.approx(400.0)
+    props = block.mass_properties()
+    assert potential_energy(props, down=[0, 0, -1], g=10.0).height == pytest.approx(5.0)
+    with pytest.raises(ArgumentError, match="not both"):
+        potential_energy(props, down=[0, 0, -1], up=[0, 0, 1])

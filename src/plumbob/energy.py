@@ -66,15 +66,22 @@ def _props(body_or_props, given: MassProperties | None = None) -> MassProperties
     return answering(body_or_props, "body", "mass_properties").mass_properties()
 
 
-def _up(dim: int, up) -> np.ndarray:
-    if up is None:
+def _up(dim: int, up, down=None) -> np.ndarray:
+    """The unit upward direction: −``down`` (gravity's direction, the library's one
+    spelling of an orientation, as ``check`` and ``poses`` take it), or ``up`` (the older
+    spelling, still read); default +z, +y for a lamina."""
+    if up is not None and down is not None:
+        raise ArgumentError("give the direction of gravity as down, or up, not both")
+    if up is None and down is None:
         return np.array([0.0, 1.0]) if dim == 2 else np.array([0.0, 0.0, 1.0])
-    v = vector(up, "up", (dim, 3))
+    what, given = ("up", up) if down is None else ("down", down)
+    v = vector(given, what, (dim, 3))
     if dim == 2 and v.size == 3:
         if v[2] != 0:
-            raise ArgumentError(f"up must lie in a lamina's plane (z = 0), not {tuple(v)}")
+            raise ArgumentError(f"{what} must lie in a lamina's plane (z = 0), not {tuple(v)}")
         v = v[:2]
-    return unit_vector(v, "up", (dim,))
+    v = unit_vector(v, what, (dim,))
+    return v if down is None else -v
 
 
 def _energy(mass: float, g: float, height: float, what: str) -> float:
@@ -94,7 +101,7 @@ class PotentialEnergy(Result):
 
 
 def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVITY,
-                     up=None) -> PotentialEnergy:
+                     down=None, up=None) -> PotentialEnergy:
     """The potential energy ``Mg(h − datum)`` of a body, J.
 
     Parameters
@@ -102,11 +109,13 @@ def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVI
     body_or_props : Body or MassProperties
         The body, or its mass properties.
     datum : float, default 0
-        Height of the zero of potential energy along ``up``, m.
+        Height of the zero of potential energy against ``down``, m.
     g : float, default 9.81
         m/s².
-    up : array_like, optional
-        The upward direction (default +z, +y for a lamina).
+    down : array_like, optional
+        The direction of gravity, as :func:`~plumbob.stability.check` takes it (default
+        −z, −y for a lamina); heights are measured against it. ``up`` (its opposite) is
+        the older spelling, still read; give one of them.
 
     Returns
     -------
@@ -127,7 +136,7 @@ def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVI
     """
     props = _props(body_or_props)
     g, datum = positive(g, "g"), number(datum, "datum")
-    height = float(props.center_of_mass @ _up(props.dim, up)) - datum
+    height = float(props.center_of_mass @ _up(props.dim, up, down)) - datum
     return PotentialEnergy(_energy(props.mass, g, height, "the potential energy"), props.mass,
                            height, datum, g)
 
@@ -202,7 +211,7 @@ def pose_energy_change(body, down_from, down_to, *, g: float = SEED_GRAVITY,
 class LiftEnergy(Result):
     """The work to raise a structure's material from the ground datum to where it stands.
 
-    mass: kg. center_of_mass: (dim,) m. datum: height of the ground along ``up``, m.
+    mass: kg. center_of_mass: (dim,) m. datum: height of the ground against ``down`` (along −down), m.
     com_height: height of the centre of mass above the datum, m.
     lift_energy: ``mass · g · com_height``, J (the key of ``plumbob lift --json``). g: m/s².
     """
@@ -215,8 +224,8 @@ class LiftEnergy(Result):
     g: float
 
 
-def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, up=None,
-                props: MassProperties | None = None) -> LiftEnergy:
+def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, down=None,
+                up=None, props: MassProperties | None = None) -> LiftEnergy:
     """The lift (build) energy ``M g z_G`` of a structure, J.
 
     Parameters
@@ -224,12 +233,13 @@ def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, up
     body : Body
         Any plumbob body.
     datum : float, optional
-        The ground's height along ``up``, m; default the body's lowest point (the
+        The ground's height against ``down``, m; default the body's lowest point (the
         ground it is built on).
     g : float, default 9.81
         m/s².
-    up : array_like, optional
-        The upward direction (default +z, +y for a lamina).
+    down : array_like, optional
+        The direction of gravity (default −z, −y for a lamina). ``up`` (its opposite) is
+        the older spelling, still read; give one of them.
     props : MassProperties, optional
         The body's mass properties, when already computed.
 
@@ -255,7 +265,7 @@ def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, up
 
     props = _props(body, props)
     g = positive(g, "g")
-    u = _up(props.dim, up)
+    u = _up(props.dim, up, down)
     datum = float(np.min(hull_points(body) @ u)) if datum is None else number(datum, "datum")
     height = float(props.center_of_mass @ u) - datum
     return LiftEnergy(props.mass, props.center_of_mass, datum, height,
