@@ -31,6 +31,27 @@ class Blob(Body):
     def hull_points(self, tolerance=None) -> np.ndarray:
         return P.box(1, 1, 1).hull_points()
 
+    def contains(self, points, tolerance=None) -> np.ndarray:
+        return P.box(1, 1, 1).contains(points, tolerance)
+
+    @property
+    def is_polytope(self) -> bool:
+        return True
+
+    def densities(self) -> set:
+        return {None}
+
+
+class Shy(Blob):
+    """A body kind that cannot answer two questions, and says so."""
+
+    def contains(self, points, tolerance=None) -> np.ndarray:
+        raise BodyQueryError("a Shy cannot tell which points it contains")
+
+    @property
+    def is_polytope(self) -> bool:
+        raise BodyQueryError("a Shy cannot tell whether its hull points are exact")
+
 
 # ------------------------------------------------------------------ contains, kind by kind
 def test_lamina_contains_with_its_boundary():
@@ -186,18 +207,36 @@ def test_densities_of_each_kind():
 
 
 # ------------------------------------------------------------------ unimplemented questions
+def test_the_contract_is_abstract_where_no_default_is_honest():
+    assert Body.__abstractmethods__ == {"mass_properties", "hull_points", "contains",
+                                        "is_polytope", "densities"}
+
+    class Half(Body):
+        kind, dim = "solid", 3
+
+        def mass_properties(self):
+            return P.box(1, 1, 1).mass_properties()
+
+        def hull_points(self, tolerance=None):
+            return P.box(1, 1, 1).hull_points()
+
+    with pytest.raises(TypeError, match="contains.*densities.*is_polytope"):
+        Half()
+
+
 def test_an_unimplemented_question_is_an_error_never_a_default():
     blob = Blob()
-    with pytest.raises(BodyQueryError, match="contains"):
-        blob.contains([[0.5, 0.5, 0.5]])
-    with pytest.raises(BodyQueryError, match="hull points are exact"):
-        blob.is_polytope  # noqa: B018
     with pytest.raises(BodyQueryError, match="density field"):
         blob.density_cells()
-    with pytest.raises(BodyQueryError, match="densities"):
-        blob.densities()
     with pytest.raises(BodyQueryError):
         with_density_field(blob, lambda p: p[:, 0])
+    with pytest.raises(GeometryError, match="boolean operations"):
+        blob.surface()
+    with pytest.raises(GeometryError, match="no plain 2D profile"):
+        blob.exact_region()
+    with pytest.raises(GeometryError, match="no outline"):
+        blob.outline(1e-3)
+    assert blob.as_mesh() is None and blob.assembly_parts() == ()
     assert issubclass(BodyQueryError, PlumbobError)
 
 
@@ -205,13 +244,48 @@ def test_stability_asks_the_body_whether_it_is_a_polytope():
     from plumbob.stability.support import is_polytope
 
     assert is_polytope(P.box(1, 1, 1), 1.0) and not is_polytope(P.sphere(1), 2.0)
-    with pytest.raises(BodyQueryError):
-        is_polytope(Blob(), 1.0)
+    with pytest.raises(BodyQueryError, match="hull points are exact"):
+        is_polytope(Shy(), 1.0)
 
 
-def test_a_placed_blob_passes_the_question_on():
-    with pytest.raises(BodyQueryError):
-        Blob().translated([1, 0, 0]).contains([[0, 0, 0]])
+def test_a_placed_body_passes_the_question_on():
+    with pytest.raises(BodyQueryError, match="contains"):
+        Shy().translated([1, 0, 0]).contains([[0, 0, 0]])
+    assert Blob().translated([1, 0, 0]).contains([[1.5, 0.5, 0.5], [0.5, 0.5, 0.5]]).tolist() == [
+        True, False]
+
+
+# ------------------------------------------------------------------ surfaces and outlines
+@pytest.mark.parametrize("body", [
+    P.box(1, 2, 3), P.cylinder(1, 2), P.sphere(1).translated([1, 0, 0]),
+    P.box(1, 2, 3).transformed(np.diag([1.0, 1.0, -1.0])),
+    union(P.sphere(1), P.sphere(1).translated([1, 0, 0])),
+], ids=["mesh", "cylinder", "placed", "mirrored", "faceted"])
+def test_a_solids_surface_is_closed_outward_and_matches_its_volume(body):
+    from plumbob.integrals.mesh import triangle_soup_moments
+
+    surface = body.surface(256)
+    volume = triangle_soup_moments(surface.triangles).m0
+    exact = body.mass_properties().measure
+    # a faceting at 256 chords a turn, in latitude and longitude, loses at most about
+    # 4(1 - cos(pi/256)) = 3.0e-4 of a curved volume; a mesh's own surface is its volume
+    assert volume == pytest.approx(exact, rel=1e-12 if surface.exact else 4 * (1 - np.cos(np.pi / 256)))
+    assert (body.as_mesh() is not None) == surface.exact
+    assert surface.exact == (body.is_polytope and not isinstance(body, Faceted))
+
+
+def test_a_laminas_outline_follows_its_placement():
+    disc = P.disc(1).transformed(np.array([[1.0, 0.0], [0.0, -1.0]]), np.array([2.0, 0.0]))
+    (ring,) = disc.outline(1e-4)
+    assert np.allclose(ring[0], ring[-1]) and np.allclose(np.linalg.norm(ring - [2, 0], axis=1), 1, atol=1e-4)
+    x, y = ring[:, 0], ring[:, 1]
+    assert 0.5 * np.sum(x[:-1] * y[1:] - x[1:] * y[:-1]) > 0  # counter-clockwise after the mirror
+
+
+def test_an_assembly_lists_its_parts_and_nothing_else_does():
+    parts = (P.box(1, 1, 1, name="a"), P.sphere(1, name="b").translated([3, 0, 0]))
+    assert Assembly(parts).assembly_parts() == parts
+    assert P.box(1, 1, 1).assembly_parts() == () == union(*parts).assembly_parts()
 
 
 # ------------------------------------------------------------------ reprs

@@ -131,3 +131,42 @@ def test_no_module_is_over_600_lines():
     long = {str(p.relative_to(PACKAGE)): n for p in PACKAGE.rglob("*.py")
             if (n := len(p.read_text(encoding="utf-8").splitlines())) > 600}
     assert not long, f"split these modules by concern: {long}"
+
+
+def _body_kinds() -> set[str]:
+    """The names of the classes in ``bodies/`` that derive from ``Body`` (not ``Body`` itself)."""
+    bases: dict[str, set[str]] = {}
+    for path in (PACKAGE / "bodies").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef):
+                bases[node.name] = {b.id if isinstance(b, ast.Name) else getattr(b, "attr", "")
+                                    for b in node.bases}
+    kinds: set[str] = set()
+    grew = True
+    while grew:
+        new = {name for name, b in bases.items() if b & (kinds | {"Body"})} - kinds
+        kinds |= new
+        grew = bool(new)
+    return kinds
+
+
+def test_the_body_kinds_are_found():
+    assert {"MeshSolid", "Lamina", "Assembly", "Composite", "Transformed", "GradedSolid"} <= _body_kinds()
+
+
+def test_no_room_outside_bodies_switches_on_a_body_kind():
+    """Rooms ask a body (the ``Body`` interface, docs/architecture.md); only ``bodies/``
+    may test which kind it is."""
+    kinds = _body_kinds()
+    found = []
+    for path in PACKAGE.rglob("*.py"):
+        if (PACKAGE / "bodies") in path.parents:
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if (isinstance(node, ast.Call) and getattr(node.func, "id", None) in ("isinstance", "issubclass")
+                    and len(node.args) == 2):
+                classes = node.args[1].elts if isinstance(node.args[1], ast.Tuple) else [node.args[1]]
+                names = {c.id if isinstance(c, ast.Name) else getattr(c, "attr", "") for c in classes}
+                if names & kinds:
+                    found.append(f"{path.relative_to(PACKAGE)}:{node.lineno} {sorted(names & kinds)}")
+    assert not found, f"ask the body instead (a Body method): {found}"

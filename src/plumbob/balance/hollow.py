@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from ..bodies.base import Body
-from ..bodies.offset import InwardOffset, body_triangles, inward_offset, manifold_triangles
+from ..bodies.offset import InwardOffset, inward_offset, manifold_triangles
 from ..bodies.solid import MeshSolid
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
@@ -198,7 +198,7 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     if cell_size is not None and not (np.isfinite(cell_size) and cell_size > 0):
         raise GeometryError(f"a cell size must be a positive length, not {cell_size!r}")
     density = _density(body)
-    triangles, _ = body_triangles(body)
+    triangles, own = body.surface(256)
     # the plan starts from the mesh that is carved and written (a curved body's faceting),
     # not from the exact body: the written file is what must meet the target
     outer_mesh = MeshSolid(triangles, density)
@@ -225,7 +225,7 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     # the void is the interior within the chosen cells' boxes: one boolean, not a union of
     # cells meeting face to face (which leaves coincident slivers behind)
     void_manifold = interior ^ box_union(cells, emptied)
-    outer = body.to_geometry(256) if not isinstance(body, MeshSolid) else outer_mesh.to_geometry()
+    outer = outer_mesh.to_geometry() if own else body.to_geometry(256)
     carved_manifold = outer - void_manifold
     if carved_manifold.status() != manifold3d.Error.NoError or carved_manifold.is_empty():
         raise GeometryError(f"the carved body could not be built ({carved_manifold.status()})")

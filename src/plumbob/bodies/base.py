@@ -10,7 +10,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Protocol
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
@@ -20,12 +20,40 @@ from ..massprops import MassProperties
 from ..materials import check_density
 from ..tolerances import contact_tolerance, size_of
 
-__all__ = ["Body", "DensityCells", "Grader", "Transformed", "check_density", "DEFAULT_DENSITY_NOTE",
-           "lowest", "contact_sampling"]
+__all__ = ["Body", "DensityCells", "Grader", "Surface", "Transformed", "check_density",
+           "DEFAULT_DENSITY_NOTE", "lowest", "contact_sampling", "manifold_surface"]
 
 DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed"
 
 
+class Surface(NamedTuple):
+    """A solid's closed boundary as triangles: what :meth:`Body.surface` gives.
+
+    triangles: (n, 3, 3) float64, m, wound outward.
+    exact: whether the triangles are the body's own boundary (a mesh, or a placement of
+        one) rather than a faceting of curved faces.
+    """
+
+    triangles: np.ndarray
+    exact: bool
+
+
+def manifold_surface(manifold) -> np.ndarray:
+    """The triangles (n, 3, 3), float64, of a manifold3d ``Manifold``."""
+    mesh = manifold.to_mesh64()
+    verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
+    return verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
+
+
+def _shapely_rings(geometry) -> list[np.ndarray]:
+    """Closed rings (k, 2) of a shapely (multi)polygon."""
+    rings = []
+    for polygon in getattr(geometry, "geoms", [geometry]):
+        if polygon.is_empty or polygon.geom_type != "Polygon":
+            continue
+        rings.append(np.asarray(polygon.exterior.coords)[::-1])
+        rings += [np.asarray(r.coords)[::-1] for r in polygon.interiors]
+    return rings
 
 
 def contact_sampling(tolerance: float, size: float) -> float:
@@ -90,11 +118,16 @@ class Body(ABC):
     kind: ``"lamina"``, ``"solid"``, ``"particles"`` or ``"assembly"``.
     dim: 2 for laminas (their own plane), 3 otherwise.
 
-    Other rooms ask a body questions instead of testing its type: its mass
-    properties, its hull and contact points (stability), which points it
-    contains, whether its hull points are exact (:attr:`is_polytope`), the cells
-    a density field over it is integrated on (:meth:`density_cells`), the
-    densities of its parts (:meth:`densities`) and how it takes a density field
+    Other rooms ask a body questions instead of testing its type. Every kind
+    answers the abstract ones: :meth:`mass_properties`, :meth:`hull_points`,
+    :meth:`contains`, :attr:`is_polytope` and :meth:`densities`. The others have a
+    default that is right for most kinds and is overridden where it is not: the
+    contact points (:meth:`support_points`), placements (:meth:`transformed`), a
+    default density (:meth:`with_default_density`, :meth:`with_material`), its
+    shape for booleans (:meth:`to_geometry`), its closed surface (:meth:`surface`,
+    :meth:`as_mesh`, solids) or outline (:meth:`outline`, :meth:`exact_region`, laminas), its separate
+    parts (:meth:`assembly_parts`), the cells a density field over it is
+    integrated on (:meth:`density_cells`) and how it takes a density field
     (:meth:`graded`). A kind of body that cannot answer one raises
     :class:`~plumbob.errors.BodyQueryError` (or, where the question has a
     physical no, a :class:`~plumbob.errors.DensityError` or
@@ -148,6 +181,14 @@ class Body(ABC):
         """This body with ``density`` wherever no density was given."""
         return self
 
+    def with_material(self, density: float | None, thickness: float | None = None) -> Body:
+        """This body of one uniform material: ``density`` (kg/m³; None: none given) where
+        no density was given. Only a lamina takes a ``thickness`` (m), which turns its
+        kg/m³ into kg/m² (without one its density is areal, kg/m²)."""
+        if thickness is not None:
+            raise GeometryError("a thickness applies only to a lamina (2D shape)")
+        return self if density is None else self.with_default_density(density)
+
     def plot(self, ax=None, **options):
         """Draw the body and its centre of mass; returns the matplotlib figure (``ax=None``
         makes a new one). See :func:`plumbob.plot.plot_body`."""
@@ -157,10 +198,56 @@ class Body(ABC):
 
     def to_geometry(self, segments: int = 128):
         """The shape for boolean operations: a shapely geometry (laminas) or a
-        manifold3d ``Manifold`` (solids), curves cut into ``segments`` per turn."""
+        manifold3d ``Manifold`` (solids), curves cut into ``segments`` per turn.
+        Rooms outside ``bodies/`` ask for :meth:`surface` or :meth:`outline` instead."""
         raise GeometryError(f"a {self.kind} has no shape for boolean operations")
 
+    def surface(self, segments: int = 128) -> Surface:
+        """The solid's closed boundary as outward-wound triangles (see :class:`Surface`):
+        a mesh's own triangles, else its boolean shape (:meth:`to_geometry`) with curves
+        cut into ``segments`` chords a turn (a sagitta of at most 1 − cos(π/segments)
+        of a radius, 3·10⁻⁴ at 128).
+
+        Examples
+        --------
+        >>> from plumbob.bodies.primitives import box, sphere
+        >>> box(1, 2, 3).surface().triangles.shape, box(1, 2, 3).surface().exact
+        ((12, 3, 3), False)
+        >>> sphere(1).surface(16).exact
+        False
+        """
+        if self.dim != 3:
+            raise GeometryError(f"a {self.dim}D {self.kind} has no closed surface; ask for its outline")
+        return Surface(manifold_surface(self.to_geometry(segments)), False)
+
+    def as_mesh(self) -> Body | None:
+        """The body as a triangle-mesh body (a :class:`~plumbob.bodies.solid.MeshSolid`,
+        whose ``triangles`` and ``welded`` vertices are its own boundary) when it is one,
+        placed as it is; None for other kinds. Cheap: nothing is welded until asked."""
+        return None
+
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        """The lamina's boundary as closed rings (k, 2), m (first point repeated last),
+        curves flattened to within ``tolerance`` m where the body knows them exactly,
+        else cut into ``segments`` chords a turn by its boolean shape."""
+        if self.dim != 2:
+            raise GeometryError(f"a {self.dim}D {self.kind} has no outline; ask for its surface")
+        return _shapely_rings(self.to_geometry(segments))
+
+    def exact_region(self):
+        """The lamina's exact shape as a :class:`~plumbob.bodies.region.Region` (lines,
+        arcs and Béziers kept), to extrude or revolve: a plain lamina, or a composite of
+        them (holes reversed). Other bodies (a placed lamina, a solid) raise a
+        :class:`GeometryError`."""
+        raise GeometryError(f"a {type(self).__name__} has no plain 2D profile")
+
+    def assembly_parts(self) -> tuple[Body, ...]:
+        """The separate parts an assembly is reported by, each a body of its own with its
+        own material; empty for a body of one piece."""
+        return ()
+
     # ------------------------------------------------------------ questions
+    @abstractmethod
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         """Which points lie in the body or on its boundary.
 
@@ -177,18 +264,12 @@ class Body(ABC):
         -------
         ndarray of bool, shape (m,)
 
-        Raises
-        ------
-        BodyQueryError
-            When this kind of body does not implement the test.
-
         Examples
         --------
         >>> from plumbob.bodies.primitives import disc
         >>> disc(1).contains([[0, 0], [1, 0], [1, 1]]).tolist()
         [True, True, False]
         """
-        raise BodyQueryError(f"a {type(self).__name__} cannot tell which points it contains")
 
     def _points(self, points: np.ndarray) -> np.ndarray:
         """``points`` as an (m, dim) float array, checked."""
@@ -203,6 +284,7 @@ class Body(ABC):
         return contact_tolerance(self.size, tolerance)
 
     @property
+    @abstractmethod
     def is_polytope(self) -> bool:
         """Whether :meth:`hull_points` are exact: the vertices of the body's convex hull,
         with no curved boundary sampled (meshes, polygons, prisms of polygons,
@@ -214,7 +296,6 @@ class Body(ABC):
         >>> box(1, 1, 1).is_polytope, cylinder(1, 1).is_polytope
         (True, False)
         """
-        raise BodyQueryError(f"a {type(self).__name__} cannot tell whether its hull points are exact")
 
     def density_cells(self) -> DensityCells:
         """Where a density field over this body is integrated (see :class:`DensityCells`).
@@ -238,6 +319,7 @@ class Body(ABC):
         """
         raise BodyQueryError(f"a density field cannot be integrated over a {type(self).__name__}")
 
+    @abstractmethod
     def densities(self) -> set:
         """The densities of the body's parts: kg/m³, areal kg/m² for laminas, None where
         not given, ``"field"`` for a density field; empty for particles (their
@@ -249,7 +331,6 @@ class Body(ABC):
         >>> box(1, 1, 1, density=2.0).densities(), rectangle(1, 1, density=3, thickness=0.5).densities()
         ({2.0}, {1.5})
         """
-        raise BodyQueryError(f"a {type(self).__name__} cannot tell the densities of its parts")
 
     def graded(self, grader: Grader) -> Body:
         """This body with a density field, as ``grader`` gives it (see
@@ -399,6 +480,19 @@ class Transformed(Body):
             )
         affine = np.hstack((self.matrix, self.offset[:, None]))
         return inner.transform(affine)
+
+    def surface(self, segments: int = 128) -> Surface:
+        inner = self.body.surface(segments)
+        moved = inner.triangles @ self.matrix.T + self.offset
+        return Surface(moved[:, ::-1] if np.linalg.det(self.matrix) < 0 else moved, inner.exact)
+
+    def as_mesh(self) -> Body | None:
+        inner = self.body.as_mesh()
+        return None if inner is None else inner.transformed(self.matrix, self.offset)
+
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        rings = [r @ self.matrix.T + self.offset for r in self.body.outline(tolerance, segments)]
+        return [r[::-1] for r in rings] if np.linalg.det(self.matrix) < 0 else rings
 
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         return self.body.contains((self._points(points) - self.offset) @ self.matrix, tolerance)

@@ -24,9 +24,10 @@ from ..errors import DensityError, GeometryError
 from ..limits import MAX_SIDES
 from ..massprops import MassProperties, combine
 from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
+from .booleans import manifold_union, measure, overlap, shapely_union
 from .overlaps import Facets, bounding_boxes, boxes_meet, candidate_pairs, connected_groups, local_origin
 
-__all__ = ["Composite", "Assembly", "union", "difference", "intersection", "leaf_densities",
+__all__ = ["Composite", "Assembly", "as_assembly", "union", "difference", "intersection", "leaf_densities",
            "DEFAULT_SEGMENTS"]
 
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
@@ -98,8 +99,8 @@ class Composite(_OfParts):
 
             result = shapely.union_all(added)
             return shapely.difference(result, shapely.union_all(removed)) if removed else result
-        result = _manifold_union(added)
-        return result - _manifold_union(removed) if removed else result
+        result = manifold_union(added)
+        return result - manifold_union(removed) if removed else result
 
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
@@ -113,6 +114,14 @@ class Composite(_OfParts):
             if sign < 0 and inside.any():
                 inside &= ~part.contains(pts, -part._contains_tolerance(tolerance))
         return inside
+
+    def exact_region(self):
+        if self.dim != 2:
+            return super().exact_region()
+        from .region import Region
+
+        return Region(tuple(r if s > 0 else r.reversed() for p, s in zip(self.parts, self.signs)
+                            for r in p.exact_region().rings))
 
     def graded(self, grader: Grader) -> Body:
         holes = tuple(p for p, s in zip(self.parts, self.signs) if s < 0)
@@ -147,6 +156,9 @@ class Assembly(_OfParts):
     @property
     def dim(self) -> int:  # type: ignore[override]
         return max(p.dim for p in self.parts)
+
+    def assembly_parts(self) -> tuple[Body, ...]:
+        return self.parts
 
     def part_properties(self) -> list[MassProperties]:
         return [p.mass_properties() for p in self.parts]
@@ -193,24 +205,6 @@ class Assembly(_OfParts):
 
 
 # ------------------------------------------------------------------ booleans
-def _manifold_union(manifolds: list):
-    import manifold3d
-
-    if len(manifolds) == 1:
-        return manifolds[0]
-    return manifold3d.Manifold.batch_boolean(manifolds, manifold3d.OpType.Add)
-
-
-def _measure(geometry, dim: int) -> float:
-    return float(geometry.area) if dim == 2 else float(geometry.volume())
-
-
-def _overlap(a, b, dim: int):
-    if dim == 2:
-        return a.intersection(b)
-    return a ^ b
-
-
 def _bodies(parts, what: str) -> tuple[Body, ...]:
     """``parts`` as a tuple, each checked to be a plumbob body."""
     if isinstance(parts, (str, bytes, Body)) or not hasattr(parts, "__iter__"):
@@ -238,7 +232,7 @@ def _same_dim(bodies: tuple[Body, ...], segments: int) -> int:
 def _slack(bodies: tuple[Body, ...], geometries: list, dim: int, segments: int) -> float:
     """What faceting alone may make of overlap: the gap between exact and faceted size."""
     exact = sum(abs(b.mass_properties().measure) for b in bodies)
-    faceted = sum(_measure(g, dim) for g in geometries)
+    faceted = sum(measure(g, dim) for g in geometries)
     return abs(exact - faceted) + 1e-9 * exact
 
 
@@ -284,6 +278,12 @@ class Faceted(Body):
 
     def to_geometry(self, segments: int = 128):
         return self.shape.to_geometry(segments)
+
+    def surface(self, segments: int = 128):
+        return self.shape.surface(segments)._replace(exact=False)
+
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        return self.shape.outline(tolerance, segments)
 
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))
@@ -343,7 +343,7 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
     def integrated(count: int) -> tuple[Body, MassProperties]:
         parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in local]
         geometry = build(parts)
-        if not _measure(geometry, dim) > 0:
+        if not measure(geometry, dim) > 0:
             raise GeometryError(f"the {what} is empty: the parts do not overlap")
         if dim == 2:
             import shapely
@@ -421,12 +421,12 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     shapes = Facets(bodies, segments, origin)
     overlapping = [
         (i, j) for i, j in candidate_pairs(boxes)
-        if _measure(_overlap(shapes[i], shapes[j], dim), dim)
+        if measure(overlap(shapes[i], shapes[j], dim), dim)
         > _slack((bodies[i], bodies[j]), [shapes[i], shapes[j]], dim, segments)
     ]
     if not overlapping:
         return Composite(bodies, (1.0,) * len(bodies))
-    joined = _manifold_union if dim == 3 else _shapely_union
+    joined = manifold_union if dim == 3 else shapely_union
     parts = [
         bodies[group[0]] if len(group) == 1 else _faceted_body(
             tuple(bodies[k] for k in group), joined, segments, "union",
@@ -435,12 +435,6 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     ]
     # parts that overlap nothing stay exact beside the faceted unions of those that do
     return parts[0] if len(parts) == 1 else Composite(tuple(parts), (1.0,) * len(parts))
-
-
-def _shapely_union(geometries: list):
-    import shapely
-
-    return shapely.union_all(geometries)
 
 
 def leaf_densities(body: Body) -> set:
@@ -464,6 +458,12 @@ def leaf_densities(body: Body) -> set:
     {None}
     """
     return body.densities()
+
+
+def as_assembly(body: Body) -> Body:
+    """A composite of parts of several densities as an :class:`Assembly` of its parts
+    (reported part by part); any other body as it is."""
+    return Assembly(body.parts) if isinstance(body, Composite) and len(body.densities()) > 1 else body
 
 
 def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
@@ -513,13 +513,13 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
         if not boxes_meet(boxes[0], boxes[k]):
             continue  # the hole's box misses the body: nothing to remove
         g = shapes[k]
-        size = _measure(g, dim)
-        inside = _measure(_overlap(shapes[0], g, dim), dim)
+        size = measure(g, dim)
+        inside = measure(overlap(shapes[0], g, dim), dim)
         slack = _slack((holes[k - 1],), [g], dim, segments)
         if inside <= slack:
             continue  # disjoint: nothing to remove
         if size - inside > slack or any(
-            boxes_meet(boxes[k], boxes[j]) and _measure(_overlap(g, shapes[j], dim), dim) > slack
+            boxes_meet(boxes[k], boxes[j]) and measure(overlap(g, shapes[j], dim), dim) > slack
             for j in kept
         ):
             return _faceted_difference(body, holes, segments, origin)
@@ -536,7 +536,7 @@ def _faceted_difference(body: Body, holes: tuple[Body, ...], segments: int,
             import shapely
 
             return shapely.difference(geoms[0], shapely.union_all(geoms[1:]))
-        return geoms[0] - _manifold_union(geoms[1:])
+        return geoms[0] - manifold_union(geoms[1:])
 
     return _faceted_body((body,) + holes, build, segments, "difference", origin=origin)
 
@@ -580,7 +580,7 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     for i, (b, g) in enumerate(zip(bodies, geoms)):
         slack = _slack((b,), [g], dim, segments)
         if all(
-            _measure(g, dim) - _measure(_overlap(g, h, dim), dim) <= slack
+            measure(g, dim) - measure(overlap(g, h, dim), dim) <= slack
             for j, h in enumerate(geoms)
             if j != i
         ):
@@ -589,7 +589,7 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     def build(gs):
         result = gs[0]
         for g in gs[1:]:
-            result = _overlap(result, g, dim)
+            result = overlap(result, g, dim)
         return result
 
     return _faceted_body(bodies, build, segments, "intersection", geoms, origin)

@@ -110,6 +110,12 @@ class GradedBody(Body):
     def to_geometry(self, segments: int = 128):
         return self.base.to_geometry(segments)
 
+    def surface(self, segments: int = 128):
+        return self.base.surface(segments)
+
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        return self.base.outline(tolerance, segments)
+
     def with_default_density(self, density: float) -> Body:
         return self
 

@@ -121,6 +121,15 @@ class Lamina(Body):
     def to_geometry(self, segments: int = 128):
         return self.region.to_shapely(self.region.size * (1 - np.cos(np.pi / segments)), segments)
 
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        return [np.vstack((v, v[:1])) for v in (r.flattened(tolerance) for r in self.region.rings)]
+
+    def exact_region(self) -> Region:
+        return self.region
+
+    def with_material(self, density: float | None, thickness: float | None = None) -> Body:
+        return replace(self, density=density, thickness=thickness)
+
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         from .containment import region_contains

@@ -291,19 +291,6 @@ def _prism(body: Extrusion, t: float) -> tuple[Body | None, str] | None:
 
 
 # ------------------------------------------------------------ level set
-def body_triangles(body: Body) -> tuple[np.ndarray, bool]:
-    """The closed mesh bounding ``body`` (n, 3, 3), m, and whether it is the body itself
-    (a mesh) rather than a faceting of curved faces."""
-    if isinstance(body, MeshSolid):
-        return body.triangles.astype(float), True
-    if isinstance(body, Transformed) and isinstance(body.body, MeshSolid):
-        moved = body.body.transformed(body.matrix, body.offset)
-        return moved.triangles.astype(float), True
-    mesh = body.to_geometry(256).to_mesh64()
-    verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-    return verts[np.asarray(mesh.tri_verts, dtype=np.int64)], False
-
-
 def level_set_manifold(triangles: np.ndarray, t: float, step: float):
     """The manifold3d ``Manifold`` of the points more than ``t`` m inside the mesh, a level
     set of its signed distance on a ``step`` m grid (empty when nothing is)."""
@@ -360,7 +347,7 @@ def _default_step(triangles: np.ndarray, t: float, size: float) -> float:
 
 
 def _level_set_offset(body: Body, t: float, step: float | None, extra: float) -> InwardOffset:
-    triangles, own = body_triangles(body)
+    triangles, own = body.surface(256)
     size = float(np.linalg.norm(np.ptp(triangles.reshape(-1, 3), axis=0)))
     h = float(step) if step is not None else _default_step(triangles, t, size)
     if not (np.isfinite(h) and h > 0):

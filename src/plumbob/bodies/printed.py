@@ -86,6 +86,12 @@ class Printed(Body):
     def to_geometry(self, segments: int = 128):
         return self.outer.to_geometry(segments)
 
+    def surface(self, segments: int = 128):
+        return self.outer.surface(segments)
+
+    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
+        return self.outer.outline(tolerance, segments)
+
     @property
     def is_polytope(self) -> bool:
         return self.outer.is_polytope

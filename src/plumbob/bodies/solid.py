@@ -20,7 +20,16 @@ from ..massprops import MassProperties
 from ..mesh.closure import require_closed, require_sums_close, surface_summary
 from ..mesh.weld import merge_vertices
 from ..tolerances import contact_tolerance, sampling_tolerance
-from .base import Body, DensityCells, check_density, contact_sampling, density_words, lowest, measure_words
+from .base import (
+    Body,
+    DensityCells,
+    Surface,
+    check_density,
+    contact_sampling,
+    density_words,
+    lowest,
+    measure_words,
+)
 from .uniform import uniform_mass_properties
 
 if TYPE_CHECKING:
@@ -159,6 +168,12 @@ class MeshSolid(_UniformSolid):
     def _distinct_vertices(self) -> np.ndarray:
         """The mesh's distinct vertices (n, 3), m: computed once (stability asks often)."""
         return self.welded[0]
+
+    def surface(self, segments: int = 128) -> Surface:
+        return Surface(self.triangles.astype(float), True)
+
+    def as_mesh(self) -> MeshSolid:
+        return self
 
     @cached_property
     def welded(self) -> tuple[np.ndarray, np.ndarray]:

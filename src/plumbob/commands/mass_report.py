@@ -39,13 +39,8 @@ class MassReport(Result):
     def of(cls, reading: Reading) -> MassReport:
         """The report on the body of ``reading``."""
         body = reading.body
-        parts = ()
-        if body.kind == "assembly":  # every Assembly's kind: csg loads only when it may be one
-            from ..bodies.csg import Assembly
-
-            if isinstance(body, Assembly):
-                parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
-                              for i, p in enumerate(body.parts))
+        parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
+                      for i, p in enumerate(body.assembly_parts()))
         return cls(reading, body.mass_properties(), parts)
 
     @property

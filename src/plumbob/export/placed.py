@@ -26,15 +26,10 @@ def body_triangles(body) -> np.ndarray:
     boolean-geometry surface of :meth:`~plumbob.bodies.base.Body.to_geometry` (curves cut
     into 128 segments a turn: a curved shape's placed surface reaches below z = 0 by at
     most that tessellation's sagitta, 3·10⁻⁴ of its radius)."""
-    tri = getattr(body, "triangles", None)
-    if tri is not None:
-        return np.asarray(tri, dtype=float)
     try:
-        mesh = body.to_geometry().to_mesh()
+        return body.surface().triangles
     except GeometryError as exc:
         raise GeometryError(f"cannot export its poses as meshes: {exc}") from None
-    verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-    return verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
 
 
 def export_poses(body, poses, folder: str, fmt: str = "stl", units: str | None = None

@@ -1,7 +1,7 @@
 """What to draw of a body: outlines of laminas, triangles of solids, points of particles.
 
-Pictures ask a body only for what any plumbob body can give — its rings (laminas),
-its triangles or its boolean shape (``to_geometry``), its parts — by duck typing, so
+Pictures ask a body only for what any plumbob body can give — its outline (laminas),
+its surface triangles (solids), its assembly parts — through the ``Body`` methods, so
 this room imports no other room of plumbob and bodies and results may call into it.
 Large meshes are decimated here for display only (vertex clustering: one vertex per
 cell of a grid, pure numpy, linear in the triangles); every number a picture shows
@@ -173,56 +173,22 @@ def _density(body) -> float | None:
     return value if np.isfinite(value) else None
 
 
-def _shapely_rings(geometry) -> list[np.ndarray]:
-    import shapely
-
-    geometry = shapely.normalize(geometry)  # exteriors clockwise, interiors counter-clockwise
-    rings = []
-    for polygon in getattr(geometry, "geoms", [geometry]):
-        if polygon.is_empty or polygon.geom_type != "Polygon":
-            continue
-        rings.append(np.asarray(polygon.exterior.coords)[::-1])
-        rings += [np.asarray(r.coords)[::-1] for r in polygon.interiors]
-    return rings
-
-
 def _lamina_rings(body, size: float) -> list[np.ndarray]:
-    """Closed rings (k, 2) of a lamina, arcs and Béziers flattened finely enough to look
-    curved at any print size."""
-    region = getattr(body, "region", None)
-    if region is not None:
-        tol = _CURVE_TOLERANCE * size
-        return [np.vstack((v, v[:1])) for v in (r.flattened(tol) for r in region.rings)]
-    inner = getattr(body, "base", None) or getattr(body, "shape", None)
-    if inner is not None:
-        return _lamina_rings(inner, size)
-    matrix, offset = getattr(body, "matrix", None), getattr(body, "offset", None)
-    if matrix is not None and hasattr(body, "body"):
-        rings = [r @ np.asarray(matrix).T + offset for r in _lamina_rings(body.body, size)]
-        return [r[::-1] for r in rings] if np.linalg.det(matrix) < 0 else rings
-    return _shapely_rings(body.to_geometry(4 * _SEGMENTS))
+    """Closed rings (k, 2) of a lamina (:meth:`Body.outline`), arcs and Béziers flattened
+    finely enough to look curved at any print size."""
+    return body.outline(_CURVE_TOLERANCE * size, 4 * _SEGMENTS)
 
 
 def _solid_triangles(body) -> np.ndarray:
-    """Outward-wound triangles (n, 3, 3) of a solid, m: the mesh itself when there is one."""
-    tri = getattr(body, "triangles", None)
-    if tri is not None:
-        return np.asarray(tri)
-    inner = getattr(body, "base", None) or getattr(body, "shape", None)
-    if inner is not None:
-        return _solid_triangles(inner)
-    matrix, offset = getattr(body, "matrix", None), getattr(body, "offset", None)
-    if matrix is not None and hasattr(body, "body"):
-        moved = _solid_triangles(body.body).astype(float) @ np.asarray(matrix).T + offset
-        return moved[:, ::-1] if np.linalg.det(matrix) < 0 else moved
-    mesh = body.to_geometry(_SEGMENTS).to_mesh()
-    verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-    return verts[np.asarray(mesh.tri_verts, dtype=np.int64)]
+    """Outward-wound triangles (n, 3, 3) of a solid (:meth:`Body.surface`), m: the mesh
+    itself when there is one."""
+    return body.surface(_SEGMENTS).triangles
 
 
 def _pieces(body, dim: int, size: float, label: str) -> list[Piece]:
-    if getattr(body, "kind", None) == "assembly" and hasattr(body, "parts"):
-        return [piece for i, part in enumerate(body.parts)
+    parts = body.assembly_parts()
+    if parts:
+        return [piece for i, part in enumerate(parts)
                 for piece in _pieces(part, dim, size, _label(part, f"part {i + 1}"))]
     if getattr(body, "kind", None) == "particles":
         pts = np.asarray(body.positions, dtype=float)

@@ -15,10 +15,11 @@ import numpy as np
 
 from ..bodies import primitives as prim
 from ..bodies.base import Body
-from ..bodies.csg import Assembly, Composite, difference, intersection, leaf_densities, union
+from ..bodies.csg import as_assembly, difference, intersection, leaf_densities, union
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..bodies.validity import check_region
+from ..errors import GeometryError
 from ..expr import Expression, parse
 from ..formats import read as read_file
 from ..massprops import rotation_matrix
@@ -56,18 +57,12 @@ def _profile(spec: SpecContext, t: dict, where: str) -> Region:
         if "part" in table
         else _build_part(spec, table, f"{where}.profile", want_dim=2)
     )
-    if isinstance(body, Lamina):
-        return body.region
-    if isinstance(body, Composite) and all(isinstance(p, Lamina) for p in body.parts):
-        rings: list[Ring] = []
-        for part, sign in zip(body.parts, body.signs):
-            rings += [r if sign > 0 else r.reversed() for r in part.region.rings]
-        return Region(tuple(rings))
-    if hasattr(body, "region"):
-        return body.region
-    raise spec.error(
-        f"{where}.profile", "the profile must be a plain 2D shape (no placement of the whole)"
-    )
+    try:
+        return body.exact_region()
+    except GeometryError:
+        raise spec.error(
+            f"{where}.profile", "the profile must be a plain 2D shape (no placement of the whole)"
+        ) from None
 
 
 def _outline(spec: SpecContext, t: dict, where: str) -> Lamina:
@@ -282,15 +277,13 @@ def _apply_material(spec: SpecContext, body: Body, mat: _Material, where: str) -
     if mat.thickness is not None and body.dim != 2:
         raise spec.error(where, "a thickness applies only to a lamina (2D shape)")
     density = None if isinstance(mat.density, Expression) else mat.density
-    if isinstance(body, Lamina):
-        if mat.label is not None and mat.thickness is None:
-            raise spec.error(
-                where,
-                f"a lamina of {mat.label} needs a thickness (m) to turn the "
-                "material's kg/m³ into kg/m²",
-            )
-        return replace(body, density=density, thickness=mat.thickness)
-    return body if density is None else body.with_default_density(density)
+    if body.dim == 2 and mat.label is not None and mat.thickness is None:
+        raise spec.error(
+            where,
+            f"a lamina of {mat.label} needs a thickness (m) to turn the "
+            "material's kg/m³ into kg/m²",
+        )
+    return body.with_material(density, mat.thickness)
 
 
 def _apply_field(spec: SpecContext, body: Body, mat: _Material, where: str) -> Body:
@@ -392,10 +385,7 @@ def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
         return built[0][1]
     with spec.at("parts"):
         if all(op == "add" for op, _, _ in built):
-            result = union(*(b for _, b, _ in built), segments=spec.segments)
-            if len(leaf_densities(result)) > 1 and isinstance(result, Composite):
-                return Assembly(result.parts)
-            return result
+            return as_assembly(union(*(b for _, b, _ in built), segments=spec.segments))
         # each run of one op is one boolean: a run of holes is cut in one pass
         result = built[0][1]
         start = 1

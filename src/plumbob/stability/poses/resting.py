@@ -15,7 +15,6 @@ from functools import partial
 import numpy as np
 
 from ...arguments import answering, finite_result, instance, non_negative, optional, positive
-from ...bodies.solid import MeshSolid
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
@@ -101,16 +100,16 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
                  int(len(land.sh)), land.error, tuple(notes))
 
 
-def _own_surface(body: MeshSolid, pts: np.ndarray, com: np.ndarray, size: float
+def _own_surface(mesh, pts: np.ndarray, com: np.ndarray, size: float
                  ) -> tuple[np.ndarray, np.ndarray | None]:
-    """A mesh's welded vertices and triangles (:attr:`MeshSolid.welded`), for
+    """A mesh body's (:meth:`Body.as_mesh`) welded vertices and triangles, for
     :func:`~.convex.own_hull` to take as the hull if it proves the mesh convex; ``pts``
     and None when a sample of its triangles' planes already shows it is not
     (:func:`~.convex.may_be_own_hull`), so that such a mesh is not welded again."""
-    corners = sample_triangles(body.triangles) - com
+    corners = sample_triangles(mesh.triangles) - com
     if not may_be_own_hull(pts - com, corners, HULL_ROUND_OFF * size):
         return pts, None
-    return body.welded
+    return mesh.welded
 
 
 def _triangle_indices(surface, n: int) -> np.ndarray:
@@ -323,8 +322,9 @@ def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = No
     if pts.shape[1] != dim:
         pts = pts[:, :dim]
     surface = None
-    if dim == 3 and isinstance(body, MeshSolid):  # its own mesh: the hull, if convex
-        pts, surface = _own_surface(body, pts, com, size)
+    mesh = body.as_mesh() if dim == 3 else None
+    if mesh is not None:  # its own mesh: the hull, if convex
+        pts, surface = _own_surface(mesh, pts, com, size)
     return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
                              roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
                              surface=surface)
