@@ -277,3 +277,57 @@ def test_report_on_a_lamina_and_a_mesh(tmp_path, capsys):
     stl = _stl(tmp_path, P.box(1.0, 2.0, 3.0))
     assert main(["report", stl, "-o", str(tmp_path / "m.html"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["report"].endswith("m.html")
+
+
+def _headline(page: str) -> str:
+    import re
+
+    found = re.findall(r'<span class="verdict" id="headline" style="background:([^;]*);[^"]*">'
+                       r"([^<]*)</span>", page)
+    assert len(found) == 1, found
+    return found[0]
+
+
+def test_a_failed_requirement_is_the_report_headline(tmp_path, capsys):
+    """The seed's block stands with a critical tilt of 14.04°: asked for 40° the page's
+    first words are FAIL, in the topples colour, with both tilts; for half its tilt, PASS."""
+    from plumbob.plot.style import STATUS_COLOURS
+
+    stepped = os.path.join(SHAPES, "block.toml")
+    assert main(["check", stepped, "--json"]) == 0
+    tilt = json.loads(capsys.readouterr().out)["critical_tilt_deg"]
+    out = tmp_path / "r.html"
+    capsys.readouterr()
+    assert main(["report", stepped, "-o", str(out), "--require-tilt", "40"]) == 0
+    colour, text = _headline(out.read_text(encoding="utf-8"))
+    assert tilt < 40
+    assert text.startswith("FAIL: required tilt 40° not met") and f"{tilt:.4g}°" in text
+    assert colour == STATUS_COLOURS["topples"]
+    assert main(["report", stepped, "-o", str(out), "--require-tilt", f"{tilt * 0.5:.3g}"]) == 0
+    colour, text = _headline(out.read_text(encoding="utf-8"))
+    assert text.startswith("PASS: stands") and colour == STATUS_COLOURS["stands"]
+
+
+def test_the_report_page_shows_a_mm_part_in_mm_and_g_and_an_assemblys_parts(tmp_path, capsys):
+    """A 40 × 20 × 60 mm PLA box read in mm: 59.52 g, centre (20, 10, 30) mm, the 3-D
+    view's axes in mm; the cabinet's three parts each with their mass and centre."""
+    import trimesh
+
+    box = tmp_path / "box.stl"
+    trimesh.creation.box(extents=(40, 20, 60)).apply_translation((20, 10, 30)).export(box)
+    out = tmp_path / "box.html"
+    assert main(["report", str(box), "--units", "mm", "--material", "pla", "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert "<th>mass</th><td>59.52 g</td>" in page
+    assert "<th>centre of mass</th><td>(20, 10, 30) mm</td>" in page
+    assert '"text":"x, mm"' in page.replace(" ", "").replace('"text":"x,mm"', '"text":"x, mm"')
+    cabinet = os.path.join(SHAPES, "cabinet.toml")
+    capsys.readouterr()
+    assert main(["mass", cabinet, "--json"]) == 0
+    parts = json.loads(capsys.readouterr().out)["part_properties"]
+    assert main(["report", cabinet, "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert f"<h2>Parts ({len(parts)})</h2>" in page
+    for part in parts:
+        assert f"<tr><td>{part['name']}</td><td>{part['kind']}</td>" in page
+        assert f"<td>{part['mass']:.6g}</td>" in page

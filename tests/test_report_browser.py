@@ -72,3 +72,37 @@ def test_report_renders_in_headless_chromium(tmp_path, capsys, shape):
     middle = pixels[h // 4: 3 * h // 4, w // 4: 3 * w // 4]
     tinted = np.ptp(middle, axis=2) > 0.1  # coloured, not the scene's pale grey-blue
     assert tinted.mean() > 0.02, tinted.mean()
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no system Chromium (apt-get install chromium)")
+def test_a_failed_requirement_is_the_headline_a_reviewer_sees(tmp_path, capsys):
+    """Rendered, the page's headline reads FAIL on the topples colour: a screenshot of
+    the headline is mostly that red, and its text comes first on the page."""
+    sync_api = pytest.importorskip("playwright.sync_api", reason="pip install '.[browser]'")
+    from io import BytesIO
+
+    import matplotlib.image as mpimg
+
+    from plumbob.plot.style import STATUS_COLOURS
+
+    out = tmp_path / "report.html"
+    assert main(["report", os.path.join(SHAPES, "block.toml"), "-o", str(out),
+                 "--require-tilt", "40"]) == 0
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        try:
+            page = browser.new_page(viewport={"width": 1200, "height": 900})
+            page.route("http*://**", lambda route: route.abort())
+            page.goto(f"file://{out}")
+            headline = page.locator("#headline")
+            text = headline.inner_text()
+            box = headline.bounding_box()
+            first = page.locator("body").inner_text().split("\n")
+            shot = mpimg.imread(BytesIO(headline.screenshot()), format="png")[:, :, :3]
+        finally:
+            browser.close()
+    assert text.startswith("FAIL: required tilt 40° not met")
+    assert box is not None and box["y"] < 200  # above the fold, under the title
+    assert [line for line in first if line.strip()][1].startswith("FAIL")
+    red = np.array([int(STATUS_COLOURS["topples"][i:i + 2], 16) / 255 for i in (1, 3, 5)])
+    assert (np.abs(shot - red).max(axis=2) < 0.08).mean() > 0.5

@@ -37,7 +37,46 @@ class _Parser(argparse.ArgumentParser):
             self._negative_number_matcher = self._NEGATIVE_VALUE
 
     def error(self, message: str) -> None:  # one line, status 2, no usage dump
+        choice = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
+        if choice:  # a mistyped command or choice: the closest ones first
+            import difflib
+
+            options = re.findall(r"'([^']*)'", choice[2])
+            close = difflib.get_close_matches(choice[1], options, n=2, cutoff=0.6)
+            if close:
+                message += f"; did you mean {' or '.join(close)}?"
         self.exit(2, f"plumbob: {printable(message)} (see '{printable(self.prog)} --help')\n")
+
+    def parse_args(self, args=None, namespace=None):  # type: ignore[override]
+        """As argparse's, but an unknown option names the subcommand's closest ones
+        (``--requre-tilt``: did you mean --require-tilt?) and points at its help."""
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = self._subcommand(getattr(parsed, "command", None))
+            where = command or self
+            self.exit(2, f"plumbob: {_unrecognized(extras, where)} "
+                      f"(see '{printable(where.prog)} --help')\n")
+        return parsed
+
+    def _subcommand(self, name: str | None) -> argparse.ArgumentParser | None:
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction) and name in action.choices:
+                return action.choices[name]
+        return None
+
+
+def _unrecognized(extras: list[str], parser: argparse.ArgumentParser) -> str:
+    """The one line for arguments no option takes, with the closest options' names."""
+    import difflib
+
+    known = sorted(parser._option_string_actions)
+    words = ", ".join(printable(word) for word in extras)
+    for word in extras:
+        if word.startswith("-"):
+            close = difflib.get_close_matches(word.split("=", 1)[0], known, n=2, cutoff=0.6)
+            if close:
+                return f"unrecognized argument {printable(word)}; did you mean {' or '.join(close)}?"
+    return f"unrecognized arguments: {words}"
 
 
 class _VersionAction(argparse.Action):
@@ -69,12 +108,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from . import __version__
 
-    try:
-        return version("plumbob")
-    except PackageNotFoundError:
-        return "unknown"
+    return __version__
 
 
 class _Escaping:

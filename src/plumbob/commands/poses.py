@@ -9,7 +9,17 @@ from __future__ import annotations
 import argparse
 
 from ..plot.files import add_plot_argument, write_plot
-from ._common import add_stability_arguments, clean, count, header, non_negative, open_body, positive
+from ._common import (
+    add_report_units_argument,
+    add_stability_arguments,
+    clean,
+    count,
+    header,
+    non_negative,
+    open_body,
+    positive,
+    report_units,
+)
 from ._common import dump_json as to_json
 from ._dynamic import add_dynamic_arguments, check_dynamic, run_dynamic
 
@@ -37,6 +47,7 @@ def register(subparsers) -> None:
     add_quasi_static_arguments(parser)
     add_shown_arguments(parser)
     add_plot_argument(parser)
+    add_report_units_argument(parser)
     add_dynamic_arguments(parser)  # --dynamic and its settings: commands/_dynamic.py
     parser.set_defaults(func=run)
 
@@ -88,9 +99,7 @@ def run(args) -> int:
         return run_dynamic(args, reading, props, result, notes)
     notes += list(result.notes)
     shown, rest, rest_p = result.shown(args.top, args.min_probability)
-    if rest:
-        notes.append(f"{rest} more pose(s) with total probability {rest_p:.4g} not shown "
-                     "(--top, --min-probability)")
+    units = report_units(args, reading)
     written = []
     if args.export:
         from ..export.placed import export_poses
@@ -121,9 +130,12 @@ def run(args) -> int:
     def vec(values, digits: int = 6) -> str:
         return format_vector(clean(values, size), digits)
 
-    print(f"plumbob poses {args.path}: {len(result)} stable pose(s), mass {num(props.mass)} kg, "
-          f"centre of mass {vec(result.center_of_mass)} m")
-    print(f"{'#':>3}  {'probability':>11}  {'down':<28}{'height m':>11}{'tilt °':>9}"
+    length = units.length_unit
+    centre = units.length(clean(result.center_of_mass, size))
+    print(f"plumbob poses {args.path}: {len(result)} stable pose(s), mass "
+          f"{num(units.mass(props.mass))} {units.mass_unit}, centre of mass "
+          f"{format_vector(centre)} {length}")
+    print(f"{'#':>3}  {'probability':>11}  {'down':<28}{'height ' + length:>11}{'tilt °':>9}"
           f"{'barrier J':>13}")
     for k, p in enumerate(shown, 1):
         barrier = "—" if p.energy_barrier is None else num(p.energy_barrier, 5)
@@ -132,10 +144,12 @@ def run(args) -> int:
             tag = "  rolls" + ("" if p.axis is None else f" about {vec(p.axis, 4)}")
         elif p.kind == "rocking":
             tag = "  rocks"
-        print(f"{k:>3}  {p.probability:>11.6f}  {vec(p.down, 4):<28}{num(p.com_height, 5):>11}"
+        height = num(units.length(p.com_height), 5)
+        print(f"{k:>3}  {p.probability:>11.6f}  {vec(p.down, 4):<28}{height:>11}"
               f"{num(p.critical_tilt_deg, 4):>9}{barrier:>13}{tag}")
     if rest:
-        print(f"     {rest} more pose(s) with total probability {rest_p:.4g}")
+        print(f"     {rest} more pose(s) with total probability {rest_p:.4g} not shown "
+              "(--top, --min-probability)")
     for path in written:
         print(f"wrote {path}")
     for note in notes:

@@ -11,7 +11,13 @@ from __future__ import annotations
 import argparse
 import os
 
-from ._common import add_stability_arguments, open_body, tilt_limit
+from ._common import (
+    add_report_units_argument,
+    add_stability_arguments,
+    open_body,
+    report_units,
+    tilt_limit,
+)
 
 __all__ = ["register", "run"]
 
@@ -32,6 +38,7 @@ def register(subparsers) -> None:
                         help="the HTML file to write (default: PATH's name with .html, here)")
     parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="draw this tilt on the tilt rose and say whether it passes")
+    add_report_units_argument(parser)
     parser.set_defaults(func=run)
 
 
@@ -53,8 +60,10 @@ def run(args) -> int:
     from ..stability.poses import resting_poses
     from ..stability.verdict import check
     from ._common import dump_json
+    from .mass_report import MassReport
 
     reading, props, notes = open_body(args)
+    units = report_units(args, reading)
     body = reading.body
     verdict = _attempt("stability", lambda: check(body, g=args.g, props=props,
                                                   require_tilt_deg=args.require_tilt), notes)
@@ -63,7 +72,8 @@ def run(args) -> int:
         notes += list(poses.notes)
     output = args.output or os.path.splitext(os.path.basename(args.path))[0] + ".html"
     page = report_page(body, props, verdict, poses, path=args.path,
-                       notes=notes + list(reading.notices))
+                       notes=notes + list(reading.notices), units=units,
+                       parts=MassReport.of(reading).parts)
     write_atomic(output, page.encode("utf-8"))
     if args.json:
         dump_json({"path": args.path, "report": output, "bytes": len(page.encode("utf-8"))})

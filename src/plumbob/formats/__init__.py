@@ -80,6 +80,9 @@ def read(path: str, *, units: str | None = None, repair: bool = False) -> Readin
 def file_family(path: str, suffixes: Mapping[str, str]) -> str:
     """The reader family ``suffixes`` gives the extension of ``path``; an unknown
     extension is an :class:`InputFileError` listing the ones known."""
+    if os.path.isdir(path):
+        raise InputFileError("is a folder, not a file; to measure every file in it, use "
+                             "'plumbob batch FOLDER'", path=path)
     suffix = os.path.splitext(path)[1].lower()
     kind = suffixes.get(suffix)
     if kind is None and suffix in FOREIGN:

@@ -46,23 +46,74 @@ def _table(rows: list[tuple[str, str]]) -> str:
     return f"<table>{body}</table>"
 
 
-def _mass_rows(body, props, size: float) -> list[tuple[str, str]]:
-    rows = [("kind", getattr(body, "kind", "body")), ("mass", f"{fmt(props.mass, 6)} kg")]
+class _SI:
+    """The report units when none are given: SI (the duck type of
+    :class:`plumbob.report.ReportUnits`, which this layer may not import)."""
+
+    length_unit, mass_unit = "m", "kg"
+
+    def length(self, value):
+        return value
+
+    def mass(self, value):
+        return value
+
+    def measure(self, value, dim):
+        return value
+
+    def density(self, value, dim):
+        return value
+
+    def inertia(self, value):
+        return value
+
+    def unit(self, quantity, dim=3):
+        return {"length": "m", "mass": "kg", "inertia": "kg·m²", "measure": f"m{_POWER[dim]}",
+                "density": f"kg/m{_POWER[dim]}"}[quantity]
+
+
+_POWER = {2: "²", 3: "³"}
+
+
+def _mass_rows(body, props, size: float, u) -> list[tuple[str, str]]:
+    rows = [("kind", getattr(body, "kind", "body")),
+            ("mass", f"{fmt(u.mass(props.mass), 6)} {u.mass_unit}")]
     if props.measure:
-        unit = "m²" if props.dim == 2 else "m³"
-        rows.append(("area" if props.dim == 2 else "volume", f"{fmt(props.measure, 6)} {unit}"))
-        rows.append(("mean density", f"{fmt(props.density, 6)} kg/{unit}"))
-    rows.append(("centre of mass", f"{fmt_point(props.center_of_mass, 6, size)} m"))
-    inertia = np.asarray(props.inertia)
+        dim = props.dim
+        rows.append(("area" if dim == 2 else "volume",
+                     f"{fmt(u.measure(props.measure, dim), 6)} {u.unit('measure', dim)}"))
+        rows.append(("mean density",
+                     f"{fmt(u.density(props.density, dim), 6)} {u.unit('density', dim)}"))
+    rows.append(("centre of mass",
+                 f"{fmt_point(u.length(props.center_of_mass), 6, u.length(size))} {u.length_unit}"))
+    inertia = np.asarray(u.inertia(props.inertia))
     inertia = np.where(np.abs(inertia) < 1e-12 * max(np.abs(inertia).max(), 1e-300), 0.0, inertia)
     for i, row in enumerate(inertia):
-        rows.append(("inertia about G" if i == 0 else "", f"{fmt_point(row, 6)} kg·m²"))
-    rows.append(("principal moments", f"{fmt_point(props.principal_moments, 6)} kg·m²"))
+        rows.append(("inertia about G" if i == 0 else "", f"{fmt_point(row, 6)} {u.unit('inertia')}"))
+    rows.append(("principal moments",
+                 f"{fmt_point(u.inertia(props.principal_moments), 6)} {u.unit('inertia')}"))
     rows.append(("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})"))
     return rows
 
 
-def _view_3d(d: Drawing, rows: np.ndarray, com, verdict):
+def _parts_html(parts, size: float, u) -> str:
+    """The per-part table of an assembly: name, kind, density, mass, centre."""
+    head = (f"<tr><th>part</th><th>kind</th><th>mean density</th><th>mass, {u.mass_unit}</th>"
+            f"<th>centre of mass, {u.length_unit}</th></tr>")
+    rows = []
+    for name, kind, props in parts:
+        dim = props.dim
+        density = (f"{fmt(u.density(props.density, dim), 5)} {u.unit('density', dim)}"
+                   if props.measure else "—")
+        rows.append(f"<tr><td>{_e(name)}</td><td>{_e(kind)}</td><td>{_e(density)}</td>"
+                    f"<td>{fmt(u.mass(props.mass), 6)}</td>"
+                    f"<td>{_e(fmt_point(u.length(props.center_of_mass), 6, u.length(size)))}</td>"
+                    "</tr>")
+    return f'<table class="parts">{head}{"".join(rows)}</table>'
+
+
+def _view_3d(d: Drawing, rows: np.ndarray, com, verdict, scale: float = 1.0, unit: str = "m"):
+    """The 3-D view, lengths times ``scale`` (metres to the report's ``unit``)."""
     import plotly.graph_objects as go
 
     fig = go.Figure()
@@ -70,29 +121,29 @@ def _view_3d(d: Drawing, rows: np.ndarray, com, verdict):
     for piece, colour in zip(d.pieces, colours):
         if piece.triangles is not None and len(piece.triangles):
             # single precision is plenty on screen and halves the page
-            t = in_frame(piece.triangles, rows).reshape(-1, 3).astype(np.float32)
+            t = scale * in_frame(piece.triangles, rows).reshape(-1, 3).astype(np.float32)
             k = np.arange(0, len(t), 3, dtype=np.int32)
             fig.add_trace(go.Mesh3d(x=t[:, 0], y=t[:, 1], z=t[:, 2], i=k, j=k + 1, k=k + 2,
                                     color=colour, opacity=0.6, flatshading=True, name=piece.label,
                                     showlegend=True))
         if piece.points is not None:
-            p = in_frame(piece.points, rows)
+            p = scale * in_frame(piece.points, rows)
             fig.add_trace(go.Scatter3d(x=p[:, 0], y=p[:, 1], z=p[:, 2], mode="markers",
                                        marker=dict(size=6, color=colour), name=piece.label))
-    c = in_frame(com, rows)
+    c = scale * in_frame(com, rows)
     if verdict is not None:
-        support = in_frame(verdict.support.polygon, rows)
+        support = scale * in_frame(verdict.support.polygon, rows)
         loop = np.vstack((support, support[:1]))
         fig.add_trace(go.Scatter3d(x=loop[:, 0], y=loop[:, 1], z=loop[:, 2], mode="lines+markers",
                                    line=dict(color="black", width=6), marker=dict(size=3),
                                    name="support polygon"))
-        foot = in_frame(verdict.support.plane_point, rows)
+        foot = scale * in_frame(verdict.support.plane_point, rows)
         fig.add_trace(go.Scatter3d(x=[c[0], foot[0]], y=[c[1], foot[1]], z=[c[2], foot[2]],
                                    mode="lines+markers", name="weight",
                                    line=dict(color="black", width=3, dash="dash"),
                                    marker=dict(size=[0, 7], color=STATUS_COLOURS[status(verdict)],
                                                symbol="square")))
-        pts = d.all_points() @ rows.T
+        pts = scale * (d.all_points() @ rows.T)
         lo, hi = pts[:, :2].min(axis=0), pts[:, :2].max(axis=0)
         pad = 0.15 * float(np.max(hi - lo))
         xs = [lo[0] - pad, hi[0] + pad, hi[0] + pad, lo[0] - pad]
@@ -102,13 +153,14 @@ def _view_3d(d: Drawing, rows: np.ndarray, com, verdict):
     fig.add_trace(go.Scatter3d(x=[c[0]], y=[c[1]], z=[c[2]], mode="markers", name="centre of mass G",
                                marker=dict(size=8, color="white", line=dict(color="black", width=4))))
     names = ("x", "y", "z") if np.allclose(rows, np.eye(3)) else ("e1", "e2", "up")
-    fig.update_layout(scene=dict(aspectmode="data", xaxis_title=f"{names[0]}, m",
-                                 yaxis_title=f"{names[1]}, m", zaxis_title=f"{names[2]}, m"),
+    fig.update_layout(scene=dict(aspectmode="data", xaxis_title=f"{names[0]}, {unit}",
+                                 yaxis_title=f"{names[1]}, {unit}", zaxis_title=f"{names[2]}, {unit}"),
                       height=600, margin=dict(l=0, r=0, t=30, b=0), legend=dict(x=0, y=1))
     return fig
 
 
-def _view_2d(d: Drawing, rows: np.ndarray, com, verdict):
+def _view_2d(d: Drawing, rows: np.ndarray, com, verdict, scale: float = 1.0, unit: str = "m"):
+    """The 2-D view, lengths times ``scale`` (metres to the report's ``unit``)."""
     import plotly.graph_objects as go
 
     fig = go.Figure()
@@ -117,21 +169,21 @@ def _view_2d(d: Drawing, rows: np.ndarray, com, verdict):
         if piece.rings:
             xs, ys = [], []
             for ring in piece.rings:
-                r = in_frame(ring, rows)
+                r = scale * in_frame(ring, rows)
                 xs += list(r[:, 0]) + [None]
                 ys += list(r[:, 1]) + [None]
             fig.add_trace(go.Scatter(x=xs, y=ys, fill="toself", fillcolor=colour, mode="lines",
                                      line=dict(color="#222"), name=piece.label))
-    c = in_frame(com, rows)
+    c = scale * in_frame(com, rows)
     if verdict is not None:
-        s = in_frame(verdict.support.polygon, rows)
+        s = scale * in_frame(verdict.support.polygon, rows)
         fig.add_trace(go.Scatter(x=s[:, 0], y=s[:, 1], mode="lines+markers", name="support",
                                  line=dict(color="black", width=6)))
-        fig.add_hline(y=float(in_frame(verdict.support.plane_point, rows)[1]), line_color="#555")
+        fig.add_hline(y=float(scale * in_frame(verdict.support.plane_point, rows)[1]), line_color="#555")
     fig.add_trace(go.Scatter(x=[c[0]], y=[c[1]], mode="markers", name="centre of mass G",
                              marker=dict(size=12, color="white", line=dict(color="black", width=3))))
-    fig.update_yaxes(scaleanchor="x", scaleratio=1, title="y, m")
-    fig.update_xaxes(title="x, m")
+    fig.update_yaxes(scaleanchor="x", scaleratio=1, title=f"y, {unit}")
+    fig.update_xaxes(title=f"x, {unit}")
     fig.update_layout(height=550, margin=dict(l=0, r=0, t=30, b=0))
     return fig
 
@@ -160,32 +212,54 @@ def _rose(verdict):
     return fig
 
 
-def _verdict_html(verdict) -> str:
-    colour = STATUS_COLOURS[status(verdict)]
-    text_colour = "#222" if status(verdict) == "amber" else "white"
+def headline(verdict) -> str:
+    """The verdict's headline: what a reviewer must see first. A failed requirement
+    is the headline (``FAIL: required tilt 10° not met (critical tilt 4.2°)``), never a
+    table row under a "stands" badge."""
+    if verdict.required_tilt_deg is not None and verdict.passes is False:
+        level = {"neutral": "is in neutral balance"}.get(verdict.verdict, verdict.verdict)
+        return (f"FAIL: required tilt {fmt(verdict.required_tilt_deg, 3)}° not met "
+                f"(critical tilt {fmt(verdict.critical_tilt_deg, 4)}°; on level ground it "
+                f"{level})")
+    if verdict.required_tilt_deg is not None:
+        return f"PASS: {verdict.verdict}, required tilt {fmt(verdict.required_tilt_deg, 3)}° met"
+    return str(verdict.verdict)
+
+
+def _badge(verdict, element_id: str = "") -> str:
+    """The verdict's coloured headline: red for a failed requirement whatever the
+    verdict on level ground."""
+    failed = verdict.required_tilt_deg is not None and verdict.passes is False
+    colour = STATUS_COLOURS["topples" if failed else status(verdict)]
+    text_colour = "#222" if status(verdict) == "amber" and not failed else "white"
+    ident = f' id="{element_id}"' if element_id else ""
+    return (f'<p><span class="verdict"{ident} style="background:{colour};color:{text_colour}">'
+            f"{_e(headline(verdict))}</span></p>")
+
+
+def _verdict_html(verdict, u) -> str:
     rows = [("critical tilt", f"{fmt(verdict.critical_tilt_deg, 4)}° toward "
                               f"{fmt_point(verdict.critical_direction, 3)}"),
-            ("stability margin", f"{fmt(verdict.margin, 5)} m"),
+            ("stability margin", f"{fmt(u.length(verdict.margin), 5)} {u.length_unit}"),
             ("energy to topple", f"{fmt(verdict.energy_to_topple, 5)} J"),
-            ("height of G", f"{fmt(verdict.com_height, 5)} m"),
+            ("height of G", f"{fmt(u.length(verdict.com_height), 5)} {u.length_unit}"),
             ("support", f"{verdict.support.kind}, {len(verdict.support.vertices)} corner(s)")]
     if verdict.required_tilt_deg is not None:
         rows.append((f"required tilt {fmt(verdict.required_tilt_deg, 3)}°",
                      "PASS" if verdict.passes else "FAIL"))
-    return (f'<p><span class="verdict" style="background:{colour};color:{text_colour}">'
-            f"{_e(verdict.verdict)}</span></p>" + _table(rows))
+    return _badge(verdict) + _table(rows)
 
 
-def _poses_html(poses, body) -> str:
+def _poses_html(poses, body, u) -> str:
     from .files import png_bytes
     from .gallery import plot_poses
 
     image = base64.b64encode(png_bytes(plot_poses(poses, body), dpi=80)).decode("ascii")
-    head = "<tr><th>#</th><th>probability</th><th>down</th><th>height of G, m</th>" \
-           "<th>critical tilt, °</th></tr>"
+    head = f"<tr><th>#</th><th>probability</th><th>down</th><th>height of G, {u.length_unit}" \
+           "</th><th>critical tilt, °</th></tr>"
     body_rows = "".join(
         f"<tr><td>{k}</td><td>{p.probability:.4f}</td><td>{_e(fmt_point(p.down, 3))}</td>"
-        f"<td>{fmt(p.com_height, 5)}</td><td>{fmt(p.critical_tilt_deg, 4)}"
+        f"<td>{fmt(u.length(p.com_height), 5)}</td><td>{fmt(p.critical_tilt_deg, 4)}"
         f"{' (rolls)' if p.neutral else ''}</td></tr>"
         for k, p in enumerate(poses.poses, 1))
     return (f'<img alt="pose gallery" src="data:image/png;base64,{image}">'
@@ -193,13 +267,17 @@ def _poses_html(poses, body) -> str:
 
 
 def report_page(body, props, verdict=None, poses=None, *, path: str | None = None,
-                notes=(), max_faces: int = REPORT_FACES) -> str:
+                notes=(), max_faces: int = REPORT_FACES, units=None, parts=()) -> str:
     """The HTML of one self-contained report page (a string).
 
     body, props: the body and its mass properties. verdict: its stability verdict, or
     None. poses: its resting poses, or None. path: the file, for the title. notes: lines
-    for the notes section (why a section is missing, the reader's notices).
+    for the notes section (why a section is missing, the reader's notices). units: a
+    :class:`plumbob.report.ReportUnits` for the tables (default SI). parts: (name, kind,
+    mass properties) of each part of an assembly, for the per-part table.
     """
+    u = units or _SI()
+    parts_of = tuple(parts)
     d = drawing(body, max_faces)
     size = float(np.ptp(d.all_points(), axis=0).max()) or 1.0
     com = np.asarray(props.center_of_mass, dtype=float)
@@ -208,20 +286,26 @@ def report_page(body, props, verdict=None, poses=None, *, path: str | None = Non
         rows = rest_frame(verdict.down, verdict.support.frame.axes)
     else:
         rows = np.eye(dim)
-    view = (_view_3d if dim == 3 else _view_2d)(d, rows, com, verdict)
+    view = (_view_3d if dim == 3 else _view_2d)(d, rows, com, verdict, float(u.length(1.0)),
+                                                 u.length_unit)
     title = " — ".join(x for x in ("plumbob report", path, getattr(body, "name", None)) if x)
-    parts = [f"<h1>{_e(title)}</h1>", "<h2>Body</h2>",
+    sections = [f"<h1>{_e(title)}</h1>"]
+    if verdict is not None:  # the verdict first: PASS or FAIL is what a reviewer looks for
+        sections.append(_badge(verdict, "headline"))
+    parts = [*sections, "<h2>Body</h2>",
              view.to_html(full_html=False, include_plotlyjs=True, config={"responsive": True})]
     if d.note:
         parts.append(f'<p class="note">3-D view: {_e(d.note)}.</p>')
-    parts += ["<h2>Mass properties</h2>", _table(_mass_rows(body, props, size))]
+    parts += ["<h2>Mass properties</h2>", _table(_mass_rows(body, props, size, u))]
+    if parts_of:
+        parts += [f"<h2>Parts ({len(parts_of)})</h2>", _parts_html(parts_of, size, u)]
     if verdict is not None:
         parts += ["<h2>Stability on level ground</h2>", '<div class="row"><div>',
-                  _verdict_html(verdict), "</div><div>",
+                  _verdict_html(verdict, u), "</div><div>",
                   _rose(verdict).to_html(full_html=False, include_plotlyjs=False), "</div></div>"]
     if poses is not None:
         parts += [f"<h2>Resting poses ({len(poses)}), most probable first</h2>",
-                  _poses_html(poses, body)]
+                  _poses_html(poses, body, u)]
     if notes:
         parts += ["<h2>Notes</h2>", "<ul>" + "".join(f"<li>{_e(n)}</li>" for n in notes) + "</ul>"]
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
