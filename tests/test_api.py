@@ -174,7 +174,7 @@ def test_balance_and_batch_are_callables_and_rooms():
 
 
 def test_version_is_the_packages():
-    """One place: pyproject.toml reads it from plumbob.__version__."""
+    """One place, plumbob/version.py: pyproject.toml reads it, the front door shows it."""
     try:
         import tomllib
     except ModuleNotFoundError:  # Python 3.10
@@ -183,5 +183,6 @@ def test_version_is_the_packages():
     with open(os.path.join(ROOT, "pyproject.toml"), "rb") as handle:
         project = tomllib.load(handle)
     assert project["project"]["dynamic"] == ["version"]
-    assert project["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "plumbob.__version__"}
+    assert project["tool"]["setuptools"]["dynamic"]["version"] == \
+        {"attr": "plumbob.version.__version__"}
     assert plumbob.__version__.count(".") == 2

@@ -27,8 +27,7 @@ from __future__ import annotations
 from importlib import import_module
 from typing import Any
 
-#: the release (pyproject.toml reads it from here: one place)
-__version__ = "0.2.0"
+from .version import __version__  # noqa: F401 (the release: plumbob/version.py)
 
 __all__ = [
     "load",

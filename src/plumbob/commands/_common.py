@@ -244,13 +244,15 @@ def report_units(args: argparse.Namespace, reading: Reading | None = None):
     """The units of the text report: ``--report-units``, else the part's own (a part
     read in millimetres is shown in mm and g: :func:`~plumbob.report.natural_units`),
     else SI. Asked for with ``--json`` it is an error (the JSON is always SI), never
-    silently ignored."""
-    from ..report import natural_units
-
+    silently ignored; with ``--json`` there is no text report: None."""
     units = getattr(args, "report_units", None)
-    if units is not None and getattr(args, "json", False):
-        raise ArgumentError("--report-units changes the text report only; the JSON is always "
-                            "in SI units (leave out one of them)")
+    if getattr(args, "json", False):
+        if units is not None:
+            raise ArgumentError("--report-units changes the text report only; the JSON is "
+                                "always in SI units (leave out one of them)")
+        return None
+    from ..report import natural_units  # the text report's, loaded only for text
+
     return units or natural_units(reading.length_unit if reading is not None else None)
 
 
