@@ -138,3 +138,15 @@ def test_a_lamina_down_must_lie_in_its_plane():
     with pytest.raises(StabilityError, match="own plane"):
         support_polygon(polygon(SCULPTURE), [0, -1, 1])
     assert support_polygon(polygon(SCULPTURE), [0, -1, 0]).kind == "segment"
+
+
+def test_the_support_carries_the_body_size_whatever_the_tolerance():
+    """Reports scale their round-off by ``support.size``, never by a tolerance turned back
+    into a size (wrong whenever ``--tolerance`` is given)."""
+    from plumbob.stability.support import body_size
+
+    body = box(1, 2, 4)
+    for tolerance in (None, 1e-3):
+        s = support_polygon(body, tolerance=tolerance)
+        assert s.size == body_size(body)
+    assert support_polygon(body, tolerance=1e-3).tolerance == 1e-3

@@ -77,7 +77,7 @@ def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False)
     from ..report import format_number, table
     from ..report import format_vector as vector
 
-    scale = v.support.tolerance * 1e6  # the body's size
+    scale = v.support.size  # round-off is relative to the body's size
 
     def num(value: float, digits: int = 6) -> str:
         return format_number(float(clean(value, scale)), digits)

@@ -36,8 +36,8 @@ _MAX_EDGE_LABELS = 12
 
 
 def _size(verdict) -> float:
-    """The body's size, as the verdict's contact tolerance was set from it."""
-    return verdict.support.tolerance * 1e6
+    """The body's size (what the report's round-off is relative to)."""
+    return verdict.support.size
 
 
 def _frame(verdict) -> np.ndarray:

@@ -217,6 +217,8 @@ class Support:
         inside; edges within reach of a curved contact's sampling are re-measured exactly.
     tolerance: the contact tolerance used, m.
     contact: (n, dim) m, the contact points found (body frame).
+    size: the body's size, m (:func:`body_size`): what relative tolerances (the default
+        contact tolerance, round-off in reports) are fractions of.
     """
 
     kind: str
@@ -231,6 +233,7 @@ class Support:
     edge_distances: np.ndarray
     tolerance: float
     contact: np.ndarray
+    size: float
 
     @property
     def dim(self) -> int:
@@ -437,7 +440,7 @@ def support_polygon(body, down=None, *, tolerance: float | None = None,
             distances = _distances(starts, normals)
         distances = _refine_critical(body, frame, com, normals, distances, tol, size)
     return Support(kind, frame, com, height, vertices, foot, starts, ends, normals,
-                   distances, tol, pts)
+                   distances, tol, pts, size)
 
 
 def _distances(starts: np.ndarray, normals: np.ndarray) -> np.ndarray:
