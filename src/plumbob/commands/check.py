@@ -108,6 +108,9 @@ def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False)
                       "of a round base)")
     verdict = {"stands": "stands", "topples": "TOPPLES",
                "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
+    settled = v.settling
+    if settled is not None:  # set down on a point, a line or a sliver: where it comes to rest
+        verdict = f"{verdict.split(' (')[0]} ({settled.phrase})"
     if v.verdict == "topples":
         margin = (f"{at(v.margin)}: the centre of mass is {at(v.overhang)} beyond "
                   "the support")
@@ -121,6 +124,21 @@ def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False)
         ("mass", f"{format_number(u.mass(v.mass))} {u.mass_unit}"),
         ("centre of mass", at(v.center_of_mass)),
         ("down", vec(v.down)),
+    ]
+    if settled is not None:
+        contact = {"point": "a point", "line": "a line", "sliver": "a sliver of a face"}
+        rest_on = {"face": "on its face", "rocking": "at the bottom of its curved bowl",
+                   "rolling": "on the surface it rolls along"}[settled.pose_kind]
+        if not settled.own_face:
+            rest_on = "on another face of its family"
+        rows.append(("set down", f"down {vec(settled.down_from)}, touching on "
+                                 f"{contact[settled.contact]}"))
+        rows.append(("comes to rest", f"down {vec(settled.down)} after turning "
+                                      f"{num(settled.angle_deg, 4)}°: pose {settled.pose} "
+                                      f"({rest_on}), centre {at(settled.drop)} lower"))
+        if not settled.stays:
+            rows.append(("", "the numbers below are where it was set down"))
+    rows += [
         ("height of centre", at(v.com_height)),
         ("support", where),
         ("stability margin", margin),

@@ -202,7 +202,9 @@ def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
 
 
 def _summary(verdict) -> str:
-    text = (f"{verdict.verdict}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
+    settled = getattr(verdict, "settling", None)
+    word = verdict.verdict if settled is None else f"{verdict.verdict} ({settled.phrase})"
+    text = (f"{word}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
             f"{fmt(verdict.margin, 3)} m, energy to topple {fmt(verdict.energy_to_topple, 4)} J, "
             f"G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m")
     if verdict.required_tilt_deg is not None:

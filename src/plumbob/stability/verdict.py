@@ -29,8 +29,8 @@ depends on its curvature, which this verdict does not judge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -38,13 +38,16 @@ from ..arguments import answering, finite_result, instance
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
-from ..tolerances import sampling_tolerance
+from ..tolerances import SLIVER, sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
 from .requirement import Requirement
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
 from .tipping import tipping_angle_deg, tipping_angles_deg
+
+if TYPE_CHECKING:  # the settling loads the poses: only for a point, a line or a sliver
+    from .poses.settling import Settling
 
 __all__ = [
     "DesignCheck",
@@ -53,6 +56,7 @@ __all__ = [
     "SlopeCheck",
     "Verdict",
     "check",
+    "contact_kind",
     "verdict_from_support",
 ]
 
@@ -155,6 +159,12 @@ class Verdict(Result):
     requirement: what was asked (g, m/s², is ``requirement.g``).
     slope: the check on a tilted plane, when asked for.
     design: the design checks, when asked for.
+    settling: for a solid set down on a point, a line or a sliver of contact, where it
+        comes to rest (:class:`~plumbob.stability.poses.settling.Settling`). When it
+        settles there (``settling.stays``: within the poses' roll angle, or rocking back
+        into a bowl's bottom) every other field is the verdict where it rests, ``down``
+        included (the down it was set down with is ``settling.down_from``); when it rolls
+        away they are the verdict where it was set down.
     """
 
     verdict: str
@@ -171,6 +181,7 @@ class Verdict(Result):
     requirement: Requirement = Requirement()
     slope: SlopeCheck | None = None
     design: DesignCheck | None = None
+    settling: Settling | None = None
 
     _repr_fields = ("verdict", "margin", "critical_tilt_deg", "critical_direction",
                     "energy_to_topple", "com_height", "mass", "passes")
@@ -284,7 +295,9 @@ class Verdict(Result):
             plane ``slope``; with friction ``friction`` and ``slides_first``; with a
             design check ``required_tilt_deg`` and ``passes`` (and ``shortfall_deg`` when
             it fails), with a margin check ``required_margin`` and ``margin_passes``;
-            for a body that topples ``overhang`` (m) and ``over_by_deg``.
+            for a body that topples ``overhang`` (m) and ``over_by_deg``; for a solid set
+            down on a point, a line or a sliver ``settles`` (see
+            :meth:`Settling.as_dict <plumbob.stability.poses.settling.Settling.as_dict>`).
         """
         out = {
             "verdict": self.verdict, "stands": self.stands, "margin": self.margin,
@@ -308,7 +321,18 @@ class Verdict(Result):
                 out["shortfall_deg"] = self.shortfall_deg
         if self.required_margin is not None:
             out.update(required_margin=self.required_margin, margin_passes=self.margin_passes)
+        if self.settling is not None:
+            out["settles"] = self.settling.as_dict()
         return out
+
+    @property
+    def summary(self) -> str:
+        """The verdict in words, with where it settles: ``"stands"``, ``"stands (settles
+        0.05° into pose 3)"``, ``"topples (rolls 80° onto pose 2, where it stands, critical
+        tilt 45°)"``."""
+        if self.settling is None:
+            return self.verdict
+        return f"{self.verdict} ({self.settling.phrase})"
 
     def plot(self, ax=None, *, body=None, **options):
         """Draw the verdict (with ``body``'s outline if given); returns the matplotlib figure.
@@ -482,15 +506,63 @@ friction=0.3, slides_first=False)
             raise StabilityError("give a requirement or its keywords (down, g, tilt_deg, ...), "
                                  "not both")
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
+    return _check(body, requirement, tolerance, props, settle=True)
+
+
+def contact_kind(sup: Support, size: float) -> str | None:
+    """``"point"``, ``"line"`` or ``"sliver"`` when a solid touches the ground with one
+    (``size``: the body's, m; a sliver is a support polygon narrower than
+    :data:`~plumbob.tolerances.SLIVER` of it, a segment shorter than that a point's
+    sampling), else None."""
+    if sup.dim != 3:
+        return None
+    if sup.kind == "point":
+        return "point"
+    if sup.kind == "segment":
+        length = float(np.linalg.norm(sup.vertices[1] - sup.vertices[0]))
+        return "line" if length >= SLIVER * size else "point"
+    v = sup.vertices  # the polygon's width: its least extent across an edge
+    across = np.einsum("ij,ij->i", sup.edge_starts, sup.edge_normals)[:, None] - (
+        sup.edge_normals @ v.T)
+    return "sliver" if float(across.max(axis=1).min()) < SLIVER * size else None
+
+
+def _check(body, requirement: Requirement, tolerance: float | None, props: MassProperties,
+           settle: bool) -> Verdict:
+    """:func:`check` of a checked body; with ``settle``, where a solid set down on a point,
+    a line or a sliver comes to rest."""
     sup = support_polygon(body, requirement.down, tolerance=tolerance, props=props)
     result = verdict_from_support(sup, props.mass, requirement)
-    if result.verdict != "neutral":
-        return result
     size = body_size(body)
-    if is_polytope(body, size):
+    if result.verdict == "neutral" and not is_polytope(body, size):
+        # Over a point or line of contact on a curved surface: judge by curvature.
+        sampling = sampling_tolerance(size)
+        points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
+        rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
+        result = verdict_from_support(sup, props.mass, requirement, rocked=rocked)
+    contact = contact_kind(sup, size) if settle else None
+    if contact is None:
         return result
-    # Over a point or line of contact on a curved surface: judge by curvature.
-    sampling = sampling_tolerance(size)
-    points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
-    rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
-    return verdict_from_support(sup, props.mass, requirement, rocked=rocked)
+    from .poses.settling import settle as settle_from  # only a point, a line or a sliver
+
+    rolls_here = result.verdict == "neutral" and result.rocking is not None
+    settling, _ = settle_from(body, sup.frame.down, contact=contact, g=requirement.g,
+                              props=props, rolls_here=rolls_here)
+    there = _check(body, requirement.replace(down=settling.down), tolerance, props,
+                   settle=False)
+    if settling.pose_kind == "rocking" and settling.own_face and there.verdict == "stands":
+        # at a bowl's bottom a tilt rocks it, not over its facet's edge: the rocker's tilt
+        there = _rocker_tilt(there, settling.critical_tilt_deg)
+    else:
+        settling = replace(settling, verdict=there.verdict,
+                           critical_tilt_deg=there.critical_tilt_deg)
+    return replace(there if settling.stays else result, settling=settling)
+
+
+def _rocker_tilt(there: Verdict, tilt: float) -> Verdict:
+    """``there`` with the critical tilt of the rocker it rests in, degrees (and the tilt
+    design check on it)."""
+    design = there.design
+    if design is not None and design.required_tilt_deg is not None:
+        design = replace(design, passes=bool(tilt >= design.required_tilt_deg))
+    return replace(there, critical_tilt_deg=tilt, design=design)

@@ -51,7 +51,9 @@ class Landscape(NamedTuple):
     tolerance of the first's plane, reached through such faces): one pose.
     corners: ``corners(p) -> (k, dim)`` the physical face's corners, m, relative to the
     centre of mass. points: the hull points relative to the centre of mass.
-    faces: exact hull faces (3D) or hull edges (2D).
+    faces: exact hull faces (3D) or hull edges (2D). hull: the exact hull the candidates
+    are faces of (3D; None for a lamina), for rolls from any direction
+    (:mod:`.settling`).
     """
 
     normals: np.ndarray
@@ -68,6 +70,7 @@ class Landscape(NamedTuple):
     faces: int
     method: str
     error: float
+    hull: Hull3 | None = None
 
 
 def _between(label: np.ndarray, fa: np.ndarray, fb: np.ndarray, sh: np.ndarray
@@ -150,7 +153,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     area, roller, eg3, sad, error, grouped = found
     if grouped:  # h is h0: the provisional landscape is the landscape, with its areas
         stable = np.flatnonzero(roller.stable)
-        return provisional[-1]._replace(area=area[stable], error=error)
+        return provisional[-1]._replace(area=area[stable], error=error, hull=h0)
     stable = roller.stable
     fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
     if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:
@@ -162,7 +165,9 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
         except StabilityError:
             pass  # the true centre's rolls are degenerate too: keep the nudged answer
     sinks = np.flatnonzero(stable & (area > 0))
-    return _candidates(h0, sinks, area[sinks], fa, fb, eg3.sheight[eg3.saddle_rows(sad)], tol, method, error)
+    land = _candidates(h0, sinks, area[sinks], fa, fb, eg3.sheight[eg3.saddle_rows(sad)], tol,
+                       method, error)
+    return land._replace(hull=h0)
 
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:

@@ -28,8 +28,8 @@ from .landscape import Landscape, landscape2, landscape3
 from .placement import placement
 from .result import Pose, Poses
 
-__all__ = ["resting_poses", "poses_from_points", "assemble", "FALLBACK_SAMPLES",
-           "ROLL_ANGLE_DEG"]
+__all__ = ["resting_poses", "poses_from_points", "assemble", "assemble_indexed",
+           "body_points", "points_landscape", "FALLBACK_SAMPLES", "ROLL_ANGLE_DEG"]
 
 FALLBACK_SAMPLES = 200_000  # Fibonacci directions when the exact basins cannot be traced
 _FLOAT32_ULPS = 8 * 2.0 ** -24  # float32 round-off of coordinates, relative to their size
@@ -55,6 +55,14 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
     com: (dim,) the centre of mass, m (the landscape is relative to it). notes: appended
     to.
     """
+    return assemble_indexed(land, com, mass, g, roll_angle_deg, neutral_height, notes)[0]
+
+
+def assemble_indexed(land: Landscape, com: np.ndarray, mass: float, g: float,
+                     roll_angle_deg: float, neutral_height: float, notes: list[str]
+                     ) -> tuple[Poses, np.ndarray]:
+    """:func:`assemble`, and per candidate of ``land`` the index (0-based) of the pose it
+    belongs to: which pose a roll that ends on a candidate's face has come to rest in."""
     fam = families(land, roll_angle_deg, neutral_height)
     prob = np.bincount(fam.label, weights=land.area, minlength=len(fam.kind))
     prob /= prob.sum()
@@ -96,8 +104,10 @@ def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
     if land.method == "sampled":
         notes.append("the basins could not be traced exactly (degenerate hull): probabilities "
                      f"come from rolling {FALLBACK_SAMPLES} directions downhill")
-    return Poses(tuple(poses), mass, g, com.copy(), land.method, land.faces,
-                 int(len(land.sh)), land.error, tuple(notes))
+    pose_of_family = np.empty(len(order), dtype=np.int64)
+    pose_of_family[order] = np.arange(len(order))
+    return (Poses(tuple(poses), mass, g, com.copy(), land.method, land.faces,
+                  int(len(land.sh)), land.error, tuple(notes)), pose_of_family[fam.label])
 
 
 def _own_surface(mesh, pts: np.ndarray, com: np.ndarray, size: float
@@ -212,6 +222,18 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     ...
     plumbob.errors.StabilityError: the centre of mass lies on the surface of ...
     """
+    land, com = points_landscape(points, center_of_mass, tolerance=tolerance,
+                                 roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
+                                 samples=samples, surface=surface)
+    return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
+                    float(neutral_height), list(notes))
+
+
+def points_landscape(points, center_of_mass, *, tolerance: float | None,
+                     roll_angle_deg: float, neutral_height: float, samples: int,
+                     surface=None) -> tuple[Landscape, np.ndarray]:
+    """The checked landscape of :func:`poses_from_points` (its parameters), and the centre
+    of mass (dim,) m it is relative to."""
     X = np.asarray(points, dtype=float)
     com = np.asarray(center_of_mass, dtype=float).reshape(-1)
     if X.ndim != 2 or X.shape[1] not in (2, 3) or com.shape != (X.shape[1],):
@@ -237,8 +259,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
     else:  # the families are known before the trace: only the boundaries between poses
         land = landscape3(X, tol, samples, partial(families, roll_angle_deg=roll_angle_deg,
                                                    neutral_height=neutral_height), surface)
-    return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
-                    float(neutral_height), list(notes))
+    return land, com
 
 
 def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = None,
@@ -309,6 +330,18 @@ def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = No
     roll_angle_deg = non_negative(roll_angle_deg, "roll_angle_deg", error=StabilityError)
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     finite_result(props.mass * g, "the weight M g", error=StabilityError)
+    pts, com, neutral_height, surface = body_points(body, props, sampling_tolerance)
+    return poses_from_points(pts, com, mass=props.mass, g=g, tolerance=tolerance,
+                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
+                             surface=surface)
+
+
+def body_points(body, props: MassProperties, sampling_tolerance: float | None
+                ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray | None]:
+    """What :func:`resting_poses` hands :func:`poses_from_points` for ``body``: its hull
+    points (n, dim) m, its centre of mass (dim,) m, the neutral height (m: the ripple of
+    sampled curved surfaces, 0 for an exact hull) and its own convex mesh's triangles
+    (or None)."""
     dim = body_dim(body, props)
     size = body_size(body)
     htol = sampling(size, sampling_tolerance)
@@ -325,6 +358,4 @@ def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = No
     mesh = body.as_mesh() if dim == 3 else None
     if mesh is not None:  # its own mesh: the hull, if convex
         pts, surface = _own_surface(mesh, pts, com, size)
-    return poses_from_points(pts, com[:dim], mass=props.mass, g=g, tolerance=tolerance,
-                             roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
-                             surface=surface)
+    return pts, com[:dim], neutral_height, surface
