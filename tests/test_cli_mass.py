@@ -1,5 +1,6 @@
 import json
 import os
+from fractions import Fraction as F
 
 import numpy as np
 import pytest
@@ -121,3 +122,62 @@ def test_an_internal_error_is_one_line_and_status_3_never_1(monkeypatch, capsys)
     err = capsys.readouterr().err
     assert status == cli.INTERNAL_ERROR == 3
     assert err.count("\n") == 1 and "ZeroDivisionError" in err and "Traceback" not in err
+
+
+BRACKET = """
+[shape]
+name = "L-bracket"
+kind = "solid"
+[[part]]
+type = "box"
+length = 3
+width = 0.5
+height = 2
+[[part]]
+type = "box"
+length = 0.5
+width = 2.5
+height = 2
+[[part]]
+op = "subtract"
+type = "box"
+length = 5
+width = 2.5
+height = 0.5
+at = [-1, 0, 0.75]
+"""
+
+
+def test_an_l_bracket_of_boxes_is_reported_exact(capsys, tmp_path):
+    """Two overlapping boxes minus a slot through both: no curve anywhere, so `exact` and
+    the exact rational answer (volume 4.625, centre by inclusion and exclusion)."""
+    spec = tmp_path / "bracket.toml"
+    spec.write_text(BRACKET, encoding="utf-8")
+    assert main(["mass", str(spec), "--density", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "exact                   yes" in out and "segments per turn" not in out
+    data = run_json(capsys, str(spec), "--density", "1")
+    # legs 3 + 2.5 − their overlap 0.5, all 2 high, less a 0.5 slot: 5 · 1.5
+    volume = F(3, 1) * F(1, 2) * 2 + F(1, 2) * F(5, 2) * 2 - F(1, 2) * F(1, 2) * 2
+    volume *= F(3, 4)
+    assert data["exact"] is True and data["relative_error"] < 1e-9
+    assert data["volume"] == pytest.approx(float(volume), rel=1e-12)
+    assert data["center_of_mass"][2] == pytest.approx(1.0, rel=1e-12)  # symmetric in z
+
+
+def test_the_cabinet_carcass_is_exact_and_mirror_symmetric(capsys):
+    """shapes/cabinet.toml: boxes minus boxes. Exact (round-off bounded, no facetings
+    spoken of), symmetric about x = 0.3 so Ixy = Ixz = 0 to round-off."""
+    assert main(["mass", os.path.join(SHAPES, "cabinet.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "exact                   yes" in out and "segments per turn" not in out
+    data = run_json(capsys, os.path.join(SHAPES, "cabinet.toml"))
+    inertia = np.array(data["inertia"])
+    assert data["exact"] is True and data["relative_error"] < 1e-8
+    assert abs(inertia[0, 1]) <= 1e-14 * abs(inertia).max()
+    assert abs(inertia[0, 2]) <= 1e-14 * abs(inertia).max()
+    assert data["center_of_mass"][0] == pytest.approx(0.3, rel=1e-15)
+    carcass = data["part_properties"][0]
+    # 0.6 · 0.45 · 1.2 less the inside 0.564 · 0.432 · 1.164 (the front is open)
+    volume = F(6, 10) * F(45, 100) * F(12, 10) - F(564, 1000) * F(432, 1000) * F(1164, 1000)
+    assert carcass["volume"] == pytest.approx(float(volume), rel=1e-12)

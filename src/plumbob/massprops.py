@@ -82,8 +82,8 @@ class MassProperties(Result):
     center_of_mass, inertia : array_like, shapes (dim,) and (3, 3)
         m; the inertia tensor about the centre of mass, kg·m² (``I_xy = −∫ x y dm``).
     exact, relative_error : bool, float
-        False, and an estimate of the relative error of every quantity, when a curved
-        shape was faceted or a density field integrated numerically.
+        False, and an estimate of the relative error of every quantity, when a curved shape
+        was faceted or a density field integrated numerically (exact: a round-off bound).
     parts : int
         How many parts were combined.
     notes : tuple of str
@@ -138,6 +138,12 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
                   ("principal_moments", self.principal_moments), ("exact", self.exact)]
         items += [] if self.exact else [("relative_error", self.relative_error)]
         return items + ([("parts", self.parts)] if self.parts != 1 else [])
+
+    @property
+    def exactness(self) -> str:
+        """How ``plumbob mass`` says it: yes, yes (round-off at most …) or no (…)."""
+        return ("yes" + (f" (round-off at most {self.relative_error:.1e})" if self.relative_error else "")
+                if self.exact else f"no (relative error ~{self.relative_error:.1e})")
 
     # ------------------------------------------------------------ serialising
     def _size_key(self, kind: str | None = None) -> str | None:

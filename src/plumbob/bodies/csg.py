@@ -5,12 +5,14 @@ The user writes the shape; plumbob picks the method:
 * parts that do not overlap, or a removed part lying wholly inside what it is
   removed from, compose exactly by the mass-property algebra (a
   :class:`Composite`: the seed's parts-as-particles, holes as negative mass);
-* parts that do overlap go through a boolean on faceted geometry — shapely in
-  2D, manifold3d in 3D with an explicit circular-segment count — and the
-  result is integrated exactly at n and at n/2 segments per turn; since the
-  faceting error falls as 1/n², ``(4 P_n − P_n/2) / 3`` removes its leading
-  term (Richardson). The result is marked not exact, with the extrapolation's
-  own change as a conservative error estimate.
+* parts that do overlap go through a boolean in float64 — shapely in 2D,
+  manifold3d in 3D. When every part is a polytope (boxes, prisms of polygons,
+  meshes) there is nothing to facet: the result is exact but for round-off, and
+  says so with a bound on it. Curved parts are cut into an explicit number of
+  segments per turn and the result integrated exactly at n and at n/2; since the
+  faceting error falls as 1/n², ``(4 P_n − P_n/2) / 3`` removes its leading term
+  (Richardson). That result is marked not exact, with a bound on its error
+  (:mod:`plumbob.bodies.bounds`).
 """
 
 from __future__ import annotations
@@ -23,12 +25,13 @@ from ..arguments import count as whole_count
 from ..errors import DensityError, GeometryError
 from ..limits import MAX_SIDES
 from ..massprops import MassProperties, combine
-from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, Grader, check_density, density_words, lowest
+from .base import Body, Grader, lowest
 from .booleans import manifold_union, measure, overlap, shapely_union
+from .faceted import Faceted
 from .overlaps import Facets, bounding_boxes, boxes_meet, candidate_pairs, connected_groups, local_origin
 
-__all__ = ["Composite", "Assembly", "as_assembly", "union", "difference", "intersection", "leaf_densities",
-           "DEFAULT_SEGMENTS"]
+__all__ = ["Composite", "Assembly", "Faceted", "as_assembly", "union", "difference", "intersection",
+           "leaf_densities", "DEFAULT_SEGMENTS"]
 
 DEFAULT_SEGMENTS = 256  # circular segments per full turn for faceted booleans
 
@@ -47,6 +50,14 @@ class _OfParts(Body):
 
     def densities(self) -> set:
         return set().union(*(p.densities() for p in self.parts))
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
+        """Each part moved, so each keeps its own digits (see :func:`combined`)."""
+        moved = Body.transformed(self, matrix, offset)  # checks the arguments
+        if any(p.dim != self.dim for p in self.parts):
+            return moved  # a lamina in a solid assembly: placed as a whole
+        return replace(self, parts=tuple(p.transformed(moved.matrix, moved.offset)
+                                         for p in self.parts))
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -79,7 +90,7 @@ class Composite(_OfParts):
         return self.parts[0].kind if len({p.kind for p in self.parts}) == 1 else "solid"
 
     def mass_properties(self) -> MassProperties:
-        return combine([p.mass_properties() for p in self.parts], list(self.signs))
+        return combined(self.parts, list(self.signs))
 
     def _added(self) -> list[Body]:
         return [p for p, s in zip(self.parts, self.signs) if s > 0]
@@ -164,7 +175,7 @@ class Assembly(_OfParts):
         return [p.mass_properties() for p in self.parts]
 
     def mass_properties(self) -> MassProperties:
-        return combine(self.part_properties())
+        return combined(self.parts, None, self.part_properties())
 
     def hull_points(self, tolerance: float | None = None) -> np.ndarray:
         pts = [p.hull_points(tolerance) for p in self.parts]
@@ -204,6 +215,37 @@ class Assembly(_OfParts):
         return f"of {len(self.parts)} part{'s' if len(self.parts) > 1 else ''}{listed}"
 
 
+def combined(parts: tuple[Body, ...], signs: list[float] | None,
+             props: list[MassProperties] | None = None) -> MassProperties:
+    """The parts' mass properties combined (``signs``: +1 adds, −1 removes), far from the
+    origin about a local one.
+
+    Each part's centre is a float: at 1e6 m it is known to 1e-10 m, and the parallel
+    axes would carry that into the inertia (5e-10 of it for parts 0.2 m apart). So when
+    the parts lie further from the origin than their spread, they are moved to the
+    heaviest part's centre (the move is exact: coordinates within a factor 2 of it
+    subtract without rounding), combined there, and the result moved back once.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> far = [box(1, 1, 1).translated([1e6 + k, 0, 0]) for k in (0, 1)]
+    >>> float(combined(tuple(far), None).inertia[1, 1] * 12)   # 2 · 2 + 12 · 2 · (1/2)²
+    10.0
+    """
+    props = [p.mass_properties() for p in parts] if props is None else props
+    masses = np.array([abs(p.mass) for p in props])
+    centres = np.array([p.center_of_mass for p in props])
+    anchor = centres[int(np.argmax(masses))]
+    spread = float(np.max(np.linalg.norm(centres - anchor, axis=1))) + max(
+        float(np.sqrt(np.trace(p.inertia) / p.mass)) if p.mass > 0 else 0.0 for p in props)
+    if not float(np.max(np.abs(anchor))) > spread or len(parts) < 2:
+        return combine(props, signs)
+    dims = {p.dim for p in parts}
+    if len(dims) > 1 or len(anchor) != dims.pop():
+        return combine(props, signs)
+    local = combine([p.translated(-anchor).mass_properties() for p in parts], signs)
+    return local.transformed(np.eye(len(anchor)), anchor)
+
+
 # ------------------------------------------------------------------ booleans
 def _bodies(parts, what: str) -> tuple[Body, ...]:
     """``parts`` as a tuple, each checked to be a plumbob body."""
@@ -229,103 +271,22 @@ def _same_dim(bodies: tuple[Body, ...], segments: int) -> int:
     return dims.pop()
 
 
-def _slack(bodies: tuple[Body, ...], geometries: list, dim: int, segments: int) -> float:
-    """What faceting alone may make of overlap: the gap between exact and faceted size."""
-    exact = sum(abs(b.mass_properties().measure) for b in bodies)
-    faceted = sum(measure(g, dim) for g in geometries)
-    return abs(exact - faceted) + 1e-9 * exact
+def _slack(bodies: tuple[Body, ...]) -> float:
+    """How much overlap is round-off, not overlap: 1e-9 of the parts' size.
 
-
-@dataclass(frozen=True, eq=False, repr=False)
-class Faceted(Body):
-    """The result of a boolean computed on facets.
-
-    shape: the faceted result (a Lamina or MeshSolid of unit density), for its hull,
-        contact and further booleans.
-    unit_properties: mass properties at unit density, Richardson-extrapolated from the
-        faceting at n and n/2 segments per turn (the faceting error falls as 1/n², so
-        (4 P_n − P_n/2) / 3 removes its leading term).
-    density: kg/m³ (kg/m² for a lamina), or None (not given: 1).
-    relative_error: the estimated error left, the extrapolation's own change as a bound.
-    """
-
-    shape: Body
-    unit_properties: MassProperties
-    density: float | None
-    relative_error: float
-    note: str
-    name: str | None = None
-
-    @property
-    def kind(self) -> str:  # type: ignore[override]
-        return self.shape.kind
-
-    @property
-    def dim(self) -> int:  # type: ignore[override]
-        return self.shape.dim
-
-    def mass_properties(self) -> MassProperties:
-        props = self.unit_properties.scaled(1.0 if self.density is None else self.density)
-        notes = (DEFAULT_DENSITY_NOTE,) if self.density is None else ()
-        return replace(props, exact=False, relative_error=self.relative_error,
-                       notes=notes + (self.note,))
-
-    def hull_points(self, tolerance: float | None = None) -> np.ndarray:
-        return self.shape.hull_points(tolerance)
-
-    def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
-        return self.shape.support_points(down, tolerance)
-
-    def to_geometry(self, segments: int = 128):
-        return self.shape.to_geometry(segments)
-
-    def surface(self, segments: int = 128):
-        return self.shape.surface(segments)._replace(exact=False)
-
-    def outline(self, tolerance: float, segments: int = 384) -> list[np.ndarray]:
-        return self.shape.outline(tolerance, segments)
-
-    def with_default_density(self, density: float) -> Body:
-        return self if self.density is not None else replace(self, density=check_density(density))
-
-    # ------------------------------------------------------------ questions
-    def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
-        """Which points lie in the faceted shape (curves cut into chords; see ``note``)."""
-        return self.shape.contains(points, tolerance)
-
-    def _contains_tolerance(self, tolerance: float | None) -> float:
-        return self.shape._contains_tolerance(tolerance)
-
-    @property
-    def is_polytope(self) -> bool:
-        return self.shape.is_polytope
-
-    def densities(self) -> set:
-        return {self.density}
-
-    def density_cells(self) -> DensityCells:
-        raise DensityError(
-            "a density field cannot be integrated over the faceted result of a boolean of "
-            "overlapping parts: give the field to a body whose parts do not overlap")
-
-    def _describe(self) -> str:
-        what = "area" if self.dim == 2 else "volume"
-        unit = "m²" if self.dim == 2 else "m³"
-        kgs = "kg/m²" if self.dim == 2 else "kg/m³"
-        return (f"{self.kind} from a boolean on facets, {what} {self.unit_properties.measure:.3g} "
-                f"{unit}{density_words(self.density, kgs)}, relative error {self.relative_error:.1e}")
+    Not the faceting's own error: a true overlap smaller than that (a lens where two
+    balls just meet) would be taken for none and the parts composed as if disjoint, a
+    wrong answer reported exact. Facets inscribed in convex parts that only touch do
+    not overlap; parts whose facets overlap at all go through the boolean, whose
+    stated error covers the faceting."""
+    return 1e-9 * sum(abs(b.mass_properties().measure) for b in bodies)
 
 
 def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
                   geometries: list | None = None, origin: np.ndarray | None = None) -> Body:
-    """Integrate a faceted boolean of ``bodies``, extrapolated over two facetings
-    (``geometries``: the bodies' shapes at ``segments``, when already made, placed
-    relative to ``origin``). With an ``origin`` the facets are built and integrated
-    about it and the result moved back, so the boolean costs no digits to the
-    coordinates' size."""
-    from .lamina import Lamina
-    from .region import Region
-    from .solid import MeshSolid
+    """The boolean of ``bodies`` on their facets (:func:`.faceted.integrate_boolean`),
+    once their densities agree."""
+    from .faceted import integrate_boolean
 
     densities = leaf_densities(Assembly(bodies))
     if len(densities) > 1:
@@ -337,37 +298,7 @@ def _faceted_body(bodies: tuple[Body, ...], build, segments: int, what: str,
     if density == "field":
         raise DensityError(f"a density field cannot be carried through a {what} of overlapping "
                            "parts: combine the parts first, then give the combined body the field")
-    dim = bodies[0].dim
-    local = bodies if origin is None else tuple(b.translated(-origin) for b in bodies)
-
-    def integrated(count: int) -> tuple[Body, MassProperties]:
-        parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in local]
-        geometry = build(parts)
-        if not measure(geometry, dim) > 0:
-            raise GeometryError(f"the {what} is empty: the parts do not overlap")
-        if dim == 2:
-            import shapely
-
-            shape: Body = Lamina(Region.from_shapely(shapely.make_valid(geometry)), 1.0)
-        else:
-            mesh = geometry.to_mesh()
-            verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-            shape = MeshSolid(verts[np.asarray(mesh.tri_verts, dtype=np.int64)], 1.0)
-        return shape, shape.mass_properties()
-
-    shape, fine = integrated(segments)
-    _, coarse = integrated(max(8, segments // 2))
-    extrapolated = combine([fine, coarse], [4 / 3, -1 / 3])
-    error = abs(extrapolated.mass - fine.mass) / extrapolated.mass
-    note = (
-        f"the {what} of overlapping parts was computed on facets ({segments} and "
-        f"{max(8, segments // 2)} segments per turn, extrapolated); estimated relative error "
-        f"{error:.1e}"
-    )
-    unit = replace(extrapolated, notes=(), parts=1)
-    if origin is not None:
-        shape, unit = shape.translated(origin), unit.transformed(np.eye(dim), origin)
-    return Faceted(shape, unit, density, error, note)
+    return integrate_boolean(bodies, build, segments, what, density, geometries, origin)
 
 
 def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
@@ -422,7 +353,7 @@ def union(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     overlapping = [
         (i, j) for i, j in candidate_pairs(boxes)
         if measure(overlap(shapes[i], shapes[j], dim), dim)
-        > _slack((bodies[i], bodies[j]), [shapes[i], shapes[j]], dim, segments)
+        > _slack((bodies[i], bodies[j]))
     ]
     if not overlapping:
         return Composite(bodies, (1.0,) * len(bodies))
@@ -515,7 +446,7 @@ def difference(body: Body, *holes: Body, segments: int = DEFAULT_SEGMENTS) -> Bo
         g = shapes[k]
         size = measure(g, dim)
         inside = measure(overlap(shapes[0], g, dim), dim)
-        slack = _slack((holes[k - 1],), [g], dim, segments)
+        slack = _slack((holes[k - 1],))
         if inside <= slack:
             continue  # disjoint: nothing to remove
         if size - inside > slack or any(
@@ -578,7 +509,7 @@ def intersection(*bodies: Body, segments: int = DEFAULT_SEGMENTS) -> Body:
     facets = Facets(bodies, segments, origin)
     geoms = [facets[i] for i in range(len(bodies))]
     for i, (b, g) in enumerate(zip(bodies, geoms)):
-        slack = _slack((b,), [g], dim, segments)
+        slack = _slack((b,))
         if all(
             measure(g, dim) - measure(overlap(g, h, dim), dim) <= slack
             for j, h in enumerate(geoms)

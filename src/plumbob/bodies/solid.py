@@ -197,8 +197,8 @@ class MeshSolid(_UniformSolid):
         import manifold3d
 
         verts, index = merge_vertices(self.triangles.reshape(-1, 3))
-        mesh = manifold3d.Mesh(
-            vert_properties=verts.astype(np.float32),
+        mesh = manifold3d.Mesh64(
+            vert_properties=np.ascontiguousarray(verts, dtype=np.float64),
             tri_verts=index.reshape(-1, 3).astype(np.uint32),
         )
         return manifold3d.Manifold(mesh)

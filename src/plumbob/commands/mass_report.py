@@ -94,9 +94,7 @@ class MassReport(Result):
                                           f"{u.unit('inertia')}"))
         for i, axis in enumerate(props.principal_axes):
             rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
-        rows.append(
-            ("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})")
-        )
+        rows.append(("exact", props.exactness))
         rows.append(("parts", str(props.parts)))
         title = getattr(self.reading.body, "name", None) or self.reading.path or "body"
         text = table(rows, title)

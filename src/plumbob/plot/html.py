@@ -92,7 +92,7 @@ def _mass_rows(body, props, size: float, u) -> list[tuple[str, str]]:
         rows.append(("inertia about G" if i == 0 else "", f"{fmt_point(row, 6)} {u.unit('inertia')}"))
     rows.append(("principal moments",
                  f"{fmt_point(u.inertia(props.principal_moments), 6)} {u.unit('inertia')}"))
-    rows.append(("exact", "yes" if props.exact else f"no (relative error ~{props.relative_error:.1e})"))
+    rows.append(("exact", props.exactness))
     return rows
 
 
