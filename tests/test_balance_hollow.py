@@ -242,3 +242,12 @@ def test_the_acceptance_runs_from_the_command_line(carved_files, tmp_path, capsy
     assert out["verdict"] == "stands" and out["margin"] >= 3 * MM
     assert main(["check", str(carved), "--units", "mm", "--margin", "3mm"]) == 0
     assert void.stat().st_size > 0
+
+
+def test_the_written_body_has_the_original_density_so_no_note_assumes_one(tmp_path):
+    from plumbob.bodies.base import DEFAULT_DENSITY_NOTE
+
+    plan = hollow(box(1, 1, 1, density=1000.0), wall=0.1, target=Below(0.45), cell_size=0.2)
+    written = write_hollow(plan, str(tmp_path / "carved.stl"))
+    assert DEFAULT_DENSITY_NOTE not in written.mass_properties.notes
+    assert written.mass_properties.mass == pytest.approx(plan.after.mass, rel=1e-6)

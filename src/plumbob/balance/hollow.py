@@ -26,7 +26,7 @@ stability from the file, as ``plumbob check`` would.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -310,6 +310,5 @@ def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units
     density = plan.before.mass / plan.before.measure
     back = back.with_default_density(density)
     props = back.mass_properties()
-    props = replace(props, notes=tuple(n for n in props.notes if "assumed" not in n))
     verdict = check(back, down, props=props)
     return WrittenHollow(str(out), written_void, props, verdict, plan, back)
