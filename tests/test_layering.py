@@ -20,7 +20,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "version"),
     ("units", "tolerances", "results", "plot", "limits", "arguments", "blockwise",
      "callable_module", "files", "arrays"),
-    ("expr", "integrals", "massprops", "materials"),
+    ("expr", "integrals", "massprops", "materials", "loads"),
     ("mesh",),
     ("bodies",),
     ("reading",),

@@ -24,9 +24,12 @@ class Reading:
     given by the user or declared by the file); None when metres were assumed or the
     file's own scale has no unit name. The body is in metres either way; text reports
     show the part in this unit (:func:`plumbob.report.natural_units`).
+    loads: the applied loads a spec's ``[[load]]`` tables give
+    (:class:`~plumbob.loads.Force`, :class:`~plumbob.loads.Hang`, …), in metres.
     """
 
     body: Body
     notices: tuple[str, ...] = ()
     path: str | None = None
     length_unit: str | None = None
+    loads: tuple = ()

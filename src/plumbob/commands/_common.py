@@ -20,7 +20,7 @@ from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
 from ..tolerances import TEXT_ROUND_OFF
-from ..units import SEED_GRAVITY
+from ..units import SEED_GRAVITY, length_scale
 
 __all__ = [
     "number",
@@ -42,6 +42,8 @@ __all__ = [
     "add_stability_arguments",
     "add_orientation_arguments",
     "pose_down",
+    "add_load_arguments",
+    "option_loads",
     "requirement",
     "load_body",
     "open_body",
@@ -320,17 +322,110 @@ def pose_down(body, index: int, option: str, g: float, props):
     return poses[index - 1].down
 
 
-def requirement(args: argparse.Namespace, down=None):
+def _numbers(text: str, what: str, dims: tuple[int, ...]) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{what}: expected numbers separated by commas, not "
+                                         f"{text!r}") from None
+    if len(values) not in dims:
+        raise argparse.ArgumentTypeError(f"{what}: expected {' or '.join(map(str, dims))} "
+                                         f"numbers, not {len(values)} ({text!r})")
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"{what}: expected finite numbers, not {text!r}")
+    return values
+
+
+def _at(text: str, option: str, example: str) -> tuple[str, str]:
+    head, sep, tail = text.partition("@")
+    if not sep or not head.strip() or not tail.strip():
+        raise argparse.ArgumentTypeError(f"expected {example} (an @ before the point), not "
+                                         f"{text!r}")
+    return head, tail
+
+
+def force_option(text: str) -> tuple:
+    """An argparse type: ``FX,FY,FZ@X,Y,Z`` (``--force``): N at a point (the body's unit)."""
+    head, tail = _at(text, "--force", "FX,FY,FZ@X,Y,Z")
+    force = _numbers(head, "the force", (2, 3))
+    at = _numbers(tail, "the point", (2, 3))
+    if len(force) != len(at):
+        raise argparse.ArgumentTypeError(f"the force has {len(force)} components but the point "
+                                         f"{len(at)} coordinates: {text!r}")
+    return ("force", force, at)
+
+
+def hang_option(text: str) -> tuple:
+    """An argparse type: ``M@X,Y,Z`` (``--hang``): kg hung at a point (the body's unit)."""
+    head, tail = _at(text, "--hang", "M@X,Y,Z")
+    mass = _numbers(head, "the mass", (1,))[0]
+    if mass < 0:
+        raise argparse.ArgumentTypeError(f"a hung mass must be ≥ 0 kg, not {mass:g}")
+    return ("hang", mass, _numbers(tail, "the point", (2, 3)))
+
+
+def _search_option(kind: str, text: str) -> tuple:
+    head, sep, tail = text.partition("@")
+    force = _numbers(head, "the force", (1,))[0]
+    if force < 0:
+        raise argparse.ArgumentTypeError(f"a {kind}'s force must be ≥ 0 N, not {force:g}")
+    height = _numbers(tail, "the highest point", (1,))[0] if sep else None
+    if height is not None and height <= 0:
+        raise argparse.ArgumentTypeError(f"a {kind}'s highest point must be above the floor, "
+                                         f"not {height:g}")
+    return (kind, force, height)
+
+
+def add_load_arguments(parser: argparse.ArgumentParser) -> None:
+    """--force, --hang, --push, --press: applied loads (repeatable), points in the body's
+    own length unit (like every coordinate of its file)."""
+    group = parser.add_argument_group("applied loads (see docs/loads.md)")
+    group.add_argument("--force", type=force_option, action="append", dest="load_options",
+                       metavar="FX,FY,FZ@X,Y,Z",
+                       help="a force in newtons at a point (in the body's own length unit); "
+                            "repeatable")
+    group.add_argument("--hang", type=hang_option, action="append", dest="load_options",
+                       metavar="M@X,Y,Z", help="a mass in kg hung at a point (pulls along "
+                                               "gravity); repeatable")
+    group.add_argument("--push", type=lambda t: _search_option("push", t), action="append",
+                       dest="load_options", metavar="F[@H]",
+                       help="a horizontal force of F newtons at the worst point and direction, "
+                            "no higher than H (the body's unit)")
+    group.add_argument("--press", type=lambda t: _search_option("press", t), action="append",
+                       dest="load_options", metavar="F[@H]",
+                       help="a downward force of F newtons at the worst point of its top, no "
+                            "higher than H")
+
+
+def option_loads(args: argparse.Namespace, reading: Reading) -> tuple:
+    """The loads of the options (``--force``, ``--hang``, ``--push``, ``--press``) with the
+    spec's ``[[load]]`` tables, points and heights scaled to metres by the body's unit."""
+    from ..loads import Force, Hang, Press, Push
+
+    scale = length_scale(reading.length_unit)
+    made = []
+    for kind, value, where in getattr(args, "load_options", None) or ():
+        if kind == "force":
+            made.append(Force(value, [scale * v for v in where]))
+        elif kind == "hang":
+            made.append(Hang(value, [scale * v for v in where]))
+        else:
+            made.append((Push if kind == "push" else Press)(
+                value, None if where is None else scale * where))
+    return tuple(reading.loads) + tuple(made)
+
+
+def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
     """The :class:`~plumbob.stability.requirement.Requirement` the options ask (``--g``,
     ``--tilt``, ``--toward``, ``--friction``, ``--margin``, ``--require-tilt``), with
-    gravity along ``down`` (``--down``, or a resting pose's, resolved by the command)."""
+    gravity along ``down`` (``--down``, or a resting pose's, resolved by the command) and
+    the ``loads`` of :func:`option_loads`."""
     from ..stability.requirement import Requirement
 
     return Requirement(
         down, getattr(args, "g", SEED_GRAVITY), getattr(args, "tilt", None),
         getattr(args, "toward", None), getattr(args, "friction", None),
-        getattr(args, "margin", None), getattr(args, "require_tilt", None),
-        tuple(getattr(args, "loads", None) or ()))
+        getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
 
 
 def load_body(args: argparse.Namespace) -> Reading:

@@ -11,6 +11,7 @@ import argparse
 
 from ..plot.files import add_plot_argument, write_plot
 from ._common import (
+    add_load_arguments,
     add_orientation_arguments,
     add_report_units_argument,
     add_stability_arguments,
@@ -19,6 +20,7 @@ from ._common import (
     length,
     non_negative,
     open_body,
+    option_loads,
     pose_down,
     positive,
     print_json,
@@ -49,6 +51,7 @@ def register(subparsers) -> None:
     add_stability_arguments(parser)
     add_report_units_argument(parser)
     add_orientation_arguments(parser)
+    add_load_arguments(parser)
     parser.add_argument("--friction", type=non_negative, metavar="MU",
                         help="friction coefficient: does it slide before it topples?")
     parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
@@ -211,13 +214,13 @@ def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False)
     return "\n".join(lines)
 
 
-def _verdict(args, body, props):
-    """plumbob's check of ``body`` with the command's options."""
+def _verdict(args, body, props, loads: tuple = ()):
+    """plumbob's check of ``body`` with the command's options and ``loads``."""
     from ..stability.verdict import check
 
     down = args.down if args.pose is None else pose_down(body, args.pose, "--pose", args.g,
                                                          props)
-    return check(body, requirement=requirement(args, down), tolerance=args.tolerance,
+    return check(body, requirement=requirement(args, down, loads), tolerance=args.tolerance,
                  props=props)
 
 
@@ -292,7 +295,7 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     units = report_units(args, reading)
     body = reading.body
-    v = _verdict(args, body, props)
+    v = _verdict(args, body, props, option_loads(args, reading))
     require_finite(v.as_dict())
     solution = _solve(args) if args.solve_for is not None else None
     if args.plot:

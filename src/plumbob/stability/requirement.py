@@ -23,8 +23,8 @@ import numpy as np
 
 from ..arguments import in_range, non_negative, number, optional, positive, vector
 from ..errors import StabilityError
+from ..loads import Force, Hang, Press, Push
 from ..units import SEED_GRAVITY
-from .loads import Force, Hang
 
 __all__ = ["Requirement"]
 
@@ -81,9 +81,9 @@ class Requirement:
                                          0, 90, unit="°", error=StabilityError))
         loads = tuple(self.loads or ())
         for load in loads:
-            if not isinstance(load, (Force, Hang)):
-                raise StabilityError(f"a load must be a plumbob.Force or plumbob.Hang, not "
-                                     f"{type(load).__name__}")
+            if not isinstance(load, (Force, Hang, Push, Press)):
+                raise StabilityError("a load must be a plumbob.Force, Hang, Push or Press, "
+                                     f"not {type(load).__name__}")
         put("loads", loads)
 
     @property

@@ -41,6 +41,7 @@ from ..results import Result
 from ..tolerances import SLIVER, sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
+from .loaded import LoadVerdict
 from .requirement import Requirement
 from .rocking import Rocking, rocking
 from .support import Support, body_size, hull_points, is_polytope, support_polygon
@@ -182,6 +183,7 @@ class Verdict(Result):
     slope: SlopeCheck | None = None
     design: DesignCheck | None = None
     settling: Settling | None = None
+    loaded: LoadVerdict | None = None
 
     _repr_fields = ("verdict", "margin", "critical_tilt_deg", "critical_direction",
                     "energy_to_topple", "com_height", "mass", "passes")
@@ -230,8 +232,12 @@ class Verdict(Result):
 
     @property
     def meets_requirement(self) -> bool | None:
-        """Whether every design check asked is met (None when none is asked)."""
-        return None if self.design is None else self.design.met
+        """Whether every design check asked is met, and it stands under its loads (None
+        when nothing is asked)."""
+        asked = [] if self.design is None or self.design.met is None else [self.design.met]
+        if self.loaded is not None:
+            asked.append(self.loaded.stands)
+        return all(asked) if asked else None
 
     @property
     def stands(self) -> bool:
@@ -323,6 +329,8 @@ class Verdict(Result):
             out.update(required_margin=self.required_margin, margin_passes=self.margin_passes)
         if self.settling is not None:
             out["settles"] = self.settling.as_dict()
+        if self.loaded is not None:
+            out["under_loads"] = self.loaded.as_dict()
         return out
 
     @property
@@ -359,13 +367,15 @@ def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
 
 
 def verdict_from_support(sup: Support, mass: float, requirement: Requirement | None = None,
-                         *, rocked: tuple[Rocking, float] | None = None) -> Verdict:
+                         *, rocked: tuple[Rocking, float] | None = None,
+                         loaded: LoadVerdict | None = None) -> Verdict:
     """The verdict for a body of ``mass`` kg with support ``sup`` under ``requirement``
     (g, tilted plane, friction, design checks; see :func:`check`).
 
     rocked: for a body on a curved surface, how it responds to being turned and the
         height noise (m) of its sampling: a centre of mass over a point or line of
         contact then rocks back (stands), rolls (neutral) or topples by curvature.
+    loaded: the verdict under the requirement's loads (:func:`~.loaded.under_loads`).
     """
     req = Requirement() if requirement is None else requirement
     h, tol = sup.com_height, sup.tolerance
@@ -421,13 +431,13 @@ def verdict_from_support(sup: Support, mass: float, requirement: Requirement | N
             req.margin,
             None if req.margin is None else bool(verdict == "stands" and margin >= req.margin))
     return Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass,
-                   sup, edges, roll, req, slope, design)
+                   sup, edges, roll, req, slope, design, loaded)
 
 
 def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = None,
           toward_deg: float | None = None, friction: float | None = None,
           require_tilt_deg: float | None = None, margin: float | None = None,
-          tolerance: float | None = None, props: MassProperties | None = None,
+          loads=(), tolerance: float | None = None, props: MassProperties | None = None,
           requirement: Requirement | None = None) -> Verdict:
     """Will ``body`` stand on a horizontal plane with gravity along ``down``?
 
@@ -451,8 +461,12 @@ def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = 
         (IEC 62368-1: 10°).
     margin : float, optional
         The design check: its static stability margin must be at least this, m.
+    loads : sequence of Force, Hang, Push or Press, optional
+        Applied loads: the verdict under them (``loaded``: the critical edge, the
+        resisting and overturning moments about it, the factor of safety against
+        overturning), with the tilt and friction above.
     requirement : Requirement, optional
-        All of the above (``down`` to ``margin``) as one value, instead of the keywords.
+        All of the above (``down`` to ``loads``) as one value, instead of the keywords.
     tolerance : float, optional
         Contact tolerance, m (default 1e-6 of the body's size).
     props : MassProperties, optional
@@ -498,11 +512,11 @@ friction=0.3, slides_first=False)
     body = answering(body, "body", "mass_properties")
     if requirement is None:
         requirement = Requirement(down, g, tilt_deg, toward_deg, friction, margin,
-                                  require_tilt_deg)
+                                  require_tilt_deg, tuple(loads or ()))
     else:
         requirement = instance(requirement, "requirement", Requirement, error=StabilityError)
         given = (down, tilt_deg, toward_deg, friction, require_tilt_deg, margin)
-        if any(v is not None for v in given) or g != SEED_GRAVITY:
+        if any(v is not None for v in given) or g != SEED_GRAVITY or loads:
             raise StabilityError("give a requirement or its keywords (down, g, tilt_deg, ...), "
                                  "not both")
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
@@ -532,14 +546,20 @@ def _check(body, requirement: Requirement, tolerance: float | None, props: MassP
     """:func:`check` of a checked body; with ``settle``, where a solid set down on a point,
     a line or a sliver comes to rest."""
     sup = support_polygon(body, requirement.down, tolerance=tolerance, props=props)
-    result = verdict_from_support(sup, props.mass, requirement)
+    loaded = None
+    if requirement.loads:
+        from .loaded import under_loads
+
+        loaded = under_loads(body, sup, props.mass, requirement)
+    result = verdict_from_support(sup, props.mass, requirement, loaded=loaded)
     size = body_size(body)
     if result.verdict == "neutral" and not is_polytope(body, size):
         # Over a point or line of contact on a curved surface: judge by curvature.
         sampling = sampling_tolerance(size)
         points = hull_points(body, sampling)[:, : sup.frame.dim] - sup.center_of_mass
         rocked = (rocking(points, sup.frame.down, 2 * sampling), 3 * sampling)
-        result = verdict_from_support(sup, props.mass, requirement, rocked=rocked)
+        result = verdict_from_support(sup, props.mass, requirement, rocked=rocked,
+                                      loaded=loaded)
     contact = contact_kind(sup, size) if settle else None
     if contact is None:
         return result

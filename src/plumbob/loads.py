@@ -5,7 +5,8 @@ A :class:`Force` is a force vector (N) acting at a point of the body's frame (m)
 are checked when made, so a NaN force, a point with the wrong number of coordinates
 or a negative mass never reaches the arithmetic. The verdict under loads (which edge
 the body goes over, the resisting and overturning moments about it, the factor of
-safety) is :mod:`plumbob.stability.loaded`.
+safety) is :mod:`plumbob.stability.loaded`; a body read from a spec carries its
+``[[load]]`` tables as these (:attr:`plumbob.reading.Reading.loads`).
 """
 
 from __future__ import annotations
@@ -14,10 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arguments import non_negative, vector
-from ..errors import StabilityError
+from .arguments import non_negative, positive, vector
+from .errors import StabilityError
 
-__all__ = ["Force", "Hang", "Load", "load_forces"]
+__all__ = ["Force", "Hang", "Push", "Press", "Load", "is_search"]
 
 
 def _point(at, what: str) -> np.ndarray:
@@ -90,15 +91,67 @@ class Hang:
         return self.name or "hung mass"
 
 
-Load = Force | Hang
+@dataclass(frozen=True)
+class Push:
+    """A horizontal force of ``force`` N in every direction, anywhere on the body no
+    higher than ``max_height`` m above the floor: the check finds the point and the
+    direction that overturn it most (the highest point it may reach, pushed straight
+    out over the weakest edge).
+
+    force: N (≥ 0). max_height: m (> 0), or None for no limit. name: for the report.
+    """
+
+    force: float
+    max_height: float | None = None
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        label = f"the push {self.name!r}" if self.name else "a push"
+        object.__setattr__(self, "force", non_negative(self.force, f"{label} (N)",
+                                                       error=StabilityError))
+        if self.max_height is not None:
+            object.__setattr__(self, "max_height", positive(
+                self.max_height, f"{label}'s highest point (m)", error=StabilityError))
+
+    dim = None  # any body
+
+    def describe(self) -> str:
+        return self.name or "push"
 
 
-def load_forces(loads, gravity: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(points (n, dim) m, forces (n, dim) N) of ``loads`` under the acceleration vector
-    ``gravity`` (m/s², body frame)."""
-    dim = len(gravity)
-    if not loads:
-        return np.zeros((0, dim)), np.zeros((0, dim))
-    points = np.array([load.at for load in loads], dtype=float)
-    forces = np.array([load.vector(gravity) for load in loads], dtype=float)
-    return points, forces
+@dataclass(frozen=True)
+class Press:
+    """A downward force of ``force`` N anywhere on the body's top, no higher than
+    ``max_height`` m: the check finds the point that overturns it most (the highest of
+    the body's points that reach furthest out over the weakest edge).
+
+    force: N (≥ 0). max_height: m (> 0), or None for no limit. name: for the report.
+    """
+
+    force: float
+    max_height: float | None = None
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        label = f"the press {self.name!r}" if self.name else "a press"
+        object.__setattr__(self, "force", non_negative(self.force, f"{label} (N)",
+                                                       error=StabilityError))
+        if self.max_height is not None:
+            object.__setattr__(self, "max_height", positive(
+                self.max_height, f"{label}'s highest point (m)", error=StabilityError))
+
+    dim = None  # any body
+
+    def describe(self) -> str:
+        return self.name or "press"
+
+
+Load = Force | Hang | Push | Press
+
+#: the load kinds a check places itself (the worst point), by their report name
+SEARCHES = (Push, Press)
+
+
+def is_search(load) -> bool:
+    """Whether the check finds the load's point (a :class:`Push` or :class:`Press`)."""
+    return isinstance(load, SEARCHES)
