@@ -16,7 +16,7 @@ from .errors import ArgumentError, printable
 from .tolerances import TEXT_ROUND_OFF
 from .units import LENGTH_UNITS
 
-__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table"]
+__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "loads_report"]
 
 #: kilograms per unit, for the mass units a text report may be asked for
 MASS_UNITS: dict[str, float] = {"kg": 1.0, "g": 1e-3, "t": 1000.0, "lb": 0.45359237}
@@ -162,3 +162,53 @@ def _scaled(value, factor: float):
     if factor == 1.0:
         return value
     return float(value) * factor if np.ndim(value) == 0 else np.asarray(value) * factor
+
+
+def loads_report(loaded, units: ReportUnits | None = None, scale: float = 1.0) -> str:
+    """The lines of a verdict under loads (:class:`~plumbob.stability.loaded.LoadVerdict`):
+    each load's point, force and moment about the critical edge, the resisting and
+    overturning moments, the factor of safety and the verdict. Forces stay in N and
+    moments in N·m; points are in the report's length unit; ``scale`` (m, the body's size)
+    sets what round-off shows as 0."""
+    u = units or ReportUnits()
+
+    def vec(values, digits: int = 5) -> str:
+        return format_vector(u.length(np.asarray(values, dtype=float)), digits, scale=scale)
+
+    factor = loaded.overturning_safety_factor
+    verdict = {"stands": "stands", "topples": "TOPPLES", "slides": "SLIDES (before it tips)",
+               "lifts": "LIFTS (the loads pull it off the floor)",
+               "neutral": "neutral (balanced on the critical edge)"}[loaded.verdict]
+    shown = "none: nothing overturns it" if factor is None else format_number(factor, 6)
+    rows = [("verdict", verdict),
+            ("critical edge", f"{vec(loaded.edge_start)}-{vec(loaded.edge_end)} "
+                              f"{u.length_unit}, tipping toward "
+                              f"{format_vector(loaded.edge_normal, 4, scale=1.0)}"),
+            ("resisting moment", f"{format_number(loaded.resisting_moment)} N·m"),
+            ("overturning moment", f"{format_number(loaded.overturning_moment)} N·m"),
+            ("factor of safety", f"{shown} (resisting / overturning; below 1 it topples)")]
+    if loaded.load_factor is not None:
+        rows.append(("load factor", f"{format_number(loaded.load_factor, 6)} (the loads may "
+                                    "grow this many times before it tips)"))
+    if loaded.tilt_deg is not None:
+        rows.append(("floor", f"tilted {format_number(loaded.tilt_deg, 4)}° toward "
+                              f"{format_vector(loaded.tilt_direction, 4, scale=1.0)}"))
+    if loaded.friction is not None:
+        rows.append(("friction", f"μ {format_number(loaded.friction)}: "
+                                 f"{'slides' if loaded.slides else 'holds'} "
+                                 f"({format_number(loaded.tangential_force)} N along the floor, "
+                                 f"{format_number(loaded.normal_force)} N onto it); "
+                                 f"{'slides' if loaded.slides_first else 'tips'} first as the "
+                                 "loads grow"))
+    lines = [table(rows, title="under the applied loads"), ""]
+    names = [printable(m.name) + (" (outside)" if m.outside else "") for m in loaded.moments]
+    width = max(12, *(len(n) for n in names)) + 1
+    lines.append(f"{'load':<{width}}{'at (' + u.length_unit + ')':<30}{'force N':<30}"
+                 f"{'moment N·m':>12}")
+    for name, m in zip(names, loaded.moments):
+        role = "overturns" if m.moment > 0 else "resists" if m.moment < 0 else ""
+        lines.append(f"{name:<{width}}{vec(m.at):<30}"
+                     f"{format_vector(m.force, 5, scale=float(np.abs(m.force).max() or 1)):<30}"
+                     f"{format_number(m.moment, 6):>12} {role}")
+    lines += [f"note: {printable(n)}" for n in loaded.notes]
+    return "\n".join(lines)

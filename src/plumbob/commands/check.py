@@ -209,6 +209,10 @@ def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False)
             status = (f"FAIL (critical tilt {num(v.critical_tilt_deg, 4)}°, "
                       f"{num(v.shortfall_deg, 4)}° short of {required}°)")
         lines.append(f"design check, no overturning at {required}° in any direction: {status}")
+    if v.loaded is not None:
+        from ..report import loads_report
+
+        lines += ["", loads_report(v.loaded, u, scale)]
     for note in notes:
         lines.append(f"note: {printable(note)}")
     return "\n".join(lines)

@@ -243,15 +243,18 @@ def under_loads(body, sup: Support, mass: float, req: Requirement) -> LoadVerdic
     moments = _moments(points_arr, forces_arr, starts, normals, up)  # (L, m)
     overturning = np.maximum(moments, 0.0).sum(axis=0)
     resisting = np.maximum(-moments, 0.0).sum(axis=0)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         factor = np.where(overturning > 0, resisting / overturning, np.inf)
     k = int(np.argmin(factor)) if np.isfinite(factor).any() else int(
         np.argmax(overturning - resisting))
     # the applied loads alone, grown by λ: the weight's moment W_e + λ L_e turns positive
     weight_m, applied_m = moments[0], moments[1:].sum(axis=0)
     tips = applied_m > 0
-    lam = np.where(weight_m >= 0, 0.0, -weight_m / np.where(tips, applied_m, 1.0))
+    with np.errstate(divide="ignore", over="ignore"):
+        lam = np.where(weight_m >= 0, 0.0, -weight_m / np.where(tips, applied_m, 1.0))
     load_factor = float(lam[tips].min()) if tips.any() and len(req.loads) else None
+    if load_factor is not None and not np.isfinite(load_factor):
+        load_factor = None
     total = forces_arr[:, k].sum(axis=0)
     normal = float(-(total @ up))
     along = total - (total @ up) * up

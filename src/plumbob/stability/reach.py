@@ -23,31 +23,27 @@ SEGMENTS = 128
 
 
 def surface_facets(body) -> tuple[np.ndarray, bool]:
-    """The body's surface as facets, m, body frame: triangles (n, 3, 3) for a solid,
-    boundary segments (n, 2, 2) for a lamina; and whether they are exact (False: a curved
-    surface cut into :data:`SEGMENTS` segments a turn)."""
-    exact = bool(getattr(body, "is_polytope", True))
-    own = getattr(body, "surface_triangles", None)  # the Body contract's, where offered
-    if callable(own):
-        return np.asarray(own(), dtype=float), exact
-    tri = getattr(body, "triangles", None)
-    if tri is not None:
-        return np.asarray(tri, dtype=float), exact
+    """The body's surface as facets, m, body frame: triangles (n, 3, 3) for a solid
+    (:meth:`~plumbob.bodies.base.Body.surface`), boundary segments (n, 2, 2) for a lamina
+    (:meth:`~plumbob.bodies.base.Body.outline`); and whether they are exact (False: a
+    curved surface cut into :data:`SEGMENTS` segments a turn). An assembly's are its
+    parts' together (a point inside another part is never beyond the union's surface, so
+    the searches' extremes are the union's)."""
+    parts = body.assembly_parts() if callable(getattr(body, "assembly_parts", None)) else ()
+    if parts:
+        found = [surface_facets(part) for part in parts]
+        return np.concatenate([f for f, _ in found]), all(exact for _, exact in found)
     try:
-        shape = body.to_geometry(SEGMENTS)
-    except GeometryError as exc:
+        if getattr(body, "dim", 3) == 2:
+            rings = body.outline(1e-4 * body.size(), SEGMENTS)
+            segments = [np.stack((r[:-1], r[1:]), axis=1) for r in rings]
+            return (np.concatenate(segments) if segments else np.zeros((0, 2, 2)),
+                    bool(body.is_polytope))
+        surface = body.surface(SEGMENTS)
+    except (GeometryError, AttributeError) as exc:
         raise StabilityError(f"cannot search the body's surface for the worst point: {exc}"
                              ) from None
-    if getattr(body, "dim", 3) == 2:
-        import shapely
-
-        rings = shapely.get_rings(shape)
-        segments = [np.stack((c[:-1], c[1:]), axis=1)
-                    for c in (np.asarray(r.coords, dtype=float)[:, :2] for r in rings)]
-        return np.concatenate(segments) if segments else np.zeros((0, 2, 2)), exact
-    mesh = shape.to_mesh()
-    verts = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
-    return verts[np.asarray(mesh.tri_verts, dtype=np.int64)], exact
+    return np.asarray(surface.triangles, dtype=float), bool(surface.exact)
 
 
 def corners_below(facets: np.ndarray, up: np.ndarray, floor: float,
