@@ -431,7 +431,7 @@ def verdict_from_support(sup: Support, mass: float, requirement: Requirement | N
             req.margin,
             None if req.margin is None else bool(verdict == "stands" and margin >= req.margin))
     return Verdict(verdict, margin, angle, direction, energy, h, sup.center_of_mass, mass,
-                   sup, edges, roll, req, slope, design, loaded)
+                   sup, edges, roll, req, slope, design, loaded=loaded)
 
 
 def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = None,
