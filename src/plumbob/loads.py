@@ -18,7 +18,7 @@ import numpy as np
 from .arguments import non_negative, positive, vector
 from .errors import StabilityError
 
-__all__ = ["Force", "Hang", "Push", "Press", "Load", "is_search"]
+__all__ = ["Force", "Hang", "Push", "Press", "Load", "Extendable", "is_search"]
 
 
 def _point(at, what: str) -> np.ndarray:
@@ -155,3 +155,29 @@ SEARCHES = (Push, Press)
 def is_search(load) -> bool:
     """Whether the check finds the load's point (a :class:`Push` or :class:`Press`)."""
     return isinstance(load, SEARCHES)
+
+
+@dataclass(frozen=True)
+class Extendable:
+    """A part that opens — a drawer, a door, a pull-out shelf — as a spec marks it for the
+    standards that open them (ASTM F2057).
+
+    name: the part's name (its ``[[part]]`` name). parts: the names of every part that
+        moves with it (the part itself first, then what it carries).
+    travel: (dim,) m, body frame: how far and which way it moves from where the spec
+        draws it to its stop.
+    volume: m³, its storage volume (what a standard fills).
+    """
+
+    name: str
+    parts: tuple[str, ...]
+    travel: np.ndarray
+    volume: float
+
+    def __post_init__(self) -> None:
+        label = f"the extendable {self.name!r}"
+        object.__setattr__(self, "travel", vector(self.travel, f"{label}'s travel", (2, 3),
+                                                  error=StabilityError))
+        object.__setattr__(self, "volume", non_negative(self.volume, f"{label}'s volume (m³)",
+                                                        error=StabilityError))
+        object.__setattr__(self, "parts", tuple(self.parts) or (self.name,))

@@ -25,7 +25,9 @@ class Reading:
     file's own scale has no unit name. The body is in metres either way; text reports
     show the part in this unit (:func:`plumbob.report.natural_units`).
     loads: the applied loads a spec's ``[[load]]`` tables give
-    (:class:`~plumbob.loads.Force`, :class:`~plumbob.loads.Hang`, …), in metres.
+    (:class:`~plumbob.loads.Force`, :class:`~plumbob.loads.Hang`, …), in metres;
+    extendables: the parts its ``[[extendable]]`` tables mark as opening
+    (:class:`~plumbob.loads.Extendable`).
     """
 
     body: Body
@@ -33,3 +35,4 @@ class Reading:
     path: str | None = None
     length_unit: str | None = None
     loads: tuple = ()
+    extendables: tuple = ()

@@ -16,7 +16,8 @@ from .errors import ArgumentError, printable
 from .tolerances import TEXT_ROUND_OFF
 from .units import LENGTH_UNITS
 
-__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "loads_report"]
+__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "loads_report",
+           "standard_report"]
 
 #: kilograms per unit, for the mass units a text report may be asked for
 MASS_UNITS: dict[str, float] = {"kg": 1.0, "g": 1e-3, "t": 1000.0, "lb": 0.45359237}
@@ -211,4 +212,33 @@ def loads_report(loaded, units: ReportUnits | None = None, scale: float = 1.0) -
                      f"{format_vector(m.force, 5, scale=float(np.abs(m.force).max() or 1)):<30}"
                      f"{format_number(m.moment, 6):>12} {role}")
     lines += [f"note: {printable(n)}" for n in loaded.notes]
+    return "\n".join(lines)
+
+
+def standard_report(result, units: ReportUnits | None = None, scale: float = 1.0) -> str:
+    """The lines of a standard's bundle (:class:`~plumbob.stability.standards.StandardResult`):
+    each test's clause, verdict, margin, point and direction, and whether the bundle
+    (its groups of alternatives) passes; with the edition cited and the disclaimer."""
+    u = units or ReportUnits()
+    lines = [f"{printable(result.title)}, {result.edition}, clause {result.clause}"]
+    lines.append("-" * len(lines[0]))
+    for t in result.tests:
+        case = f" [{printable(t.case)}]" if t.case else ""
+        status = "PASS" if t.passes else "FAIL"
+        if t.margin_unit == "deg":
+            margin = f"critical tilt {format_number(t.margin, 4)}° beyond the test's"
+        elif t.overturning_safety_factor is None:
+            margin = "nothing overturns it"
+        else:
+            margin = f"factor of safety {format_number(t.overturning_safety_factor, 4)}"
+        where = "" if t.point is None else (
+            f", at {format_vector(u.length(np.asarray(t.point)), 4, scale=scale)} "
+            f"{u.length_unit}")
+        lines.append(f"{status}  {t.name}{case} ({printable(t.clause)}): {t.description}: "
+                     f"{t.verdict}, {margin}{where}, toward "
+                     f"{format_vector(t.direction, 3, scale=1.0)}")
+    groups = " and ".join("(" + " or ".join(g) + ")" for g in result.groups)
+    lines.append(f"bundle: {'PASSES' if result.passes else 'FAILS'} (needs {groups})")
+    lines.append(f"note: {result.disclaimer}")
+    lines += [f"note: {printable(n)}" for n in result.notes]
     return "\n".join(lines)

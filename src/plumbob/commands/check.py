@@ -60,6 +60,10 @@ def register(subparsers) -> None:
     parser.add_argument("--margin", type=length, metavar="M",
                         help="design check: the static stability margin must be at least M "
                              "metres (or with a unit: 3mm); exit status 1 if it is not")
+    parser.add_argument("--standard", metavar="NAME",
+                        help="run a standard's stability tests as a bundle (iec62368-1, "
+                             "iec62368-1-display, astm-f2057; docs/standards.md); exit status "
+                             "1 if it fails")
     parser.add_argument("--solve-for", metavar="NAME",
                         help="with --require-tilt or --margin: the smallest change of the "
                              "spec's parameter NAME that meets it (a 1-D root find)")
@@ -302,6 +306,12 @@ def run(args) -> int:
     v = _verdict(args, body, props, option_loads(args, reading))
     require_finite(v.as_dict())
     solution = _solve(args) if args.solve_for is not None else None
+    standard = None
+    if args.standard is not None:
+        from ..stability.standards import run_standard
+
+        standard = run_standard(body, args.standard, v.requirement.replace(loads=()),
+                                extendables=reading.extendables, props=props)
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
     kind = getattr(body, "kind", "solid")
@@ -309,6 +319,8 @@ def run(args) -> int:
         out = {**header(reading, kind), **v.as_dict()}
         if solution is not None:
             out["solution"] = solution.as_dict()
+        if standard is not None:
+            out["standard"] = standard.as_dict()
         print_json(out, reading, notes)
     else:
         lines = [_text(v, args.path, kind, notes, units, args.all_edges)]
@@ -319,5 +331,10 @@ def run(args) -> int:
                          f"{status}")
         if solution is not None:
             lines.append(_solution_text(solution))
+        if standard is not None:
+            from ..report import standard_report
+
+            lines += ["", standard_report(standard, units, v.support.tolerance * 1e6)]
         print("\n".join(lines))
-    return 1 if v.meets_requirement is False else 0
+    failed = v.meets_requirement is False or (standard is not None and not standard.passes)
+    return 1 if failed else 0

@@ -27,7 +27,7 @@ from ..formats import read_checked
 from ..limits import MAX_NESTING, MAX_PARTS, MAX_SEGMENTS, check_count
 from ..reading import Reading
 from ..units import length_scale
-from .loads import read_loads
+from .loads import read_extendables, read_loads
 from .particles import MOTION_KEYS, read_particles
 from .parts import MATERIAL_KEYS, build_parts, named
 from .parts import MESH_NOTICE as _MESH_NOTICE
@@ -44,7 +44,7 @@ __all__ = ["load_spec", "build_spec", "spec_parameters", "load_simulation", "par
 
 MAX_SPEC_BYTES = 4 << 20
 #: the top-level keys of a shape spec
-TOP_KEYS = {"kind", "shape", "parameters", "part", "particle", "load"}
+TOP_KEYS = {"kind", "shape", "parameters", "part", "particle", "load", "extendable"}
 #: the keys of [shape] in a spec of particles
 SHAPE_KEYS = {"name", "description", "kind", "units", "source", "figure"}
 #: the keys of [shape] in a spec of parts ("segments": per turn, for faceted booleans)
@@ -106,7 +106,10 @@ def build_spec(data: dict, path: str = "<spec>", *,
     if repair and not any(n.startswith(_MESH_NOTICE) for n in spec.notices):
         spec.notices.append("repair: the spec reads no mesh files; nothing to repair")
     loads = read_loads(spec, data["load"], body.dim) if "load" in data else ()
-    return Reading(body, tuple(dict.fromkeys(spec.notices)), path, spec.unit, loads)
+    extendables = (read_extendables(spec, data["extendable"], body.dim)
+                   if "extendable" in data else ())
+    return Reading(body, tuple(dict.fromkeys(spec.notices)), path, spec.unit, loads,
+                   extendables)
 
 
 def parse_simulation(data: dict, path: str | None = None, *,

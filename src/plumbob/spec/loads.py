@@ -11,10 +11,12 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import PlumbobError
-from ..loads import Force, Hang, Press, Push
+from ..loads import Extendable, Force, Hang, Press, Push
 from .values import SpecContext, shown
 
-__all__ = ["LOAD_KEYS", "read_loads"]
+__all__ = ["LOAD_KEYS", "EXTENDABLE_KEYS", "read_loads", "read_extendables"]
+
+EXTENDABLE_KEYS = {"part", "with", "travel", "volume"}
 
 LOAD_KEYS = {"force", "mass", "push", "press", "at", "max_height", "name"}
 _KINDS = ("force", "mass", "push", "press")
@@ -67,3 +69,29 @@ def _load(spec: SpecContext, table: dict, kind: str, where: str, name: str | Non
         return Hang(mass, at, name)
     force = spec.vector(table["force"], f"{where}.force", (dim,), length=False, like=like)
     return Force(force, at, name)
+
+
+def read_extendables(spec: SpecContext, tables: Any, dim: int) -> tuple:
+    """The ``[[extendable]]`` tables: ``part`` (a part's name), ``travel`` (its opening to
+    its stop, in the spec's unit), ``volume`` (its storage volume, in the spec's unit
+    cubed) and optional ``with`` (the names of parts it carries)."""
+    if not isinstance(tables, list):
+        raise spec.error("extendable", f"expected [[extendable]] tables, not {shown(tables)}")
+    found = []
+    for i, table in enumerate(tables, 1):
+        where = f"extendable[{i}]"
+        spec.table(table, EXTENDABLE_KEYS, where)
+        for key in ("part", "travel", "volume"):
+            if key not in table:
+                raise spec.error(where, f"an extendable needs {key}")
+        name = spec.text(table["part"], f"{where}.part")
+        carried = table.get("with", [])
+        if not isinstance(carried, list):
+            raise spec.error(f"{where}.with", f"expected a list of part names, not {shown(carried)}")
+        carried = [spec.text(c, f"{where}.with") for c in carried]
+        travel = spec.vector(table["travel"], f"{where}.travel", (dim,))
+        volume = spec.number(table["volume"], f"{where}.volume") * spec.scale ** 3
+        if volume < 0:
+            raise spec.error(f"{where}.volume", f"a storage volume must be ≥ 0, not {volume:g}")
+        found.append(Extendable(name, (name, *carried), travel, volume))
+    return tuple(found)
