@@ -17,7 +17,7 @@ from .tolerances import TEXT_ROUND_OFF
 from .units import LENGTH_UNITS
 
 __all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "loads_report",
-           "standard_report"]
+           "standard_report", "sheet_markdown", "sheet_html"]
 
 #: kilograms per unit, for the mass units a text report may be asked for
 MASS_UNITS: dict[str, float] = {"kg": 1.0, "g": 1e-3, "t": 1000.0, "lb": 0.45359237}
@@ -242,3 +242,114 @@ def standard_report(result, units: ReportUnits | None = None, scale: float = 1.0
     lines.append(f"note: {result.disclaimer}")
     lines += [f"note: {printable(n)}" for n in result.notes]
     return "\n".join(lines)
+
+
+def _v(values, digits: int = 6) -> str:
+    """A vector, its round-off far below its largest entry shown as 0."""
+    values = np.asarray(values, dtype=float)
+    return format_vector(values, digits, scale=float(np.abs(values).max(initial=0.0)) or 1.0)
+
+
+def sheet_markdown(sheet) -> str:
+    """A calculation sheet (:class:`~plumbob.stability.sheet.Sheet`) as Markdown: the steps
+    of the seed's worked solutions, SI units, every number plumbob's."""
+    v = sheet.verdict
+    n = lambda x, d=6: format_number(float(x), d)  # noqa: E731
+    corners = ", ".join(_v(c) for c in v.support.polygon)
+    lines = [f"# Calculation sheet: {printable(sheet.title)}", "",
+             "Will it stand? Worked as the seed's solutions work it (Unit 19: the centre of "
+             "mass by equation (15), the toppling condition of section 2.2). SI units.", "",
+             "## 1. The parts and their centres of mass", "",
+             "| part | mass m_i (kg) | centre r_i (m) | first moment m_i r_i (kg·m) |",
+             "|---|---:|---|---|"]
+    for p in sheet.parts:
+        sign = "" if p.sign > 0 else " (hole, taken away)"
+        lines.append(f"| {printable(p.name)}{sign} | {n(p.sign * p.mass)} | {_v(p.center)} | "
+                     f"{_v(p.first_moment)} |")
+    lines.append(f"| **total** | **M = {n(sheet.mass)}** | | **Σ m_i r_i = "
+                 f"{_v(sheet.first_moment)}** |")
+    lines += ["", "Equation (15): r_G = Σ m_i r_i / M = "
+              f"{_v(sheet.first_moment)} / {n(sheet.mass)} = **{_v(sheet.center_of_mass)} m**.",
+              "", "## 2. The support", "",
+              f"Gravity acts along {_v(v.down, 4)}. The centre of mass is h_G = "
+              f"{n(v.com_height)} m above the floor. The body rests on "
+              f"a {v.support.kind} with corners {corners} (m).",
+              "", "| support edge | outward normal | distance d of G inside it (m) | "
+              "tipping angle atan(d/h_G) (°) |", "|---|---|---:|---:|"]
+    for e in v.edges:
+        lines.append(f"| {_v(e.start)}–{_v(e.end)} | {_v(e.normal, 4)} | {n(e.distance)} | "
+                     f"{n(e.tipping_angle_deg, 5)} |")
+    lines += ["", "## 3. The critical edge and the moments about it", "",
+              f"The critical edge runs {_v(sheet.edge_start)}–{_v(sheet.edge_end)} m; the body "
+              f"would tip toward {_v(sheet.edge_normal, 4)}. A force F at a point p has the "
+              "moment M = (u·r)(n·F) − (u·F)(n·r) about it (r = p − a, a a point of the edge, "
+              "n its outward normal, u up): positive overturns, negative resists.", "",
+              "| force | at (m) | force (N) | moment (N·m) |", "|---|---|---|---:|"]
+    for p in sheet.parts:
+        lines.append(f"| weight of {printable(p.name)} | {_v(p.center)} | "
+                     f"{_v(p.sign * p.mass * v.g * v.down)} | {n(p.moment)} |")
+    for m in sheet.loads:
+        outside = " (outside the body)" if m.outside else ""
+        lines.append(f"| {printable(m.name)} ({m.kind}){outside} | {_v(m.at)} | {_v(m.force)} | "
+                     f"{n(m.moment)} |")
+    factor = sheet.overturning_safety_factor
+    lines += ["", f"Resisting moment R = {n(sheet.resisting_moment)} N·m; overturning moment "
+              f"O = {n(sheet.overturning_moment)} N·m (the weight taken as one force at r_G).",
+              "", "Factor of safety against overturning R / O = " +
+              ("none: nothing overturns it." if factor is None else
+               f"{n(sheet.resisting_moment)} / {n(sheet.overturning_moment)} = **{n(factor)}**"
+               + (" (below 1: it topples)." if factor < 1 else "."))]
+    lines += ["", "## 4. Verdict", ""]
+    if v.verdict == "stands":
+        lines.append(f"The centre of mass lies over the support, {n(v.margin)} m inside its "
+                     f"nearest edge: **it stands** (it does not topple). Critical tilt "
+                     f"atan({n(v.margin)} / {n(v.com_height)}) = {n(v.critical_tilt_deg, 5)}°.")
+    elif v.verdict == "topples":
+        lines.append(f"The centre of mass lies {n(-v.margin)} m beyond the support: **it "
+                     "topples**.")
+    else:
+        lines.append("The centre of mass lies over the edge of its support: **neutral** "
+                     "(balanced; a round body rolls that way).")
+    if v.loaded is not None:
+        lines.append(f"Under the applied loads: **{v.loaded.verdict}**.")
+    lines += ["", f"Energy to raise its material from the floor: M g h_G = {n(sheet.mass)} × "
+              f"{n(v.g)} × {n(v.com_height)} = {n(sheet.lift_energy)} J.", ""]
+    return "\n".join(lines)
+
+
+def sheet_html(sheet) -> str:
+    """The calculation sheet as a standalone HTML page (the Markdown's headings, tables and
+    paragraphs)."""
+    import html
+
+    out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'><title>",
+           html.escape(printable(sheet.title)), "</title><style>body{font-family:sans-serif;"
+           "max-width:60em;margin:2em auto}table{border-collapse:collapse}td,th{border:1px "
+           "solid #999;padding:.2em .5em}</style></head><body>"]
+    table: list[list[str]] = []
+
+    def flush() -> None:
+        if table:
+            head, rows = table[0], table[2:]
+            out.append("<table><tr>" + "".join(f"<th>{c}</th>" for c in head) + "</tr>")
+            out.extend("<tr>" + "".join(f"<td>{c}</td>" for c in r) + "</tr>" for r in rows)
+            out.append("</table>")
+            table.clear()
+
+    for line in sheet_markdown(sheet).splitlines():
+        text = html.escape(line)
+        bold = text.split("**")
+        text = "".join(f"<b>{t}</b>" if i % 2 else t for i, t in enumerate(bold))
+        if line.startswith("|"):
+            table.append([c.strip() for c in text.strip("|").split("|")])
+            continue
+        flush()
+        if line.startswith("## "):
+            out.append(f"<h2>{text[3:]}</h2>")
+        elif line.startswith("# "):
+            out.append(f"<h1>{text[2:]}</h1>")
+        elif line.strip():
+            out.append(f"<p>{text}</p>")
+    flush()
+    out.append("</body></html>")
+    return "\n".join(out) + "\n"

@@ -64,6 +64,10 @@ def register(subparsers) -> None:
                         help="run a standard's stability tests as a bundle (iec62368-1, "
                              "iec62368-1-display, astm-f2057; docs/standards.md); exit status "
                              "1 if it fails")
+    parser.add_argument("--explain", nargs="?", const="-", metavar="FILE",
+                        help="print the calculation sheet (parts, equation (15), support, "
+                             "critical edge, moments, factor of safety, verdict) after the "
+                             "report, or write it to FILE (.md or .html)")
     parser.add_argument("--solve-for", metavar="NAME",
                         help="with --require-tilt or --margin: the smallest change of the "
                              "spec's parameter NAME that meets it (a 1-D root find)")
@@ -300,6 +304,13 @@ def run(args) -> int:
                              "--margin M")
     if args.solve_for is not None:
         _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
+    explain = getattr(args, "explain", None)
+    if explain is not None and explain != "-" and not explain.lower().endswith((".md", ".html")):
+        raise StabilityError(f"--explain writes a .md or .html file, not {explain!r} (or give "
+                             "no file: the sheet goes to stdout)")
+    if explain == "-" and args.json:
+        raise StabilityError("--explain prints the sheet as text: with --json give it a file "
+                             "(--explain sheet.md)")
     reading, props, notes = open_body(args)
     units = report_units(args, reading)
     body = reading.body
@@ -314,6 +325,17 @@ def run(args) -> int:
                                 extendables=reading.extendables, props=props)
     if args.plot:
         write_plot(args.plot, "check", v, body, path=args.path)
+    sheet = None
+    if explain is not None:
+        from ..report import sheet_html, sheet_markdown
+        from ..stability.sheet import calculation_sheet
+
+        made = calculation_sheet(body, v, getattr(body, "name", None) or args.path)
+        sheet = sheet_html(made) if explain.lower().endswith(".html") else sheet_markdown(made)
+        if explain != "-":
+            from ..files import write_atomic
+
+            write_atomic(explain, sheet.encode("utf-8"))
     kind = getattr(body, "kind", "solid")
     if args.json:
         out = {**header(reading, kind), **v.as_dict()}
@@ -335,6 +357,8 @@ def run(args) -> int:
             from ..report import standard_report
 
             lines += ["", standard_report(standard, units, v.support.tolerance * 1e6)]
+        if explain == "-":
+            lines += ["", sheet]
         print("\n".join(lines))
     failed = v.meets_requirement is False or (standard is not None and not standard.passes)
     return 1 if failed else 0
