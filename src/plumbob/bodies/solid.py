@@ -353,7 +353,10 @@ class Revolution(_UniformSolid):
     def _rings(self, tolerance: float | None) -> tuple[np.ndarray, int]:
         from .lamina import Lamina
 
-        tol = sampling_tolerance(self.profile.size, tolerance)
+        # Half the tolerance each: the profile's chords fall short of the profile by up
+        # to its share, and the rings' chords short of the swept profile by up to theirs,
+        # and the two shortfalls add up.
+        tol = sampling_tolerance(self.profile.size, tolerance) / 2
         pts = Lamina(self.profile).hull_points(tol)
         return pts, _circle_steps(float(pts[:, 0].max()), tol)
 

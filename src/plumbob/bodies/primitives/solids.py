@@ -27,13 +27,17 @@ def _mesh_from_faces(vertices: np.ndarray, faces: list[list[int]], **kw) -> Mesh
     return MeshSolid(np.asarray(vertices, dtype=float)[np.array(tris)], **kw)
 
 
-def box(length: float, width: float, height: float, **kw) -> MeshSolid:
-    """A rectangular box, corner at the origin, edges along +x, +y, +z (an exact mesh).
+def box(length: float, width: float, height: float, *, centered: bool = False,
+        **kw) -> MeshSolid:
+    """A rectangular box, corner at the origin, edges along +x, +y, +z (an exact mesh);
+    with ``centered=True`` its centre at the origin instead (as trimesh's boxes are).
 
     Parameters
     ----------
     length, width, height : float
         m, positive: the extents along x, y, z.
+    centered : bool
+        Centre the box on the origin rather than putting a corner there.
     **kw
         ``density`` (kg/m³), ``name``.
 
@@ -47,6 +51,8 @@ def box(length: float, width: float, height: float, **kw) -> MeshSolid:
     >>> props = box(1, 2, 3, density=2.0).mass_properties()
     >>> props.mass, props.center_of_mass.tolist()
     (12.0, [0.5, 1.0, 1.5])
+    >>> box(1, 2, 3, centered=True).mass_properties().center_of_mass.tolist()
+    [0.0, 0.0, 0.0]
     >>> box(1, 1, float("nan"))
     Traceback (most recent call last):
     ...
@@ -58,6 +64,8 @@ def box(length: float, width: float, height: float, **kw) -> MeshSolid:
         [[0, 0, 0], [a, 0, 0], [a, b, 0], [0, b, 0], [0, 0, c], [a, 0, c], [a, b, c], [0, b, c]],
         dtype=float,
     )
+    if centered:  # halves of floats are exact: the corners stay exact
+        v -= np.array([a, b, c]) / 2
     faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
     return _mesh_from_faces(v, faces, **kw)
 
