@@ -73,11 +73,11 @@ def test_axis_aligned_box_and_a_centred_box():
     box = bounding_box(centred)
     assert box.lower.tolist() == [-0.5, -1.0, -1.5] and box.upper.tolist() == [0.5, 1.0, 1.5]
     assert box.volume == pytest.approx(6.0, rel=1e-15)
-    ball = P.sphere(R).translated([1.0, 2.0, 3.0])
-    sphere = bounding_box(ball)  # sampled points on the sphere: within 1e-4 of its size
-    tolerance = 1e-4 * ball.size
-    assert sphere.lower == pytest.approx(np.array([1.0, 2.0, 3.0]) - R, abs=tolerance)
-    assert sphere.upper == pytest.approx(np.array([1.0, 2.0, 3.0]) + R, abs=tolerance)
+    ball = bounding_box(P.sphere(R).translated([1.0, 2.0, 3.0]))  # its poles, exactly
+    assert ball.lower == pytest.approx(np.array([1.0, 2.0, 3.0]) - R, rel=1e-15)
+    assert ball.upper == pytest.approx(np.array([1.0, 2.0, 3.0]) + R, rel=1e-15)
+    ring = bounding_box(P.torus(2 * R, R / 3))
+    assert ring.extents == pytest.approx([2 * (2 * R + R / 3)] * 2 + [2 * R / 3], rel=1e-14)
 
 
 @pytest.mark.parametrize(("body", "support"), [

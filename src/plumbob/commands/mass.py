@@ -10,6 +10,7 @@ from ._common import (
     add_report_units_argument,
     dump_json,
     load_body,
+    parse_vector,
     print_notices,
     report_units,
     require_finite,
@@ -26,6 +27,9 @@ def register(subparsers) -> None:
     add_body_arguments(parser)
     add_report_units_argument(parser)
     add_plot_argument(parser)
+    parser.add_argument("--about", type=parse_vector, metavar="X,Y,Z",
+                        help="also give the inertia tensor about this point (in the file's "
+                             "length unit, like its coordinates)")
     parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
                         help="print the simulator's inertial block instead (SI units)")
     parser.set_defaults(func=run)
@@ -37,7 +41,12 @@ def run(args: argparse.Namespace) -> int:
     reading = load_body(args)
     units = report_units(args, reading)
     print_notices(reading)
-    report = MassReport.of(reading)
+    about = None
+    if args.about is not None:  # a point given in the file's unit, like its coordinates
+        from ..units import length_scale
+
+        about = [v * length_scale(reading.length_unit) for v in args.about]
+    report = MassReport.of(reading, about=about)
     require_finite(report.as_dict())
     if args.plot:
         write_plot(args.plot, "mass", reading.body, path=args.path)

@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from ..arguments import vector
+from ..bodies.measures import BoundingBox, SurfaceArea, bounding_box, surface_area
 from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
@@ -28,20 +30,37 @@ class MassReport(Result):
 
     reading: the body, its file and the reader's notices. props: the body's mass
     properties. parts: (name, kind, mass properties) of each part of an assembly
-    (empty for other bodies).
+    (empty for other bodies). area: the solid's surface area (None for laminas and
+    particles). box: its axis-aligned bounding box. about: a point, m, to give the
+    inertia tensor about as well (``--about``), or None.
     """
 
     reading: Reading
     props: MassProperties
     parts: tuple[tuple[str, str, MassProperties], ...] = ()
+    area: SurfaceArea | None = None
+    box: BoundingBox | None = None
+    about: np.ndarray | None = None
 
     @classmethod
-    def of(cls, reading: Reading) -> MassReport:
-        """The report on the body of ``reading``."""
+    def of(cls, reading: Reading, about=None) -> MassReport:
+        """The report on the body of ``reading`` (``about``: a point for the inertia)."""
         body = reading.body
         parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
                       for i, p in enumerate(body.assembly_parts()))
-        return cls(reading, body.mass_properties(), parts)
+        area = None
+        if body.dim == 3 and body.kind != "particles" and all(
+                p.dim == 3 and p.kind != "particles" for p in body.assembly_parts()):
+            area = surface_area(body)
+        props = body.mass_properties()
+        if about is not None:
+            about = vector(about, "about", (props.dim, 3))
+        return cls(reading, props, parts, area, bounding_box(body), about)
+
+    @property
+    def radii_of_gyration(self) -> np.ndarray:
+        """sqrt(principal moment / mass) about each principal axis, m."""
+        return np.sqrt(np.maximum(self.props.principal_moments, 0.0) / self.props.mass)
 
     @property
     def kind(self) -> str:
@@ -63,6 +82,15 @@ class MassReport(Result):
                 {"name": name, **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
                 for name, kind, props in self.parts
             ]
+        out["radii_of_gyration"] = self.radii_of_gyration
+        if self.about is not None:
+            out["inertia_about"] = {"point": self.about,
+                                    "inertia": self.props.inertia_about(self.about)}
+        if self.area is not None:
+            out.update(self.area.as_dict())
+        if self.box is not None:
+            out["bounding_box"] = {"lower": self.box.lower, "upper": self.box.upper,
+                                   "extents": self.box.extents}
         if self.reading.notices:
             out["notices"] = list(self.reading.notices)
         return out
@@ -94,6 +122,24 @@ class MassReport(Result):
                                           f"{u.unit('inertia')}"))
         for i, axis in enumerate(props.principal_axes):
             rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
+        rows.append(("radii of gyration", f"{format_vector(u.length(self.radii_of_gyration))} "
+                                          f"{u.length_unit}"))
+        if self.about is not None:
+            about = self.props.inertia_about(self.about)
+            about = np.where(np.abs(about) < 1e-12 * np.abs(about).max(initial=0.0), 0.0, about)
+            point = f"inertia (about {format_vector(u.length(self.about))} {u.length_unit})"
+            for label, row in zip((point, "", ""), u.inertia(about)):
+                rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row)
+                             + f"]  {u.unit('inertia')}"))
+        if self.area is not None:
+            bound = "" if self.area.exact else \
+                f" (curved faces faceted: within {self.area.relative_error:.1e} relative)"
+            rows.append(("surface area", f"{format_number(u.measure(self.area.area, 2))} "
+                                         f"{u.unit('measure', 2)}{bound}"))
+        if self.box is not None:
+            size = self.box.extents
+            rows.append(("bounding box", " × ".join(format_number(v) for v in u.length(size))
+                         + f" {u.length_unit}, from {format_vector(u.length(self.box.lower))}"))
         rows.append(("exact", props.exactness))
         rows.append(("parts", str(props.parts)))
         title = getattr(self.reading.body, "name", None) or self.reading.path or "body"
