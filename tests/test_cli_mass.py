@@ -181,3 +181,31 @@ def test_the_cabinet_carcass_is_exact_and_mirror_symmetric(capsys):
     # 0.6 · 0.45 · 1.2 less the inside 0.564 · 0.432 · 1.164 (the front is open)
     volume = F(6, 10) * F(45, 100) * F(12, 10) - F(564, 1000) * F(432, 1000) * F(1164, 1000)
     assert carcass["volume"] == pytest.approx(float(volume), rel=1e-12)
+
+
+def test_mass_reports_radii_area_box_and_the_inertia_about_a_point(tmp_path, capsys):
+    """A 40 × 20 × 60 mm box with a corner at the origin, 1240 kg/m³: about that corner
+    Ixx = m(b² + c²)/3 and Ixy = −m a b/4 (closed forms), the point given in mm like
+    the file's coordinates; radii of gyration sqrt(I/m) about the centre; 8800 mm²."""
+    import trimesh
+
+    path = tmp_path / "box.stl"
+    trimesh.creation.box(extents=(40, 20, 60)).apply_translation((20, 10, 30)).export(path)
+    assert main(["mass", str(path), "--units", "mm", "--material", "pla", "--about", "0,0,0",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    a, b, c = 0.04, 0.02, 0.06
+    m = a * b * c * 1240
+    about = np.array(out["inertia_about"]["inertia"])
+    assert about[0, 0] == pytest.approx(m * (b * b + c * c) / 3, rel=1e-12)
+    assert about[0, 1] == pytest.approx(-m * a * b / 4, rel=1e-12)
+    assert about[1, 2] == pytest.approx(-m * b * c / 4, rel=1e-12)
+    central = sorted([m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12])
+    assert out["radii_of_gyration"] == pytest.approx(np.sqrt(np.array(central) / m), rel=1e-12)
+    assert out["surface_area"] == pytest.approx(2 * (a * b + b * c + a * c), rel=1e-12)
+    assert out["surface_area_exact"] is True
+    assert out["bounding_box"]["extents"] == pytest.approx([a, b, c], rel=1e-12)
+    assert main(["mass", str(path), "--units", "mm", "--about", "0,0,0"]) == 0
+    text = capsys.readouterr().out
+    assert "inertia (about (0, 0, 0) mm)" in text and "surface area" in text
+    assert "8800 mm²" in text and "40 × 20 × 60 mm" in text
