@@ -19,7 +19,6 @@ from ..loading import read, with_default_density
 from ..materials import check_density
 from ..reading import Reading
 from ..results import jsonable
-from ..tolerances import TEXT_ROUND_OFF
 from ..units import SEED_GRAVITY, length_scale
 
 __all__ = [
@@ -49,7 +48,6 @@ __all__ = [
     "open_body",
     "print_notices",
     "header",
-    "clean",
     "dump_json",
     "print_json",
 ]
@@ -481,14 +479,6 @@ def header(reading: Reading, kind: str) -> dict[str, Any]:
         out["name"] = name
     out["kind"] = kind
     return out
-
-
-def clean(values, scale: float):
-    """Round-off far below ``scale`` shown as 0 in text reports (the JSON keeps every digit)."""
-    import numpy as np
-
-    values = np.asarray(values, dtype=float)
-    return np.where(np.abs(values) < TEXT_ROUND_OFF * scale, 0.0, values)
 
 
 def require_finite(out: Any, where: str = "") -> Any:

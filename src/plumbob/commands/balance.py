@@ -13,7 +13,6 @@ import argparse
 from ._common import (
     add_orientation_arguments,
     add_stability_arguments,
-    clean,
     header,
     length,
     open_body,
@@ -125,7 +124,7 @@ def _hollow(args, reading, props):
 
 def _hollow_text(w, scale: float) -> str:
     """The hollowing's lines: what was emptied and written, and the written file's check."""
-    from ..report import format_number, format_vector, table
+    from ..report import clean, format_number, format_vector, table
 
     def num(value: float, digits: int = 6) -> str:
         return format_number(float(clean(value, scale)), digits)
@@ -144,7 +143,7 @@ def _hollow_text(w, scale: float) -> str:
 
 
 def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
-    from ..report import format_number, format_vector, table
+    from ..report import clean, format_number, format_vector, table
 
     def num(value: float, digits: int = 6) -> str:
         return format_number(float(clean(value, scale)), digits)

@@ -1,5 +1,8 @@
 """``plumbob check PATH``: will it stand, how far can it tilt, does it pass a tilt test.
 
+The command reads its options, asks :func:`plumbob.stability.check` and prints
+:func:`plumbob.report.check.check_text` (or the verdict's JSON).
+
 Exit status 0 with the report; 1 when ``--require-tilt`` is given and the design
 fails it (so the command can gate a pipeline); 2 on bad input (handled by the CLI).
 plumbob's stability code loads when the command runs.
@@ -15,7 +18,6 @@ from ._common import (
     add_orientation_arguments,
     add_report_units_argument,
     add_stability_arguments,
-    clean,
     header,
     length,
     non_negative,
@@ -81,151 +83,6 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-def _text(v, path: str, kind: str, notes: list[str], u, all_edges: bool = False) -> str:
-    import numpy as np
-
-    from ..errors import printable
-    from ..report import format_number, table
-    from ..report import format_vector as vector
-
-    scale = v.support.size  # round-off is relative to the body's size
-
-    def num(value: float, digits: int = 6) -> str:
-        return format_number(float(clean(value, scale)), digits)
-
-    def vec(values, digits: int = 6) -> str:
-        return vector(clean(values, scale), digits)
-
-    def at(value, digits: int = 6) -> str:  # a length or a point, in the report's unit
-        if np.ndim(value):
-            return f"{vector(u.length(clean(value, scale)), digits)} {u.length_unit}"
-        return f"{format_number(u.length(float(clean(value, scale))), digits)} {u.length_unit}"
-
-    def pt(value, digits: int = 4) -> str:  # a point without its unit, in the report's unit
-        return vector(u.length(clean(value, scale)), digits)
-
-    s = v.support
-    groups = v.edge_groups()
-    if s.kind == "point":
-        where = f"a point, {at(s.polygon[0])}"
-    elif s.kind == "segment":
-        where = f"a segment from {pt(s.polygon[0], 6)} to {at(s.polygon[1])}"
-    else:
-        arcs = [g for g in groups if g.kind == "arc"]
-        where = f"a polygon of {len(s.vertices)} corners"
-        if arcs:
-            on = sum(g.count for g in arcs)
-            where += (f" ({on} short edges on {len(arcs)} arc{'s' if len(arcs) > 1 else ''}, "
-                      "of a round base)")
-    verdict = {"stands": "stands", "topples": "TOPPLES",
-               "neutral": "neutral (centre of mass over the edge of its support)"}[v.verdict]
-    settled = v.settling
-    if settled is not None:  # set down on a point, a line or a sliver: where it comes to rest
-        verdict = f"{verdict.split(' (')[0]} ({settled.phrase})"
-    if v.verdict == "topples":
-        margin = (f"{at(v.margin)}: the centre of mass is {at(v.overhang)} beyond "
-                  "the support")
-        critical = (f"none: it is over by {num(v.over_by_deg, 4)}°, falling toward "
-                    f"{vec(v.critical_direction, 4)}")
-    else:
-        margin = at(v.margin)
-        critical = f"{num(v.critical_tilt_deg, 4)}° toward {vec(v.critical_direction, 4)}"
-    rows = [
-        ("verdict", verdict),
-        ("mass", f"{format_number(u.mass(v.mass))} {u.mass_unit}"),
-        ("centre of mass", at(v.center_of_mass)),
-        ("down", vec(v.down)),
-    ]
-    if settled is not None:
-        contact = {"point": "a point", "line": "a line", "sliver": "a sliver of a face"}
-        rest_on = {"face": "on its face", "rocking": "at the bottom of its curved bowl",
-                   "rolling": "on the surface it rolls along"}[settled.pose_kind]
-        if not settled.own_face:
-            rest_on = "on another face of its family"
-        rows.append(("set down", f"down {vec(settled.down_from)}, touching on "
-                                 f"{contact[settled.contact]}"))
-        rows.append(("comes to rest", f"down {vec(settled.down)} after turning "
-                                      f"{num(settled.angle_deg, 4)}°: pose {settled.pose} "
-                                      f"({rest_on}), centre {at(settled.drop)} lower"))
-        if not settled.stays:
-            rows.append(("", "the numbers below are where it was set down"))
-    rows += [
-        ("height of centre", at(v.com_height)),
-        ("support", where),
-        ("stability margin", margin),
-        ("critical tilt", critical),
-        ("energy to topple", f"{num(v.energy_to_topple)} J"),
-    ]
-    lines = [table(rows, title=f"plumbob check {path} ({kind})")]
-    if groups:
-        shown = groups if all_edges else groups[:WEAKEST]
-        lines.append("")
-        title = "tipping over" if len(shown) == len(groups) else "weakest tipping edges"
-        labels = []
-        for g in shown:
-            if g.kind == "arc" and g.count == len(v.edges):
-                labels.append(f"the whole round rim ({g.count} edges)")
-            elif g.kind == "arc":
-                labels.append(f"arc of {g.count} edges {pt(g.start)}-{pt(g.end)}")
-            elif np.allclose(g.start, g.end):
-                labels.append(pt(g.start))
-            else:
-                labels.append(f"{pt(g.start)}-{pt(g.end)}")
-        width = max(33, *(len(label) for label in labels)) + 1
-        lines.append(f"{title:<{width}}{f'distance {u.length_unit}':>13}{'angle °':>10}"
-                     f"{'energy J':>14}")
-        for label, g in zip(labels, shown):
-            distance = format_number(u.length(float(clean(g.distance, scale))), 5)
-            lines.append(f"{label:<{width}} {distance:>12} "
-                         f"{num(g.tipping_angle_deg, 4):>9} {num(g.energy, 5):>13}")
-        if len(shown) < len(groups):
-            rest = groups[len(shown):]
-            edges = sum(g.count for g in rest)
-            lines.append(f"… and {len(rest)} more ({edges} edge{'s' if edges > 1 else ''}, "
-                         "--all-edges lists them)")
-    if v.slope is not None:
-        sl = v.slope
-        lines.append("")
-        text = (f"on a plane tilted {num(sl.tilt_deg, 4)}° toward {num(sl.toward_deg, 4)}° "
-                f"{vec(sl.direction, 4)}: {sl.verdict} (it goes over at "
-                f"{num(sl.tipping_angle_deg, 4)}° that way)")
-        lines.append(text)
-        if sl.friction is not None:
-            first = "slides before it topples" if sl.slides_first else "topples before it slides"
-            at = "slides" if sl.slides else "does not slide"
-            lines.append(f"with friction {num(sl.friction)}: {at} at this tilt; tilted further "
-                         f"that way it {first}")
-    elif v.friction is not None:
-        lines.append("")
-        if v.slides_first:
-            lines.append(f"with friction {num(v.friction)}: it slides before it topples, "
-                         "whichever way the plane is tilted")
-        else:
-            lines.append(f"with friction {num(v.friction)}: tilted toward the critical "
-                         "direction it topples before it slides")
-    if v.required_tilt_deg is not None:
-        lines.append("")
-        required = num(v.required_tilt_deg, 4)
-        if v.passes:
-            status = f"PASS (critical tilt {num(v.critical_tilt_deg, 4)}°)"
-        elif v.verdict == "topples":
-            status = (f"FAIL (it topples, over by {num(v.over_by_deg, 4)}°: "
-                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
-        elif v.verdict == "neutral":
-            status = "FAIL (it is balanced on the edge of its support: critical tilt 0°)"
-        else:
-            status = (f"FAIL (critical tilt {num(v.critical_tilt_deg, 4)}°, "
-                      f"{num(v.shortfall_deg, 4)}° short of {required}°)")
-        lines.append(f"design check, no overturning at {required}° in any direction: {status}")
-    if v.loaded is not None:
-        from ..report import loads_report
-
-        lines += ["", loads_report(v.loaded, u, scale)]
-    for note in notes:
-        lines.append(f"note: {printable(note)}")
-    return "\n".join(lines)
-
-
 def _verdict(args, body, props, loads: tuple = ()):
     """plumbob's check of ``body`` with the command's options and ``loads``."""
     from ..stability.verdict import check
@@ -282,18 +139,6 @@ def _solve(args):
                            measure="critical_tilt_deg" if tilt else "margin")
 
 
-def _solution_text(sol) -> str:
-    from ..report import format_number as num
-
-    what = (f"critical tilt {num(sol.achieved, 6)}° (≥ {num(sol.required, 4)}°)"
-            if sol.measure == "critical_tilt_deg"
-            else f"stability margin {num(sol.achieved)} m (≥ {num(sol.required)} m)")
-    if sol.change == 0:
-        return f"{sol.name} = {num(sol.start)} meets it already: {what}"
-    return (f"smallest change of {sol.name} that meets it: {num(sol.start)} → "
-            f"{num(sol.value)} ({sol.change:+.6g}): {what}, by the check of the rebuilt body")
-
-
 def run(args) -> int:
     from ..errors import StabilityError
 
@@ -345,20 +190,10 @@ def run(args) -> int:
             out["standard"] = standard.as_dict()
         print_json(out, reading, notes)
     else:
-        lines = [_text(v, args.path, kind, notes, units, args.all_edges)]
-        if v.required_margin is not None:
-            status = "PASS" if v.margin_passes else (
-                f"FAIL ({max(v.required_margin - v.margin, 0.0):.6g} m short)")
-            lines.append(f"design check, stability margin at least {v.required_margin:g} m: "
-                         f"{status}")
-        if solution is not None:
-            lines.append(_solution_text(solution))
-        if standard is not None:
-            from ..report import standard_report
+        from ..report.check import check_text
 
-            lines += ["", standard_report(standard, units, v.support.tolerance * 1e6)]
-        if explain == "-":
-            lines += ["", sheet]
-        print("\n".join(lines))
+        text = check_text(v, args.path, kind, notes, units, solution=solution,
+                          standard=standard, edges=None if args.all_edges else WEAKEST)
+        print(text if explain != "-" else f"{text}\n\n{sheet}")
     failed = v.meets_requirement is False or (standard is not None and not standard.passes)
     return 1 if failed else 0

@@ -12,7 +12,6 @@ from ..plot.files import add_plot_argument, write_plot
 from ._common import (
     add_report_units_argument,
     add_stability_arguments,
-    clean,
     count,
     header,
     non_negative,
@@ -121,8 +120,8 @@ def run(args) -> int:
             out["notices"] = list(reading.notices)
         to_json(out)
         return 0
+    from ..report import clean, format_vector
     from ..report import format_number as num  # the text report's formatting (not --json's)
-    from ..report import format_vector
     from ..stability.support import body_size
 
     size = body_size(body)

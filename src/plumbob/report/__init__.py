@@ -12,12 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ArgumentError, printable
-from .tolerances import TEXT_ROUND_OFF
-from .units import LENGTH_UNITS
+from ..errors import ArgumentError, printable
+from ..tolerances import TEXT_ROUND_OFF
+from ..units import LENGTH_UNITS
 
-__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "loads_report",
-           "standard_report", "sheet_markdown", "sheet_html"]
+__all__ = ["MASS_UNITS", "ReportUnits", "format_number", "format_vector", "table", "clean",
+           "loads_report", "standard_report", "sheet_markdown", "sheet_html"]
 
 #: kilograms per unit, for the mass units a text report may be asked for
 MASS_UNITS: dict[str, float] = {"kg": 1.0, "g": 1e-3, "t": 1000.0, "lb": 0.45359237}
@@ -34,6 +34,17 @@ def format_number(value: float | None, digits: int = 6) -> str:
     if value == 0:
         return "0"
     return f"{value:.{digits}g}"
+
+
+def clean(values, scale: float):
+    """Round-off far below ``scale`` (a body's size) shown as 0 in text reports (the JSON
+    keeps every digit).
+
+    >>> clean([1.0, 1e-17], 1.0).tolist()
+    [1.0, 0.0]
+    """
+    values = np.asarray(values, dtype=float)
+    return np.where(np.abs(values) < TEXT_ROUND_OFF * scale, 0.0, values)
 
 
 def format_vector(vector: Iterable[float], digits: int = 6, scale: float | None = None) -> str:
