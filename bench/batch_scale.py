@@ -1,0 +1,202 @@
+"""Benchmark: a 10,000-file ``plumbob batch --poses`` run, with its memory, an
+interruption and the resume, and the same on a Dask local cluster.
+
+The corpus: ``--files`` (default 10,000) small closed potatoes written as binary STL
+(10 to 2,000 triangles, most small; about 4.5 % broken on purpose), from
+``batch.make_corpus``. Measured:
+
+* ``plumbob batch CORPUS --poses --out t.csv --jobs N --quiet`` as a whole process:
+  wall time, files/s, and the peak resident memory (VmHWM) of each worker process,
+  read from /proc while the run goes on;
+* an interruption: the same command killed (SIGINT, as Ctrl-C) once about half the
+  rows are on disk, then ``--resume``: its wall time, the rows it kept and the files it
+  measured; and ``--resume`` of the finished table (nothing left to measure: what a
+  resume costs by itself);
+* ``plumbob.batch.run(..., scheduler=...)`` on a ``distributed.LocalCluster`` of N
+  single-threaded worker processes (start-up not timed), with each worker's peak
+  memory.
+
+Run: ``python bench/batch_scale.py [--files N] [--jobs N] [--folder DIR] [--skip-dask]``;
+``--smoke``: 30 files, no Dask, nothing judged.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+from _common import PYTHON
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SRC = os.path.join(os.path.dirname(HERE), "src")
+
+
+def _descendants(root: int) -> dict[int, int]:
+    """The process ``root`` and its descendants: pid -> depth below ``root``."""
+    children: dict[int, list[int]] = {}
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/stat") as handle:
+                parent = int(handle.read().rsplit(")", 1)[1].split()[1])
+        except (OSError, ValueError, IndexError):
+            continue
+        children.setdefault(parent, []).append(int(name))
+    out, todo = {}, [(root, 0)]
+    while todo:
+        pid, depth = todo.pop()
+        out[pid] = depth
+        todo.extend((child, depth + 1) for child in children.get(pid, []))
+    return out
+
+
+def _high_water(pid: int) -> float | None:
+    """A process's peak resident memory so far, MB (None once it has gone)."""
+    try:
+        with open(f"/proc/{pid}/status") as handle:
+            for line in handle:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        return None
+    return None
+
+
+class PeakWatch:
+    """Polls the peak memory of a process and its descendants every ``every`` s; the
+    pool's workers are the root's grandchildren (children of its fork server)."""
+
+    def __init__(self, root: int, every: float = 0.5) -> None:
+        self.root, self.every, self.peaks, self.depth = root, every, {}, {}
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            for pid, depth in _descendants(self.root).items():
+                self.depth[pid] = depth
+                peak = _high_water(pid)
+                if peak is not None:
+                    self.peaks[pid] = max(self.peaks.get(pid, 0.0), peak)
+            self._stop.wait(self.every)
+
+    def stop(self) -> tuple[float, list[float]]:
+        """(the root's peak, the workers' peaks), MB."""
+        self._stop.set()
+        self._thread.join()
+        return (self.peaks.get(self.root, 0.0),
+                [v for pid, v in self.peaks.items() if self.depth.get(pid) == 2])
+
+
+def _rows(path: str) -> int:
+    try:
+        with open(path, "rb") as handle:
+            return max(0, sum(1 for _ in handle) - 1)
+    except OSError:
+        return 0
+
+
+def batch(corpus: str, out: str, jobs: int, *extra: str, stop_at: int | None = None
+          ) -> tuple[float, int, tuple[float, list[float]]]:
+    """Run the command; (wall s, exit status, (its own peak, its workers' peaks) MB).
+    ``stop_at``: send SIGINT once the table holds that many rows."""
+    env = dict(os.environ, PYTHONPATH=SRC)
+    start = time.perf_counter()
+    child = subprocess.Popen([PYTHON, "-m", "plumbob", "batch", corpus, "--poses", "--out", out,
+                              "--jobs", str(jobs), "--quiet", *extra], env=env)
+    watch = PeakWatch(child.pid)
+    while child.poll() is None:
+        if stop_at is not None and _rows(out) >= stop_at:
+            child.send_signal(signal.SIGINT)
+            stop_at = None
+        time.sleep(0.05)
+    seconds = time.perf_counter() - start
+    peaks = watch.stop()
+    return seconds, child.returncode, peaks
+
+
+def _memory(peaks: tuple[float, list[float]]) -> str:
+    own, workers = peaks
+    if not workers:
+        return f"peak memory {own:.0f} MB (measured in the command's own process)"
+    return (f"peak memory per worker {min(workers):.0f}-{max(workers):.0f} MB "
+            f"({len(workers)} worker processes), the command's own process {own:.0f} MB")
+
+
+def dask_run(corpus: str, jobs: int) -> tuple[float, list[float], int]:
+    from distributed import Client, LocalCluster
+
+    import plumbob.batch
+
+    def peak() -> float:
+        return _high_water(os.getpid()) or 0.0
+
+    with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        start = time.perf_counter()
+        result = plumbob.batch.run([corpus], poses=True, scheduler=client, progress=False)
+        seconds = time.perf_counter() - start
+        peaks = list(client.run(peak).values())
+    return seconds, peaks, len(result.rows)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--files", type=int, default=10_000)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--folder", help="keep the corpus and tables here")
+    parser.add_argument("--skip-dask", action="store_true")
+    parser.add_argument("--smoke", action="store_true", help="30 files, no Dask")
+    args = parser.parse_args(argv)
+    if args.smoke:
+        args.files, args.skip_dask = 30, True
+    sys.path.insert(0, SRC)
+    from batch import make_corpus
+
+    folder = args.folder or tempfile.mkdtemp(prefix="plumbob-scale-")
+    corpus = os.path.join(folder, "corpus")
+    try:
+        if not os.path.isdir(corpus):
+            info = make_corpus(corpus, args.files, seed=11, largest=2_000)
+            print(f"corpus: {info['files']:,} STL files, {info['broken']} broken, "
+                  f"{info['triangles']:,} triangles in the good ones", flush=True)
+        n = args.files
+        full = os.path.join(folder, "full.csv")
+        seconds, status, peaks = batch(corpus, full, args.jobs)
+        print(f"plumbob batch --jobs {args.jobs}: {seconds:.1f} s, {n / seconds:.1f} files/s, "
+              f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}", flush=True)
+
+        cut = os.path.join(folder, "cut.csv")
+        seconds, status, _ = batch(corpus, cut, args.jobs, stop_at=n // 2)
+        kept = _rows(cut)
+        print(f"interrupted (SIGINT) after {seconds:.1f} s with {kept:,} rows on disk, "
+              f"exit {status}", flush=True)
+        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
+        print(f"--resume: {seconds:.1f} s to finish the {n - kept:,} files left "
+              f"({(n - kept) / seconds:.1f} files/s), exit {status}, {_rows(cut):,} rows",
+              flush=True)
+        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
+        print(f"--resume of the finished table (nothing to measure): {seconds:.2f} s",
+              flush=True)
+        if not args.skip_dask:
+            seconds, peaks, rows = dask_run(corpus, args.jobs)
+            print(f"Dask LocalCluster, {args.jobs} workers x 1 thread: {seconds:.1f} s, "
+                  f"{n / seconds:.1f} files/s, {rows:,} rows; peak memory per worker "
+                  f"{min(peaks):.0f}-{max(peaks):.0f} MB", flush=True)
+    finally:
+        if not args.folder:
+            shutil.rmtree(folder, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
