@@ -8,15 +8,17 @@ The corpus: ``--files`` (default 10,000) small closed potatoes written as binary
 * ``plumbob batch CORPUS --poses --out t.csv --jobs N --quiet`` as a whole process:
   wall time, files/s, and the peak resident memory (VmHWM) of each worker process,
   read from /proc while the run goes on;
-* an interruption: the same command killed (SIGINT, as Ctrl-C) once about half the
-  rows are on disk, then ``--resume``: its wall time, the rows it kept and the files it
-  measured; and ``--resume`` of the finished table (nothing left to measure: what a
-  resume costs by itself);
+* an interruption late in a run: the table cut to its first 95 % of rows (as a run
+  killed then leaves it), ``--resume`` interrupted again by SIGINT (as Ctrl-C) half-way
+  through the rest, and ``--resume`` to the end: its wall time, the rows it kept and
+  the files it measured; and ``--resume`` of the finished table (nothing left to
+  measure: what a resume costs by itself);
 * ``plumbob.batch.run(..., scheduler=...)`` on a ``distributed.LocalCluster`` of N
   single-threaded worker processes (start-up not timed), with each worker's peak
   memory.
 
-Run: ``python bench/batch_scale.py [--files N] [--jobs N] [--folder DIR] [--skip-dask]``;
+Run: ``python bench/batch_scale.py [--files N] [--jobs N] [--folder DIR] [--skip-dask]
+[--dask-files N] [--skip-full]``;
 ``--smoke``: 30 files, no Dask, nothing judged.
 """
 
@@ -132,7 +134,7 @@ def _memory(peaks: tuple[float, list[float]]) -> str:
             f"({len(workers)} worker processes), the command's own process {own:.0f} MB")
 
 
-def dask_run(corpus: str, jobs: int) -> tuple[float, list[float], int]:
+def dask_run(corpus: str, jobs: int, files: int) -> tuple[float, list[float], int]:
     from distributed import Client, LocalCluster
 
     import plumbob.batch
@@ -143,7 +145,9 @@ def dask_run(corpus: str, jobs: int) -> tuple[float, list[float], int]:
     with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
         start = time.perf_counter()
-        result = plumbob.batch.run([corpus], poses=True, scheduler=client, progress=False)
+        names = sorted(os.listdir(corpus))[:files]
+        result = plumbob.batch.run([os.path.join(corpus, name) for name in names], poses=True,
+                                   scheduler=client, progress=False)
         seconds = time.perf_counter() - start
         peaks = list(client.run(peak).values())
     return seconds, peaks, len(result.rows)
@@ -155,6 +159,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--folder", help="keep the corpus and tables here")
     parser.add_argument("--skip-dask", action="store_true")
+    parser.add_argument("--dask-files", type=int, help="the first N files only, on Dask")
+    parser.add_argument("--skip-full", action="store_true",
+                        help="use the table full.csv already in --folder")
     parser.add_argument("--smoke", action="store_true", help="30 files, no Dask")
     args = parser.parse_args(argv)
     if args.smoke:
@@ -171,26 +178,34 @@ def main(argv: list[str] | None = None) -> int:
                   f"{info['triangles']:,} triangles in the good ones", flush=True)
         n = args.files
         full = os.path.join(folder, "full.csv")
-        seconds, status, peaks = batch(corpus, full, args.jobs)
-        print(f"plumbob batch --jobs {args.jobs}: {seconds:.1f} s, {n / seconds:.1f} files/s, "
-              f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}", flush=True)
+        if not args.skip_full:
+            seconds, status, peaks = batch(corpus, full, args.jobs)
+            print(f"plumbob batch --jobs {args.jobs}: {seconds:.1f} s, {n / seconds:.1f} files/s, "
+                  f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}", flush=True)
 
+        # An interruption late in a run: the table as a run killed with 95 % of its rows
+        # written leaves it (a prefix of the rows), resumed; that resume interrupted
+        # again (SIGINT, as Ctrl-C) half-way through what is left, and resumed to the end.
         cut = os.path.join(folder, "cut.csv")
-        seconds, status, _ = batch(corpus, cut, args.jobs, stop_at=n // 2)
+        with open(full) as source, open(cut, "w") as target:
+            lines = source.readlines()
+            target.writelines(lines[: 1 + int(0.95 * n)])
         kept = _rows(cut)
-        print(f"interrupted (SIGINT) after {seconds:.1f} s with {kept:,} rows on disk, "
-              f"exit {status}", flush=True)
+        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume",
+                                   stop_at=kept + (n - kept) // 2)
+        print(f"--resume from {kept:,} rows, interrupted (SIGINT) after {seconds:.1f} s with "
+              f"{_rows(cut):,} rows on disk, exit {status}", flush=True)
+        kept = _rows(cut)
         seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
-        print(f"--resume: {seconds:.1f} s to finish the {n - kept:,} files left "
-              f"({(n - kept) / seconds:.1f} files/s), exit {status}, {_rows(cut):,} rows",
-              flush=True)
+        print(f"--resume: {seconds:.1f} s to keep {kept:,} rows and measure the "
+              f"{n - kept:,} files left, exit {status}, {_rows(cut):,} rows", flush=True)
         seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
         print(f"--resume of the finished table (nothing to measure): {seconds:.2f} s",
               flush=True)
         if not args.skip_dask:
-            seconds, peaks, rows = dask_run(corpus, args.jobs)
+            seconds, peaks, rows = dask_run(corpus, args.jobs, args.dask_files or n)
             print(f"Dask LocalCluster, {args.jobs} workers x 1 thread: {seconds:.1f} s, "
-                  f"{n / seconds:.1f} files/s, {rows:,} rows; peak memory per worker "
+                  f"{rows / seconds:.1f} files/s, {rows:,} rows; peak memory per worker "
                   f"{min(peaks):.0f}-{max(peaks):.0f} MB", flush=True)
     finally:
         if not args.folder:

@@ -177,12 +177,13 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
     down = rng.normal(size=3)
     down /= np.linalg.norm(down)
     fast = rocking_module.rocking(X, down, eps, azimuths=6)
-    keep = rocking_module._candidates
-    try:
-        rocking_module._candidates = lambda a, b, alpha, eps, coarse: np.arange(len(a))
+    keep = rocking_module._sweep_pairs
+    try:  # every point at every angle of the sweep
+        rocking_module._sweep_pairs = lambda a, b, alpha, eps: (
+            np.repeat(np.arange(len(alpha)), len(a)), np.tile(np.arange(len(a)), len(alpha)))
         slow = rocking_module.rocking(X, down, eps, azimuths=6)
     finally:
-        rocking_module._candidates = keep
+        rocking_module._sweep_pairs = keep
     # The same points reach the support, but through matrix products of other shapes
     # (BLAS picks its kernel and its order of summation by size), so each height
     # u·p, a sum of 3 products with |u| = 1, may differ by its round-off: at most

@@ -73,41 +73,97 @@ class Rocking:
         return float((self.heights.max(axis=1) - self.heights[:, 0]).min())
 
 
-_COARSE = (60, 8)  # fine steps per interval of the exact candidate filter's two passes
+_LEVELS = (64, 8)  # angle steps per interval in the exact filter's two passes
 
 
-def _candidates(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, eps: float,
-                coarse: int) -> np.ndarray:
-    """Which points can come within ``eps`` of the support somewhere on the sweep: the
-    points (projected to ``(a, b)`` in the plane of the sweep, reach ``a cos α + b sin α``)
-    whose best reach over some coarse interval of ``alpha`` is not below the support's
-    worst there, less ``eps``. Exact (no point that matters is dropped): a fixed point's
-    reach is a sinusoid, whose extremes over an interval are at its ends or its crest
-    (trough) inside it; the support is at least the reach of the point supporting an
-    end. It leaves the points near the rim of the projected hull: a few hundred."""
-    ends = alpha[::coarse]
-    if ends[-1] != alpha[-1]:
-        ends = np.append(ends, alpha[-1])
-    lo_a, hi_a = ends[:-1], ends[1:]
-    r = np.hypot(a, b)
+def _intervals(m: int, coarse: int) -> tuple[np.ndarray, np.ndarray]:
+    """Indices of the first and last angle of each interval of ``coarse`` steps over
+    ``m`` angles (the last interval ends at the last angle)."""
+    ends = np.arange(0, m, coarse)
+    if ends[-1] != m - 1:
+        ends = np.append(ends, m - 1)
+    return ends[:-1], ends[1:]
 
-    def interval(angle: np.ndarray) -> np.ndarray:  # the interval holding each angle, or -1
-        at = np.mod(angle, 2 * np.pi)
-        j = np.searchsorted(ends, at, side="right") - 1
-        return np.where((j >= 0) & (j < len(lo_a)) & (at <= ends[-1]), j, -1)
 
-    reach_lo = np.cos(lo_a)[:, None] * a + np.sin(lo_a)[:, None] * b
-    reach_hi = np.cos(hi_a)[:, None] * a + np.sin(hi_a)[:, None] * b
+def _expand(first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """``first[i], first[i] + 1, …, first[i] + count[i] − 1`` for every i, concatenated."""
+    total = int(count.sum())
+    starts = np.cumsum(count) - count
+    return np.repeat(first - starts, count) + np.arange(total)
+
+
+def _keep(a: np.ndarray, b: np.ndarray, polar: tuple[np.ndarray, np.ndarray],
+          alpha: np.ndarray, eps: float, lo: np.ndarray, hi: np.ndarray, k: np.ndarray,
+          j: np.ndarray) -> np.ndarray:
+    """Which pairs (interval k, point j) pass the exact filter: the point's best reach
+    over the interval ``alpha[lo[k]] … alpha[hi[k]]`` is not below the support's worst
+    there, less ``eps``. Every interval's pairs must hold every point that supports
+    somewhere on it (true of all points, and kept true by the filter). ``polar``: each
+    point's distance from the origin and the angle of its crest, in [0, 2π)."""
+    r, crest = polar
+    lo_a, hi_a = alpha[lo], alpha[hi]
+    aj, bj = a[j], b[j]
+    reach_lo = np.cos(lo_a)[k] * aj + np.sin(lo_a)[k] * bj
+    reach_hi = np.cos(hi_a)[k] * aj + np.sin(hi_a)[k] * bj
     best = np.maximum(reach_lo, reach_hi)
-    crest = interval(np.arctan2(b, a))
-    has = np.flatnonzero(crest >= 0)
-    best[crest[has], has] = r[has]
-    s = np.argmax(reach_lo, axis=1)  # the support at each interval's start
-    rows = np.arange(len(lo_a))
-    worst = np.minimum(reach_lo[rows, s], reach_hi[rows, s])
-    trough = interval(np.arctan2(b[s], a[s]) + np.pi) == rows
-    worst = np.where(trough, -r[s], worst)
-    return np.flatnonzero(np.any(best >= (worst - eps)[:, None], axis=0))
+    cj = crest[j]
+    inside = (cj >= lo_a[k]) & (cj <= hi_a[k])
+    best[inside] = r[j[inside]]
+    # the support at each interval's start, and the lowest it reaches over the interval
+    top = np.full(len(lo), -np.inf)
+    np.maximum.at(top, k, reach_lo)
+    s = np.empty(len(lo), dtype=np.int64)
+    at_top = np.flatnonzero(reach_lo == top[k])
+    s[k[at_top]] = at_top  # a pair supporting each interval's start (any of ties)
+    worst = np.minimum(reach_lo[s], reach_hi[s])
+    trough = np.mod(cj[s] + np.pi, 2 * np.pi)
+    worst = np.where((trough >= lo_a) & (trough <= hi_a), -r[j[s]], worst)
+    return best >= worst[k] - eps
+
+
+def _sweep_pairs(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, eps: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """(angle index, point index) pairs holding, at every angle of the sweep, every point
+    whose reach ``a cos α + b sin α`` comes within ``eps`` of the support there (the
+    points projected to ``(a, b)`` in the plane of the sweep).
+
+    Exact (no pair that matters is dropped): a fixed point's reach is a sinusoid, whose
+    extremes over an interval of angles are at its ends or its crest (trough) inside
+    it, and the support is at least the reach of the point supporting an interval's
+    start. The filter runs interval by interval, coarse then fine, each pass on the
+    pairs the last one kept: on a smooth surface an interval's own candidates are the
+    few points near the part of the rim it sweeps, where one candidate list for the
+    whole sweep would hold the whole rim at every angle.
+    """
+    m = len(alpha)
+    r, crest = np.hypot(a, b), np.mod(np.arctan2(b, a), 2 * np.pi)
+    # the first pass over every point at once: the reach at each interval's two ends
+    lo, hi = _intervals(m, _LEVELS[0])
+    ends = alpha[np.append(lo, hi[-1])]
+    reach = np.cos(ends)[:, None] * a + np.sin(ends)[:, None] * b
+    best = np.maximum(reach[:-1], reach[1:])
+    inside = np.searchsorted(ends, crest, side="right") - 1
+    inside[crest == ends[-1]] = len(lo) - 1
+    has = np.flatnonzero((inside >= 0) & (inside < len(lo)))
+    best[inside[has], has] = r[has]
+    s = np.argmax(reach[:-1], axis=1)  # the support at each interval's start
+    rows = np.arange(len(lo))
+    worst = np.minimum(reach[:-1][rows, s], reach[1:][rows, s])
+    trough = np.mod(crest[s] + np.pi, 2 * np.pi)
+    worst = np.where((trough >= alpha[lo]) & (trough <= alpha[hi]), -r[s], worst)
+    k, j = np.nonzero(best >= (worst - eps)[:, None])
+    for level, coarse in enumerate(_LEVELS[1:], start=1):
+        # each kept interval's pairs, split into the finer intervals inside it
+        per = _LEVELS[level - 1] // coarse
+        lo, hi = _intervals(m, coarse)
+        count = np.minimum((k + 1) * per, len(lo)) - k * per
+        j = np.repeat(j, count)
+        k = _expand(k * per, count)
+        keep = _keep(a, b, (r, crest), alpha, eps, lo, hi, k, j)
+        k, j = k[keep], j[keep]
+    stop = np.where(k == len(lo) - 1, m, hi[k])  # the last interval holds the last angle
+    count = stop - lo[k]
+    return _expand(lo[k], count), np.repeat(j, count)
 
 
 def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24) -> Rocking:
@@ -131,14 +187,16 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
     tilts = np.empty(len(directions))
     for k, direction in enumerate(directions):  # a few dozen ways, each vectorised
         u = np.cos(alpha)[:, None] * down + np.sin(alpha)[:, None] * direction
-        pts = points
-        for coarse in _COARSE:  # a cheap wide pass, then a tight one on what is left
-            pts = pts[_candidates(pts @ down, pts @ direction, alpha, eps, coarse)]
-        reach = u @ pts.T
-        top = reach.max(axis=1)
+        at, j = _sweep_pairs(points @ down, points @ direction, alpha, eps)
+        reach = np.einsum("pd,pd->p", u[at], points[j])
+        top = np.full(len(alpha), -np.inf)
+        np.maximum.at(top, at, reach)
         heights[k] = top
-        near = reach >= top[:, None] - eps
-        contact = (near @ pts) / near.sum(axis=1, keepdims=True)
+        near = reach >= top[at] - eps
+        at, j = at[near], j[near]
+        contact = np.stack([np.bincount(at, weights=points[j, d], minlength=len(alpha))
+                            for d in range(dim)], axis=1)
+        contact /= np.bincount(at, minlength=len(alpha))[:, None]
         cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
         theta = np.arccos(np.clip(cosine, -1.0, 1.0))
         peak = np.maximum.accumulate(theta)
