@@ -158,6 +158,7 @@ def balance(body, down=None, *, margin: float | None = None,
         toward = np.asarray(toward, dtype=float)
     every = None if toward is not None else require_tilt_deg
     before = check(body, down, g=g, props=props, require_tilt_deg=every)
+    given = target is not None
     if target is None:
         tilt = None if require_tilt_deg is None else float(np.radians(require_tilt_deg))
         target = target_for(body, margin=margin, require_tilt=tilt, support=before.support,
@@ -180,8 +181,9 @@ def balance(body, down=None, *, margin: float | None = None,
                 f"({density - net:g} kg/m³): a pocket of it would make the body lighter there")
     plan = plan_ballast(body if region is None else region, target, props.mass,
                         before.center_of_mass, density=net, shape=shape, depth=depth)
-    if plan.mass > 0 and meets(before, margin, require_tilt_deg, before.support.tolerance,
-                               toward):
+    already = (target.met_by(before.center_of_mass, before.support.tolerance) if given else
+               meets(before, margin, require_tilt_deg, before.support.tolerance, toward))
+    if plan.mass > 0 and already:
         # the check's own numbers say it meets the target already: a plan of a few
         # round-off kilograms is no ballast
         from dataclasses import replace

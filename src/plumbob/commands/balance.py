@@ -11,11 +11,13 @@ from __future__ import annotations
 import argparse
 
 from ._common import (
+    add_load_arguments,
     add_orientation_arguments,
     add_stability_arguments,
     header,
     length,
     open_body,
+    option_loads,
     pose_down,
     print_json,
     requirement,
@@ -56,6 +58,11 @@ def register(subparsers) -> None:
     parser.add_argument("--ballast-shape", choices=("box", "cylinder"), default="box",
                         help="the ballast's shape with --ballast-material (default box; a "
                              "lamina's is a square through its thickness)")
+    add_load_arguments(parser)
+    parser.add_argument("--standard", metavar="NAME",
+                        help="the least ballast that passes a standard's bundle (iec62368-1: "
+                             "its tilt test or its force test, whichever needs less; "
+                             "docs/standards.md)")
     hollowing = parser.add_argument_group("hollowing (see docs/printing.md)")
     hollowing.add_argument("--wall", type=length, metavar="T",
                            help="hollow it first: keep walls T thick (e.g. 2mm) and empty cells "
@@ -200,6 +207,9 @@ def run(args) -> int:
     from ._common import load_body
 
     reading, props, notes = open_body(args)
+    loads = option_loads(args, reading)
+    if loads or args.standard is not None:
+        return _run_loaded(args, reading, props, notes, loads)
     body, props, carved = _hollow(args, reading, props)
     down, margin, tilt, toward = _target(args, body, props)
     region = None
@@ -225,4 +235,57 @@ def run(args) -> int:
         if carved is not None:
             print(_hollow_text(carved, scale))
         print(_text(result, args.path, kind, notes, scale))
+    return 0 if result.passes else 1
+
+
+def _run_loaded(args, reading, props, notes, loads) -> int:
+    """balance with --force/--hang/--push/--press or --standard: the least ballast that
+    stands under the loads (factor of safety ≥ 1), or passes the standard."""
+    import numpy as np
+
+    from ..balance.loaded import balance_standard, balance_under_loads
+    from ..errors import StabilityError
+    from ..report import loads_report
+
+    if args.wall is not None or args.margin is not None or args.require_tilt is not None:
+        raise StabilityError("with loads or --standard, balance finds the ballast for them "
+                             "alone: leave out --wall, --margin and --require-tilt")
+    if loads and args.standard is not None:
+        raise StabilityError("give loads or --standard, not both (a standard sets its own)")
+    body = reading.body
+    down = args.down
+    if args.target_pose is not None:
+        down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
+    options = {"shape": args.ballast_shape, "props": props}
+    if args.ballast_material:
+        from ..materials import material
+
+        options.update(material=args.ballast_material,
+                       density=material(args.ballast_material).density)
+    if args.ballast_region:
+        from ._common import load_body
+
+        region_args = argparse.Namespace(**{**vars(args), "path": args.ballast_region})
+        options["region"] = load_body(region_args).body
+    req = requirement(args, down, loads)
+    if args.standard is not None:
+        result = balance_standard(body, args.standard, req, **options)
+    else:
+        result = balance_under_loads(body, req, **options)
+    kind = getattr(body, "kind", "solid")
+    plain = getattr(result, "ballast", result)
+    if args.json:
+        out = {**header(reading, kind), **result.as_dict()}
+        if args.standard is not None:
+            out["standard"] = args.standard
+        print_json(out, reading, notes)
+    else:
+        scale = float(np.linalg.norm(np.ptp(body.hull_points(), axis=0)))
+        print(_text(plain, args.path, kind, notes, scale))
+        if hasattr(result, "after"):
+            which = f" ({args.standard}: its {result.test} test)" if args.standard else ""
+            print(f"\nwith the ballast{which}:")
+            print(loads_report(result.after.loaded, None, scale))
+        elif args.standard:
+            print(f"\n({args.standard}: its tilt test needs the least ballast)")
     return 0 if result.passes else 1

@@ -29,7 +29,7 @@ turns positive.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -40,7 +40,7 @@ from .reach import corners_below, surface_facets
 from .requirement import Requirement
 from .support import Support
 
-__all__ = ["LoadMoment", "LoadVerdict", "under_loads"]
+__all__ = ["LoadMoment", "LoadVerdict", "EdgeMoments", "edge_moments", "under_loads"]
 
 
 @dataclass(frozen=True, repr=False)
@@ -208,9 +208,31 @@ def _first_slide(h_w: np.ndarray, n_w: float, h_l: np.ndarray, n_l: float,
     return float(min(roots)) if roots else float("inf")
 
 
-def under_loads(body, sup: Support, mass: float, req: Requirement) -> LoadVerdict:
-    """The verdict of ``body`` (``mass`` kg, support ``sup``) under ``req.loads`` (see the
-    module's docstring); ``req`` also gives g, the tilt and the friction."""
+class EdgeMoments(NamedTuple):
+    """Every force's moment about every support edge (see :func:`edge_moments`).
+
+    names, kinds: per force (the body's weight first). points, forces: (L, m, dim), m and
+    N, per force and edge (a search's point and force differ by edge). moments: (L, m),
+    N·m, positive overturns. starts, ends, normals: (m, dim) the edges (body frame).
+    way: the floor's descending direction ((dim,) or per edge), or None when level.
+    notes: what to know about the searches.
+    """
+
+    names: list
+    kinds: list
+    points: np.ndarray
+    forces: np.ndarray
+    moments: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    normals: np.ndarray
+    way: Any
+    notes: list
+
+
+def edge_moments(body, sup: Support, mass: float, req: Requirement) -> EdgeMoments:
+    """The moments of the body's weight (``mass`` kg) and of ``req.loads`` about every edge
+    of the support ``sup``, with the floor tilted as ``req`` asks."""
     dim = sup.dim
     for load in req.loads:
         if getattr(load, "dim", None) not in (None, dim):
@@ -241,6 +263,18 @@ def under_loads(body, sup: Support, mass: float, req: Requirement) -> LoadVerdic
                           else load.mass * gravity)
     points_arr, forces_arr = np.array(points, dtype=float), np.array(forces, dtype=float)
     moments = _moments(points_arr, forces_arr, starts, normals, up)  # (L, m)
+    return EdgeMoments(names, kinds, points_arr, forces_arr, moments, starts, ends, normals,
+                       way, notes)
+
+
+def under_loads(body, sup: Support, mass: float, req: Requirement) -> LoadVerdict:
+    """The verdict of ``body`` (``mass`` kg, support ``sup``) under ``req.loads`` (see the
+    module's docstring); ``req`` also gives g, the tilt and the friction."""
+    em = edge_moments(body, sup, mass, req)
+    names, kinds, points_arr, forces_arr, moments = em.names, em.kinds, em.points, em.forces, \
+        em.moments
+    starts, ends, normals, way, notes = em.starts, em.ends, em.normals, em.way, em.notes
+    up = sup.frame.up
     overturning = np.maximum(moments, 0.0).sum(axis=0)
     resisting = np.maximum(-moments, 0.0).sum(axis=0)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
