@@ -95,3 +95,23 @@ def test_check_exit_status_follows_the_bundle(capsys, tmp_path):
     assert main(["check", str(spec), "--standard", "iec62368-1"]) == 1
     text = capsys.readouterr().out
     assert "FAIL  tilt" in text and "3rd edition (2018)" in text and "not a certification" in text
+
+
+def test_batch_adds_a_column_per_test_and_the_loads(tmp_path):
+    import csv
+    import shutil
+
+    for name in ("block.toml", "cabinet.toml"):
+        shutil.copy(os.path.join(SHAPES, name), tmp_path / name)
+    out = tmp_path / "rows.csv"
+    assert main(["batch", str(tmp_path), "--out", str(out), "--hang", "5@0.2,0.2,0.5",
+                 "--standard", "iec62368-1", "--jobs", "1", "--quiet"]) == 0
+    rows = {os.path.basename(r["path"]): r for r in csv.DictReader(open(out, encoding="utf-8"))}
+    assert rows["block.toml"]["standard_passes"] == "True"
+    assert rows["cabinet.toml"]["standard_passes"] == "False"
+    for r in rows.values():
+        assert {"std_tilt_passes", "std_tilt_margin", "std_force_passes", "std_force_margin",
+                "load_verdict", "overturning_safety_factor"} <= set(r)
+    single = run_standard(read(os.path.join(SHAPES, "cabinet.toml")).body, "iec62368-1")
+    assert math.isclose(float(rows["cabinet.toml"]["std_tilt_margin"]), single.tests[0].margin,
+                        rel_tol=1e-12)

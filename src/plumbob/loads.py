@@ -18,7 +18,7 @@ import numpy as np
 from .arguments import non_negative, positive, vector
 from .errors import StabilityError
 
-__all__ = ["Force", "Hang", "Push", "Press", "Load", "Extendable", "is_search"]
+__all__ = ["Force", "Hang", "Push", "Press", "Load", "Extendable", "is_search", "loads_from_options"]
 
 
 def _point(at, what: str) -> np.ndarray:
@@ -181,3 +181,20 @@ class Extendable:
         object.__setattr__(self, "volume", non_negative(self.volume, f"{label}'s volume (m³)",
                                                         error=StabilityError))
         object.__setattr__(self, "parts", tuple(self.parts) or (self.name,))
+
+
+def loads_from_options(options, scale: float = 1.0) -> tuple:
+    """Loads from the command line's parsed ``--force``/``--hang``/``--push``/``--press``
+    values — ``("force", [FX, FY, FZ], [X, Y, Z])``, ``("hang", M, [X, Y, Z])``,
+    ``("push" or "press", F, H or None)`` — with points and heights in a file's length unit
+    (``scale`` metres per unit)."""
+    made = []
+    for kind, value, where in options or ():
+        if kind == "force":
+            made.append(Force(value, [scale * v for v in where]))
+        elif kind == "hang":
+            made.append(Hang(value, [scale * v for v in where]))
+        else:
+            made.append((Push if kind == "push" else Press)(
+                value, None if where is None else scale * where))
+    return tuple(made)

@@ -62,6 +62,20 @@ _CHECK = [Field("verdict", "str"), Field("stands", "bool"), Field("margin", "flo
 _SLOPE = [Field("slope_verdict", "str"), Field("slope_topples", "bool"),
           Field("slope_tipping_angle_deg", "float")]
 _REQUIRE = [Field("required_tilt_deg", "float"), Field("passes", "bool")]
+_LOADS = [Field("load_verdict", "str"), Field("overturning_safety_factor", "float"),
+          Field("resisting_moment", "float"), Field("overturning_moment", "float")]
+
+
+def _standard_fields(name: str) -> list[Field]:
+    """``standard_passes`` and, per test of the standard, ``std_<test>_passes`` and
+    ``std_<test>_margin`` (the least over its cases)."""
+    from ..stability.standards import PRESETS
+
+    out = [Field("standard_passes", "bool")]
+    for test in PRESETS[name].tests:
+        out += [Field(f"std_{test.name}_passes", "bool"),
+                Field(f"std_{test.name}_margin", "float")]
+    return out
 _POSES = [Field("poses", "int"), Field("poses_method", "str"), Field("pose_probability", "float"),
           _vec("pose_down"), Field("pose_com_height", "float"),
           Field("pose_critical_tilt_deg", "float"), Field("pose_energy_barrier", "float")]
@@ -82,6 +96,10 @@ def result_fields(options: Options) -> list[Field]:
             fields = fields + _SLOPE
         if options.require_tilt is not None:
             fields = fields + _REQUIRE
+        if options.load_options:
+            fields = fields + _LOADS
+        if options.standard is not None:
+            fields = fields + _standard_fields(options.standard)
     if options.poses:
         fields = fields + _POSES
     fields = fields + [Field(f"{fmt}_inertial", "str") for fmt in options.inertial]

@@ -34,6 +34,10 @@ class Options:
     pose_table: also return every pose of every file (the long-format pose table).
     inertial: simulator inertial blocks to add as columns (``urdf``, ``sdf``, ``mjcf``).
     timeout: seconds allowed per file; None: no limit.
+    load_options: the parsed ``--force``/``--hang``/``--push``/``--press`` values (points
+        in each file's length unit; :func:`plumbob.loads.loads_from_options`): the check
+        under loads, with its factor of safety.
+    standard: a standard's name (``--standard``): a column per test.
     """
 
     units: str | None = None
@@ -50,6 +54,8 @@ class Options:
     pose_table: bool = False
     inertial: tuple[str, ...] = ()
     timeout: float | None = None
+    load_options: tuple = ()
+    standard: str | None = None
 
     def __post_init__(self) -> None:
         unknown = [f for f in self.inertial if f not in INERTIAL_FORMATS]
@@ -73,16 +79,33 @@ class Options:
             unit_vector(self.down, "down")  # not zero, finite, 2 or 3 numbers
             object.__setattr__(self, "down", tuple(float(v) for v in self.down))
         object.__setattr__(self, "inertial", tuple(self.inertial))
-        # A tilt, a down direction or a design check only mean something to the check.
-        if any(v is not None for v in (self.down, self.tilt, self.toward, self.require_tilt)):
+        object.__setattr__(self, "load_options", tuple(
+            (kind, tuple(v) if isinstance(v, (list, tuple)) else v,
+             tuple(w) if isinstance(w, (list, tuple)) else w)
+            for kind, v, w in self.load_options))
+        if self.standard is not None:
+            from ..stability.standards import PRESETS
+
+            if self.standard not in PRESETS:
+                raise PlumbobError(f"unknown standard {self.standard!r}; plumbob models: "
+                                   f"{', '.join(PRESETS)}")
+        # A tilt, a down direction, a design check or loads only mean something to the check.
+        if any(v is not None for v in (self.down, self.tilt, self.toward, self.require_tilt,
+                                       self.standard)) or self.load_options:
             object.__setattr__(self, "check", True)
         if self.pose_table:
             object.__setattr__(self, "poses", True)
 
-    def requirement(self):
-        """The check's :class:`~plumbob.stability.requirement.Requirement` (the same for
-        every file)."""
+    def requirement(self, reading=None):
+        """The check's :class:`~plumbob.stability.requirement.Requirement`: the same for
+        every file, but for the loads' points, in each file's length unit (``reading``)."""
+        from ..loads import loads_from_options
         from ..stability.requirement import Requirement
+        from ..units import length_scale
 
+        loads = ()
+        if reading is not None:
+            loads = tuple(reading.loads) + loads_from_options(
+                self.load_options, length_scale(reading.length_unit))
         return Requirement(self.down, self.g, self.tilt, self.toward,
-                           require_tilt_deg=self.require_tilt)
+                           require_tilt_deg=self.require_tilt, loads=loads)

@@ -73,7 +73,7 @@ def check_row(reading, props, options: Options) -> dict[str, Any]:
     keys with a ``slope_`` prefix)."""
     from ..stability import check
 
-    v = check(reading.body, requirement=options.requirement(), props=props)
+    v = check(reading.body, requirement=options.requirement(reading), props=props)
     row = {"verdict": v.verdict, "stands": v.stands, "margin": v.margin,
            "critical_tilt_deg": v.critical_tilt_deg, "critical_direction": v.critical_direction,
            "energy_to_topple": v.energy_to_topple, "com_height": v.com_height, "down": v.down,
@@ -83,6 +83,22 @@ def check_row(reading, props, options: Options) -> dict[str, Any]:
                    slope_tipping_angle_deg=v.slope.tipping_angle_deg)
     if v.required_tilt_deg is not None:
         row.update(required_tilt_deg=v.required_tilt_deg, passes=v.passes)
+    if v.loaded is not None:
+        lv = v.loaded
+        row.update(load_verdict=lv.verdict,
+                   overturning_safety_factor=lv.overturning_safety_factor,
+                   resisting_moment=lv.resisting_moment,
+                   overturning_moment=lv.overturning_moment)
+    if options.standard is not None:
+        from ..stability.standards import run_standard
+
+        std = run_standard(reading.body, options.standard, v.requirement.replace(loads=()),
+                           extendables=reading.extendables, props=props)
+        row["standard_passes"] = std.passes
+        for test in std.tests:
+            key = f"std_{test.name}"
+            row[f"{key}_passes"] = row.get(f"{key}_passes", True) and test.passes
+            row[f"{key}_margin"] = min(row.get(f"{key}_margin", float("inf")), test.margin)
     return _plain(row)
 
 

@@ -42,6 +42,8 @@ __all__ = [
     "add_orientation_arguments",
     "pose_down",
     "add_load_arguments",
+    "force_option",
+    "hang_option",
     "option_loads",
     "requirement",
     "load_body",
@@ -398,18 +400,10 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
 def option_loads(args: argparse.Namespace, reading: Reading) -> tuple:
     """The loads of the options (``--force``, ``--hang``, ``--push``, ``--press``) with the
     spec's ``[[load]]`` tables, points and heights scaled to metres by the body's unit."""
-    from ..loads import Force, Hang, Press, Push
+    from ..loads import loads_from_options
 
-    scale = length_scale(reading.length_unit)
-    made = []
-    for kind, value, where in getattr(args, "load_options", None) or ():
-        if kind == "force":
-            made.append(Force(value, [scale * v for v in where]))
-        elif kind == "hang":
-            made.append(Hang(value, [scale * v for v in where]))
-        else:
-            made.append((Push if kind == "push" else Press)(
-                value, None if where is None else scale * where))
+    made = loads_from_options(getattr(args, "load_options", None),
+                              length_scale(reading.length_unit))
     return tuple(reading.loads) + tuple(made)
 
 

@@ -13,6 +13,8 @@ from ..units import SEED_GRAVITY
 from ._common import (
     count,
     direction,
+    force_option,
+    hang_option,
     length_unit,
     material_name,
     non_negative,
@@ -81,6 +83,13 @@ def register(subparsers) -> None:
                       help="the tilted plane descends toward this direction (default: worst)")
     body.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                       help="design check: it must not topple when tilted DEG degrees")
+    body.add_argument("--force", type=force_option, action="append", dest="load_options",
+                      metavar="FX,FY,FZ@X,Y,Z", help="--check under a force (N) at a point "
+                                                      "(in each file's unit); repeatable")
+    body.add_argument("--hang", type=hang_option, action="append", dest="load_options",
+                      metavar="M@X,Y,Z", help="--check with M kg hung at a point; repeatable")
+    body.add_argument("--standard", metavar="NAME",
+                      help="a column per test of a standard (docs/standards.md)")
     body.add_argument("--g", type=positive, default=SEED_GRAVITY, metavar="G",
                       help=f"gravitational acceleration, m/s² (default {SEED_GRAVITY})")
     harness = parser.add_argument_group("running")
@@ -138,7 +147,8 @@ def run(args: argparse.Namespace) -> int:
         units=args.units, material=args.material, density=args.density, repair=args.repair,
         check=args.check, down=args.down, tilt=args.tilt, toward=args.toward,
         require_tilt=args.require_tilt, g=args.g, poses=args.poses or bool(args.pose_table),
-        pose_table=bool(args.pose_table), inertial=args.inertial, timeout=args.timeout)
+        pose_table=bool(args.pose_table), inertial=args.inertial, timeout=args.timeout,
+        load_options=tuple(args.load_options or ()), standard=args.standard)
     result = run_batch(args.inputs, options, out=args.out, pose_out=args.pose_table,
                        jobs=args.jobs, threads_per_job=args.threads_per_job,
                        scheduler=args.scheduler, resume=args.resume,
