@@ -14,7 +14,7 @@ from make_bad_inputs import ascii_stl, binary_stl, cube, model_xml, three_mf  # 
 from plumbob import limits  # noqa: E402
 from plumbob.bodies.csg import Assembly  # noqa: E402
 from plumbob.bodies.solid import MeshSolid  # noqa: E402
-from plumbob.errors import FormatError, GeometryError, LimitError  # noqa: E402
+from plumbob.errors import ArgumentError, FormatError, GeometryError, LimitError  # noqa: E402
 from plumbob.formats import read  # noqa: E402
 from plumbob.formats.meshes import read_mesh  # noqa: E402
 
@@ -89,7 +89,9 @@ def test_3mf_units_come_from_the_file(tmp_path):
     reading = read(path)
     assert reading.body.mass_properties().volume == pytest.approx(1e-6, rel=1e-15)
     assert "units: millimeter (from the file)" in reading.notices
-    override = read(path, units="cm")
+    with pytest.raises(ArgumentError, match="--units-override"):
+        read(path, units="cm")  # contradicts the file's unit
+    override = read(path, units="cm", units_override=True)
     assert override.body.mass_properties().volume == pytest.approx(1e-3, rel=1e-15)
     assert any("file says millimeter" in n for n in override.notices)
 

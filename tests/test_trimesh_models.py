@@ -4,7 +4,8 @@ trimesh (issue 10's acceptance, on the files kept in ``tests/data/trimesh_models
 Each file ends in exit status 0 or 2 (run through ``cli.main`` in this process: the
 time and memory limits of bad files are tested case by case in test_hostile_meshes). Where trimesh
 calls it one watertight, consistently wound volume, plumbob reads it and agrees to
-1e-9 in volume, centre of mass and inertia (in the file's own units: ``--units m``).
+1e-9 in volume, centre of mass and inertia (in the file's own units: ``--units m
+--units-override``, a 3MF's millimetres read as trimesh reads them).
 Where trimesh's watertight volume is several bodies, plumbob agrees too unless the
 bodies overlap, which it then says it united. Anything refused is refused in one line.
 """
@@ -59,7 +60,8 @@ def test_the_kept_models_are_here_with_their_licence():
 @pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])
 def test_model_reads_as_trimesh_says_or_is_refused_in_one_line(path, capsys):
     verdict, mesh = trimesh_verdict(path)
-    outcome = run_in_process(capsys, "mass", path.name, "--json", "--units", "m", cwd=DATA)
+    outcome = run_in_process(capsys, "mass", path.name, "--json", "--units", "m",
+                             "--units-override", cwd=DATA)
     if outcome.status == 2:
         line = assert_bad_input(outcome)
         assert verdict not in ("volume", "bodies"), f"refused a trimesh volume: {line}"
@@ -76,7 +78,8 @@ def test_model_reads_as_trimesh_says_or_is_refused_in_one_line(path, capsys):
 
 
 def test_a_solidworks_export_with_round_off_copies_is_one_watertight_body():
-    outcome = run_limited("mass", "idler_riser.STL", "--json", "--units", "m", cwd=DATA)
+    outcome = run_limited("mass", "idler_riser.STL", "--json", "--units", "m",
+                          "--units-override", cwd=DATA)
     assert outcome.status == 0, outcome.stderr
     data = json.loads(outcome.stdout)
     assert any(n.startswith("weld: merged") and "not identical" in n for n in data["notices"])
@@ -91,7 +94,8 @@ def test_featuretype_3mf_closes_through_t_junctions():
     # trimesh calls it open: 18 of its edges are unshared. They form two slits along
     # straight edges (vertices lying on another triangle's edge), which span no area,
     # so the surface closes and the divergence theorem's volume is exact.
-    outcome = run_limited("mass", "featuretype.3MF", "--json", "--units", "m", cwd=DATA)
+    outcome = run_limited("mass", "featuretype.3MF", "--json", "--units", "m",
+                          "--units-override", cwd=DATA)
     data = json.loads(outcome.stdout)
     assert any("18 edges end at T-junctions" in n for n in data["notices"])
     _, mesh = trimesh_verdict(DATA / "featuretype.3MF")
@@ -113,7 +117,8 @@ def test_a_real_cad_file_with_a_triangle_deleted_is_refused_for_its_hole(tmp_pat
 def test_a_packed_trimesh_volume_is_read_naming_its_member(name, member, capsys):
     verdict, mesh = trimesh_verdict(DATA / name)
     assert verdict in ("volume", "bodies")  # trimesh reads each as a watertight volume
-    outcome = run_in_process(capsys, "mass", name, "--json", "--units", "m", cwd=DATA)
+    outcome = run_in_process(capsys, "mass", name, "--json", "--units", "m",
+                             "--units-override", cwd=DATA)
     assert outcome.status == 0, outcome.stderr
     data = json.loads(outcome.stdout)
     assert disagreement(data, mesh) <= 1e-9

@@ -150,9 +150,14 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    from .commands._common import flush_notices
+
+    succeeded = False
     try:
         with _escaped_output():
-            return int(args.func(args) or 0)
+            status = int(args.func(args) or 0)
+        succeeded = True
+        return status
     except PlumbobError as error:
         print(f"plumbob: {printable(error)}", file=sys.stderr)
         return 2
@@ -177,6 +182,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"plumbob: internal error ({type(error).__name__}: {detail}); this is a bug in "
               "plumbob, please report it; set PLUMBOB_DEBUG=1 for the traceback", file=sys.stderr)
         return INTERNAL_ERROR
+    finally:
+        flush_notices(succeeded)
 
 
 if __name__ == "__main__":

@@ -25,7 +25,7 @@ SUFFIXES = {".toml": "spec", **formats.SUFFIXES}
 def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
          units: str | None = None, repair: bool = False,
          allow_outside_files: bool = False, material: str | None = None,
-         density: float | None = None) -> Reading:
+         density: float | None = None, units_override: bool = False) -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -38,6 +38,10 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
         ``in``, ``ft``); None uses the unit the file declares, else metres (with a
         notice). For a spec that sets no ``units``, its unit; for one that sets
         the same, a notice; for one that sets another, an error (``docs/shapes.md``).
+        A unit that contradicts the one a file declares (3MF, glTF, DXF, a spec's
+        ``units``) is an error, unless ``units_override``.
+    units_override : bool
+        Use ``units`` even where the file declares another unit (with a notice).
     repair : bool
         Close small holes in open meshes, a spec's mesh files included (reported in
         the notices; a notice when there is nothing to repair).
@@ -90,18 +94,22 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
             units = unit_symbol(units)
         except PlumbobError as error:
             raise ArgumentError(f"units: {error.message}", path=path) from None
+    if units_override and units is None:
+        raise ArgumentError("units_override (--units-override) needs units (--units): the unit "
+                            "to read the file in", path=path)
     if material is not None and density is not None:
         raise DensityError("give a material or a density, not both", path=path)
     if formats.file_family(path, SUFFIXES) == "spec":
         from .spec.loader import load_spec  # the spec builders are needed only for specs
 
         reading = load_spec(path, parameters=parameters, units=units, repair=repair,
-                            allow_outside_files=allow_outside_files)
+                            allow_outside_files=allow_outside_files,
+                            units_override=units_override)
     elif parameters:
         raise SpecError(f"parameters ({', '.join(parameters)}) apply only to a TOML spec; "
                         "this file is not one", path=path)
     else:
-        reading = formats.read(path, units=units, repair=repair)
+        reading = formats.read(path, units=units, repair=repair, units_override=units_override)
     if material is not None:
         from .materials import material as named
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .bodies.base import Body
+from .bodies.base import DEFAULT_DENSITY_NOTE, Body
 
 __all__ = ["Reading"]
 
@@ -28,6 +28,8 @@ class Reading:
     (:class:`~plumbob.loads.Force`, :class:`~plumbob.loads.Hang`, …), in metres;
     extendables: the parts its ``[[extendable]]`` tables mark as opening
     (:class:`~plumbob.loads.Extendable`).
+    up: the up axis the file's format specifies (glTF: +y), a unit vector in the body's
+    frame; None when the format has none (then +z is assumed for solids, +y for laminas).
     """
 
     body: Body
@@ -36,3 +38,31 @@ class Reading:
     length_unit: str | None = None
     loads: tuple = ()
     extendables: tuple = ()
+    up: tuple[float, ...] | None = None
+
+    def default_down(self) -> list[float] | None:
+        """Gravity's direction when the user gives none: against the file's up axis, or
+        None (the stability code's own default: −z, −y for a lamina)."""
+        return None if self.up is None else [-float(u) + 0.0 for u in self.up]
+
+    def assumed(self, oriented: bool = False) -> tuple[str, ...]:
+        """What was assumed where neither the file nor the options said, one line each,
+        for the user to see (the command line prints them on stderr): the density of 1
+        when a part gives none, and with ``oriented`` (a question that needs a down
+        direction, none given) the up axis. An assumed unit is already a notice.
+
+        >>> from plumbob.bodies.primitives import box
+        >>> Reading(box(1, 1, 1)).assumed(oriented=True)  # doctest: +NORMALIZE_WHITESPACE
+        ('no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed',
+         'up: +z assumed (the file gives no up axis): it rests toward -z; --down chooses')
+        >>> Reading(box(1, 1, 1, density=2.0), up=(0.0, 1.0, 0.0)).assumed(oriented=True)
+        ()
+        """
+        lines = []
+        if None in self.body.densities():
+            lines.append(DEFAULT_DENSITY_NOTE)
+        if oriented and self.up is None:
+            axis = "y" if self.body.dim == 2 else "z"
+            lines.append(f"up: +{axis} assumed (the file gives no up axis): it rests toward "
+                         f"-{axis}; --down chooses")
+        return tuple(lines)

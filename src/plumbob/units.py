@@ -13,7 +13,7 @@ import re
 
 import numpy as np
 
-from .errors import PlumbobError
+from .errors import ArgumentError, PlumbobError
 
 __all__ = [
     "METRES_PER_UNIT",
@@ -152,12 +152,16 @@ def file_unit_scale(name: str | None) -> float | None:
 
 
 def units_scale(units: str | None, file_units: str | None = None,
-                file_scale: float | None = None) -> tuple[float, tuple[str, ...]]:
+                file_scale: float | None = None, override: bool = False,
+                path: str | None = None) -> tuple[float, tuple[str, ...]]:
     """Metres per file unit, and the notice that says where it came from.
 
     ``units``: what the user passed (``--units``), or None.
     ``file_units``/``file_scale``: the unit the file declares (its name and
     metres per unit), or None when the format carries none (STL, OBJ, …).
+    ``override``: a ``units`` that contradicts the file's unit is used (with a
+    notice) rather than refused (``--units-override``); ``path`` names the file in
+    the refusal.
 
     >>> units_scale("in")
     (0.0254, ())
@@ -165,11 +169,23 @@ def units_scale(units: str | None, file_units: str | None = None,
     (0.001, ('units: millimeter (from the file)',))
     >>> units_scale(None)[1] == (UNITS_ASSUMED,)
     True
+    >>> units_scale("in", "millimeter", 1e-3)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ArgumentError: the file says its unit is millimeter, not in (--units): ...
+    >>> units_scale("in", "millimeter", 1e-3, override=True)[1]
+    ('units: the file says millimeter; in used as --units-override asks',)
     """
     if units is not None:
         scale = length_scale(units)
         if file_units is not None and file_scale is not None and not np.isclose(scale, file_scale):
-            return scale, (f"units: the file says {file_units}; {units} used as --units asks",)
+            if not override:
+                raise ArgumentError(
+                    f"the file says its unit is {file_units}, not {units} (--units): leave "
+                    f"--units out, or pass --units-override to read it in {units} anyway",
+                    path=path)
+            return scale, (f"units: the file says {file_units}; {units} used as --units-override "
+                           "asks",)
         return scale, ()
     if file_units is not None and file_scale is not None:
         return file_scale, (f"units: {file_units} (from the file)",)

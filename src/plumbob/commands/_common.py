@@ -49,6 +49,8 @@ __all__ = [
     "load_body",
     "open_body",
     "print_notices",
+    "flush_notices",
+    "default_down",
     "header",
     "dump_json",
     "print_json",
@@ -197,7 +199,14 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         type=length_unit,
         metavar="UNIT",
         help="length unit of the file's coordinates: m, cm, mm, km, in or ft, in any case or "
-        "spelled out (millimetre, inch); default: the unit the file declares, else metres",
+        "spelled out (millimetre, inch); default: the unit the file declares, else metres. "
+        "One that contradicts the file's declared unit (3MF, glTF, DXF, a spec's units) is "
+        "refused unless --units-override",
+    )
+    parser.add_argument(
+        "--units-override",
+        action="store_true",
+        help="use --units even where the file declares another unit (said in a notice)",
     )
     parser.add_argument(
         "--repair",
@@ -425,6 +434,7 @@ def load_body(args: argparse.Namespace) -> Reading:
     ``--infill`` (the part as printed)."""
     reading = read(
         args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
+        units_override=getattr(args, "units_override", False),
         parameters=parameter_overrides(getattr(args, "parameters", None)),
         allow_outside_files=getattr(args, "allow_outside_files", False),
     )
@@ -446,10 +456,48 @@ def load_body(args: argparse.Namespace) -> Reading:
     return reading
 
 
-def print_notices(reading: Reading, stream=None) -> None:
-    """Notices go to stderr so stdout stays one JSON object."""
-    for notice in reading.notices:
-        print(f"plumbob: note: {printable(notice)}", file=stream or sys.stderr)
+#: notices waiting for the command to succeed (:func:`flush_notices`): a command that
+#: fails says so in one line, never after notes about a reading it could not use
+_PENDING: list[str] = []
+
+
+def print_notices(reading: Reading, stream=None, *, oriented: bool = False) -> None:
+    """Notices go to stderr so stdout stays one JSON object (or one inertial block): the
+    reader's, then what was assumed (:meth:`~plumbob.reading.Reading.assumed`: the
+    density; with ``oriented``, the up axis), one line each, whatever the output. Held
+    until the command succeeds (:func:`flush_notices`) unless a ``stream`` is given."""
+    lines = [f"plumbob: note: {printable(notice)}" for notice in reading.notices + tuple(
+        a for a in reading.assumed(oriented) if a not in reading.notices)]
+    if stream is not None:
+        for line in lines:
+            print(line, file=stream)
+        return
+    _PENDING.extend(line for line in lines if line not in _PENDING)
+
+
+def flush_notices(succeeded: bool) -> None:
+    """Print the held notices on stderr when the command ``succeeded``; forget them either
+    way (the command line calls it once a command ends)."""
+    lines, _PENDING[:] = list(_PENDING), []
+    if succeeded and lines:
+        print("\n".join(lines), file=sys.stderr)
+
+
+def default_down(args: argparse.Namespace, reading: Reading):
+    """Gravity's direction: ``--down``, else against the file's up axis (glTF: −y), else
+    None (the stability code's default, −z)."""
+    down = getattr(args, "down", None)
+    return down if down is not None else reading.default_down()
+
+
+#: the commands that rest a body on the ground (the others need no up axis)
+ORIENTED_COMMANDS = ("check", "balance", "report")
+
+
+def _oriented(args: argparse.Namespace) -> bool:
+    """Whether the command rests the body in a direction the user did not give."""
+    return (getattr(args, "command", None) in ORIENTED_COMMANDS
+            and all(getattr(args, k, None) is None for k in ("down", "pose", "target_pose")))
 
 
 def open_body(args: argparse.Namespace) -> tuple:
@@ -457,7 +505,7 @@ def open_body(args: argparse.Namespace) -> tuple:
     stderr (and into the JSON), the body's own notes (assumed densities, faceted
     booleans) start the report's notes."""
     reading = load_body(args)
-    print_notices(reading)
+    print_notices(reading, oriented=_oriented(args))
     props = reading.body.mass_properties()
     return reading, props, list(props.notes)
 

@@ -14,6 +14,7 @@ from ._common import (
     add_load_arguments,
     add_orientation_arguments,
     add_stability_arguments,
+    default_down,
     header,
     length,
     open_body,
@@ -79,9 +80,10 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-def _target(args, body, props):
+def _target(args, body, props, down=None):
     """(down, margin, tilt in degrees, toward vector or None) from the options, checked
-    once as a :class:`~plumbob.stability.requirement.Requirement`."""
+    once as a :class:`~plumbob.stability.requirement.Requirement`; ``down``: gravity's
+    direction unless a target pose is asked for (None: the default)."""
     from ..errors import StabilityError
 
     if args.tilt is not None and args.require_tilt is not None:
@@ -90,7 +92,6 @@ def _target(args, body, props):
         raise StabilityError("--toward needs --tilt DEG")
     if args.margin is None and args.tilt is None and args.require_tilt is None:
         raise StabilityError("give a target: --margin M, --require-tilt DEG or --tilt DEG")
-    down = args.down
     if args.target_pose is not None:
         down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
     req = requirement(args, down)
@@ -117,7 +118,7 @@ def _hollow(args, reading, props):
     from ..balance.hollow import hollow, write_hollow
     from ..balance.targets import target_for
 
-    down, margin, tilt, toward = _target(args, reading.body, props)
+    down, margin, tilt, toward = _target(args, reading.body, props, default_down(args, reading))
     if toward is not None:
         raise StabilityError("hollowing meets a margin, or a tilt in every direction: "
                              "--toward is for ballast alone")
@@ -211,7 +212,7 @@ def run(args) -> int:
     if loads or args.standard is not None:
         return _run_loaded(args, reading, props, notes, loads)
     body, props, carved = _hollow(args, reading, props)
-    down, margin, tilt, toward = _target(args, body, props)
+    down, margin, tilt, toward = _target(args, body, props, default_down(args, reading))
     region = None
     if args.ballast_region:
         region_args = argparse.Namespace(**{**vars(args), "path": args.ballast_region})

@@ -18,6 +18,7 @@ from ._common import (
     add_orientation_arguments,
     add_report_units_argument,
     add_stability_arguments,
+    default_down,
     header,
     length,
     non_negative,
@@ -83,12 +84,12 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
-def _verdict(args, body, props, loads: tuple = ()):
-    """plumbob's check of ``body`` with the command's options and ``loads``."""
+def _verdict(args, body, props, loads: tuple = (), down=None):
+    """plumbob's check of ``body`` with the command's options and ``loads`` (``down``:
+    gravity's direction when no pose is asked for; None: the default)."""
     from ..stability.verdict import check
 
-    down = args.down if args.pose is None else pose_down(body, args.pose, "--pose", args.g,
-                                                         props)
+    down = down if args.pose is None else pose_down(body, args.pose, "--pose", args.g, props)
     return check(body, requirement=requirement(args, down, loads), tolerance=args.tolerance,
                  props=props)
 
@@ -107,7 +108,7 @@ def _spec_parameters(path: str) -> dict:
     return spec_parameters(path)
 
 
-def _solve(args):
+def _solve(args, down=None):
     """The smallest change of ``--solve-for``'s parameter that meets the requirement."""
     import argparse as _argparse
 
@@ -129,7 +130,7 @@ def _solve(args):
     def evaluate(value: float) -> float:
         given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}), name: value}
         body = load_body(_argparse.Namespace(**{**vars(args), "parameters": given})).body
-        v = _verdict(args, body, body.mass_properties())
+        v = _verdict(args, body, body.mass_properties(), down=down)
         if v.verdict == "neutral":
             return 0.0
         return v.critical_tilt_deg if tilt else v.margin
@@ -159,9 +160,10 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     units = report_units(args, reading)
     body = reading.body
-    v = _verdict(args, body, props, option_loads(args, reading))
+    down = default_down(args, reading)
+    v = _verdict(args, body, props, option_loads(args, reading), down)
     require_finite(v.as_dict())
-    solution = _solve(args) if args.solve_for is not None else None
+    solution = _solve(args, down) if args.solve_for is not None else None
     standard = None
     if args.standard is not None:
         from ..stability.standards import run_standard

@@ -31,7 +31,8 @@ def register(subparsers) -> None:
                         help="also give the inertia tensor about this point (in the file's "
                              "length unit, like its coordinates)")
     parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
-                        help="print the simulator's inertial block instead (SI units)")
+                        help="print the simulator's inertial block instead (SI units); needs "
+                             "a density for every part (--density, --material or the file's)")
     parser.set_defaults(func=run)
 
 
@@ -39,6 +40,12 @@ def run(args: argparse.Namespace) -> int:
     from .mass_report import MassReport
 
     reading = load_body(args)
+    if getattr(args, "format", None) and None in reading.body.densities():
+        from ..errors import DensityError
+
+        raise DensityError(f"--format {args.format} writes a simulator's inertial block, and a "
+                           "part gives no density: 1 kg/m³ would be a wrong mass; give "
+                           "--density or --material", path=args.path)
     units = report_units(args, reading)
     print_notices(reading)
     about = None

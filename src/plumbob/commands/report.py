@@ -65,7 +65,7 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     units = report_units(args, reading)
     body = reading.body
-    verdict = _attempt("stability", lambda: check(body, g=args.g, props=props,
+    verdict = _attempt("stability", lambda: check(body, reading.default_down(), g=args.g, props=props,
                                                   require_tilt_deg=args.require_tilt), notes)
     poses = _attempt("resting poses", lambda: resting_poses(body, g=args.g, props=props), notes)
     if poses is not None:

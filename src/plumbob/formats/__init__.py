@@ -61,20 +61,23 @@ FOREIGN = {
 }
 
 
-def read(path: str, *, units: str | None = None, repair: bool = False) -> Reading:
+def read(path: str, *, units: str | None = None, repair: bool = False,
+         units_override: bool = False) -> Reading:
     """Read the body in the mesh or outline file ``path``; the reader is chosen by the
     file's extension.
 
     ``units``: the length unit of the file's coordinates (``mm``, ``cm``, ``m``,
     ``in``, ``ft``); None uses the unit the file declares, else metres (with a
-    notice). ``repair``: close small holes in open meshes (reported in the notices).
+    notice); one that contradicts the unit a file declares is refused unless
+    ``units_override``. ``repair``: close small holes in open meshes (reported in the
+    notices).
     """
     path = os.fspath(path)
     if path.lower().endswith(".toml"):
         raise InputFileError("is a TOML spec, not a mesh or outline: read it with plumbob.read "
                              "(plumbob.loading.read)", path=path)
     kind = file_family(path, SUFFIXES)
-    return read_checked(path, lambda: _dispatch(kind, path, units, repair))
+    return read_checked(path, lambda: _dispatch(kind, path, units, repair, units_override))
 
 
 def file_family(path: str, suffixes: Mapping[str, str]) -> str:
@@ -116,13 +119,15 @@ def read_checked(path: str, reader: Callable[[], _Read]) -> _Read:
                              path=path) from None
 
 
-def _dispatch(kind: str, path: str, units: str | None, repair: bool) -> Reading:
+def _dispatch(kind: str, path: str, units: str | None, repair: bool,
+              units_override: bool = False) -> Reading:
     if kind == "archive":
         from .archives import read_archive
 
         def member(inner: str) -> Reading:
             family = file_family(inner, SUFFIXES)
-            return read_checked(inner, lambda: _dispatch(family, inner, units, repair))
+            return read_checked(inner, lambda: _dispatch(family, inner, units, repair,
+                                                         units_override))
 
         return read_archive(path, member, _readable)
     if kind == "stl":
@@ -132,10 +137,10 @@ def _dispatch(kind: str, path: str, units: str | None, repair: bool) -> Reading:
     if kind == "mesh":
         from .meshes import read_mesh
 
-        return read_mesh(path, units=units, repair=repair)
+        return read_mesh(path, units=units, repair=repair, units_override=units_override)
     from .outlines import read_outline
 
-    return read_outline(path, units=units)
+    return read_outline(path, units=units, units_override=units_override)
 
 
 def _readable(name: str) -> bool:

@@ -85,11 +85,13 @@ class _Piece:
         return Outline(ring, self.label, self.name, self.error * scale * scale, self.approximation)
 
 
-def read_dxf(path: str, units: str | None = None) -> Reading:
-    """Laminas from the closed outlines of a DXF drawing (see module docstring)."""
+def read_dxf(path: str, units: str | None = None, units_override: bool = False) -> Reading:
+    """Laminas from the closed outlines of a DXF drawing (see module docstring);
+    ``units_override`` as for :func:`plumbob.units.units_scale`."""
     doc = _open(path)
     file_units, file_scale = _file_units(doc.header.get("$INSUNITS", 0), path)
-    scale, notices = units_scale(units, file_units, file_scale)
+    scale, notices = units_scale(units, file_units, file_scale, override=units_override,
+                                 path=path)
     notices = list(notices)
     pieces: list[_Piece] = []
     counts: dict[str, int] = {}

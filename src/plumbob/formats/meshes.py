@@ -12,6 +12,10 @@ refused unread) and every model part is parsed with defusedxml, which refuses
 DTDs and entity declarations (entity-expansion bombs). trimesh itself parses
 with entity resolution off.
 
+glTF and GLB are +y up by their specification: the reading says so (``Reading.up``) and
+the stability commands rest such a body toward −y unless ``--down`` says otherwise; 3MF,
+STL, OBJ and PLY carry no up axis and are taken +z up, as plumbob takes every body.
+
 OBJ face indices are checked before trimesh reads them (:func:`check_obj_indices`):
 an index of 0 (a file counting from 0) or past the vertices would otherwise wrap
 round to another vertex and give a wrong mass without a word.
@@ -36,6 +40,10 @@ from .parts import assemble, stem
 from .solids import mesh_solid
 
 __all__ = ["MESH_SUFFIXES", "read_mesh", "check_3mf_archive", "check_obj_indices"]
+
+#: glTF's up axis, by its specification (3MF, STL, OBJ and PLY are read +z up)
+GLTF_UP = (0.0, 1.0, 0.0)
+GLTF_UP_NOTICE = "up: +y, as glTF specifies: it rests toward -y unless --down says otherwise"
 
 MESH_SUFFIXES = {".obj": "obj", ".ply": "ply", ".off": "off", ".3mf": "3mf", ".glb": "glb",
                  ".gltf": "gltf"}
@@ -109,8 +117,11 @@ def check_3mf_archive(path: str) -> str | None:
     return unit or "millimeter"
 
 
-def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Reading:
-    """Read an OBJ, PLY, OFF, 3MF, GLB or glTF file as a body (see module docstring)."""
+def read_mesh(path: str, units: str | None = None, repair: bool = False,
+              units_override: bool = False) -> Reading:
+    """Read an OBJ, PLY, OFF, 3MF, GLB or glTF file as a body (see module docstring);
+    ``units_override``: a ``units`` that contradicts the unit the file declares is used
+    rather than refused."""
     suffix = os.path.splitext(path)[1].lower()
     file_type = MESH_SUFFIXES.get(suffix)
     if file_type is None:
@@ -130,7 +141,8 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Read
             raise FormatError(f"declares the unknown unit {file_units!r}; pass --units",
                               path=path)
         file_units = None
-    scale, notices = units_scale(units, file_units, file_unit_scale(file_units))
+    scale, notices = units_scale(units, file_units, file_unit_scale(file_units),
+                                 override=units_override, path=path)
     notices = list(notices)
     meshes, skipped = _load(path, file_type)
     if skipped:
@@ -153,8 +165,11 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False) -> Read
                                 scale=scale)
         parts.append(body)
         notices.extend(more)
+    up = GLTF_UP if file_type in ("glb", "gltf") else None
+    if up is not None:
+        notices.append(GLTF_UP_NOTICE)
     return Reading(assemble(parts, stem(path)), tuple(notices), path,
-                   reading_unit(units, file_units))
+                   reading_unit(units, file_units), up=up)
 
 
 def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]:

@@ -35,7 +35,7 @@ OUTLINE_SUFFIXES = (".geojson", ".json", ".wkt", ".wkb", ".csv", ".svg", ".dxf")
 
 
 # ------------------------------------------------------------------ dispatch
-def read_outline(path: str, units: str | None = None) -> Reading:
+def read_outline(path: str, units: str | None = None, units_override: bool = False) -> Reading:
     """Read a lamina file; the format is chosen by the extension."""
     suffix = os.path.splitext(path)[1].lower()
     if suffix == ".svg":
@@ -45,7 +45,7 @@ def read_outline(path: str, units: str | None = None) -> Reading:
     if suffix == ".dxf":
         from .dxf import read_dxf
 
-        return read_dxf(path, units=units)
+        return read_dxf(path, units=units, units_override=units_override)
     data = read_bytes(path)
     scale, notices = units_scale(units)
     if suffix == ".csv":

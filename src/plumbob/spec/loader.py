@@ -77,7 +77,8 @@ def spec_kind(data: dict, default: str) -> Any:
 
 def build_spec(data: dict, path: str = "<spec>", *,
                parameters: Mapping[str, float | str] | None = None, units: str | None = None,
-               repair: bool = False, allow_outside_files: bool = False) -> Reading:
+               repair: bool = False, allow_outside_files: bool = False,
+               units_override: bool = False) -> Reading:
     """The body a parsed spec describes: a shape's body, or a simulation's particles
     at t = 0, with the notices a user should see.
 
@@ -86,7 +87,7 @@ def build_spec(data: dict, path: str = "<spec>", *,
     ``allow_outside_files`` are the caller's load options (:class:`~.values.LoadOptions`,
     the rules in ``docs/shapes.md``): an option that cannot apply is an error or a
     notice, never ignored."""
-    options = LoadOptions(parameters, units, repair, allow_outside_files)
+    options = LoadOptions(parameters, units, repair, allow_outside_files, units_override)
     _check_table(data, path)
     kind = spec_kind(data, "shape")
     if kind == "simulation":
@@ -129,14 +130,14 @@ def parse_simulation(data: dict, path: str | None = None, *,
 
 def load_spec(path: str, *, parameters: Mapping[str, float | str] | None = None,
               units: str | None = None, repair: bool = False,
-              allow_outside_files: bool = False) -> Reading:
+              allow_outside_files: bool = False, units_override: bool = False) -> Reading:
     """Read and build the TOML spec at ``path`` (the options as for :func:`build_spec`);
     ``parameters`` override its ``[parameters]`` entries by name (a number, an
     expression, or a number with a length unit such as ``"30 cm"``)."""
     path = os.fspath(path)
     return read_checked(path, lambda: build_spec(
         _read_toml(path), path, parameters=parameters, units=units, repair=repair,
-        allow_outside_files=allow_outside_files))
+        allow_outside_files=allow_outside_files, units_override=units_override))
 
 
 def spec_parameters(path: str) -> dict[str, float]:
@@ -195,10 +196,14 @@ def _shape_context(data: dict, path: str, options: LoadOptions) -> SpecContext:
         elif asked == unit:
             notices.append(f'units: the spec already says units = "{unit}"; --units {asked} '
                            "changes nothing")
+        elif options.units_override:
+            notices.append(f'units: the spec says units = "{unit}"; {asked} used as '
+                           "--units-override asks")
+            unit = asked
         else:
             raise spec.error("shape.units", f'the spec says units = "{unit}", so the units '
                              f"asked for ({asked}, --units) do not apply: remove the option, "
-                             "or change the spec")
+                             "pass --units-override to use them anyway, or change the spec")
     scale = length_scale(unit)
     names = read_parameters(path, data.get("parameters", {}), options.parameters, scale)
     segments = DEFAULT_SEGMENTS

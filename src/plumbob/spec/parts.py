@@ -156,8 +156,9 @@ def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
         raise spec.error(f"{where}.file", "a mesh part must name a mesh file, not another spec")
     repair = spec.options.repair
     if "units" in t:
+        # the part's own units: the spec's author overrides what the file declares
         reading = read_file(path, units=spec.unit_name(t["units"], f"{where}.units"),
-                            repair=repair)
+                            repair=repair, units_override=True)
     else:
         reading = read_file(path, repair=repair)
         if UNITS_ASSUMED in reading.notices and spec.unit is not None:

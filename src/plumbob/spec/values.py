@@ -54,6 +54,7 @@ class LoadOptions:
     units: the length unit the caller gives (``--units``): the spec's unit when it
         sets none; an error when it sets another.
     repair: close small holes in the spec's mesh files.
+    units_override: ``units`` replaces the spec's own unit (``--units-override``).
     allow_outside_files: let a ``file`` name a path outside the spec's folder
         (absolute, or climbing out with ``..``); refused by default.
     """
@@ -62,6 +63,7 @@ class LoadOptions:
     units: str | None = None
     repair: bool = False
     allow_outside_files: bool = False
+    units_override: bool = False
 
 
 @dataclass(frozen=True)
