@@ -150,7 +150,7 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
-    from .commands._common import flush_notices
+    from .commands._notices import flush_notices
 
     succeeded = False
     try:
