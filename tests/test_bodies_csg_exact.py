@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from plumbob.bodies.csg import difference, union
-from plumbob.bodies.primitives import box, cylinder, sphere
+from plumbob.bodies.primitives import box, cylinder, rectangle, sphere
 
 EXACT = 1e-12
 SEGMENTS = 64  # coarse facets: larger errors for the bounds to cover, and fast
@@ -32,23 +32,24 @@ Box = tuple[tuple[Fraction, Fraction], ...]  # ((x0, x1), (y0, y1), (z0, z1))
 
 
 def _box_moments(b: Box) -> dict:
-    """Volume, first and second moments of a box, as exact fractions."""
-    (x0, x1), (y0, y1), (z0, z1) = b
-    vol = (x1 - x0) * (y1 - y0) * (z1 - z0)
+    """Volume (area), first and second moments of a box (rectangle), as exact fractions."""
+    vol = Fraction(1)
+    for lo, hi in b:
+        vol *= hi - lo
     mean = [(lo + hi) / 2 for lo, hi in b]
     square = [(lo * lo + lo * hi + hi * hi) / 3 for lo, hi in b]
     m = {"v": vol}
-    for i in range(3):
+    for i in range(len(b)):
         m[i] = vol * mean[i]
         m[(i, i)] = vol * square[i]
-        for j in range(i + 1, 3):
+        for j in range(i + 1, len(b)):
             m[(i, j)] = vol * mean[i] * mean[j]
     return m
 
 
 def _meet(boxes) -> Box | None:
     out = []
-    for k in range(3):
+    for k in range(len(boxes[0])):
         lo, hi = max(b[k][0] for b in boxes), min(b[k][1] for b in boxes)
         if lo >= hi:
             return None
@@ -71,7 +72,8 @@ def _union_moments(boxes: list[Box]) -> dict:
 
 
 def exact_properties(added: list[Box], removed: list[Box]):
-    """(volume, centre, inertia) of ∪added − ∪removed, exactly, then rounded once."""
+    """(volume, centre, inertia) of ∪added − ∪removed, exactly, then rounded once (in 2D:
+    area, centre, the 3 × 3 tensor of a lamina in z = 0)."""
     whole = _union_moments(added)
     cut = [c for a in added for r in removed if (c := _meet((a, r))) is not None]
     lost = _union_moments(cut) if cut else {}
@@ -79,9 +81,10 @@ def exact_properties(added: list[Box], removed: list[Box]):
     vol = m["v"]
     if vol <= 0:
         return 0.0, None, None
-    centre = [m[i] / vol for i in range(3)]
-    second = [[m[(min(i, j), max(i, j))] - vol * centre[i] * centre[j] for j in range(3)]
-              for i in range(3)]
+    dim = len(added[0])
+    centre = [m[i] / vol for i in range(dim)]
+    second = [[m[(min(i, j), max(i, j))] - vol * centre[i] * centre[j] if max(i, j) < dim
+               else Fraction(0) for j in range(3)] for i in range(3)]
     trace = sum(second[i][i] for i in range(3))
     inertia = [[(trace if i == j else 0) - second[i][j] for j in range(3)] for i in range(3)]
     return (float(vol), np.array([float(c) for c in centre]),
@@ -90,7 +93,8 @@ def exact_properties(added: list[Box], removed: list[Box]):
 
 def _plumbob_box(b: Box, offset: np.ndarray):
     size = [float(hi - lo) for lo, hi in b]
-    return box(*size, density=1.0).translated([float(lo) for lo, _ in b] + offset)
+    shape = box(*size, density=1.0) if len(b) == 3 else rectangle(*size, density=1.0)
+    return shape.translated([float(lo) for lo, _ in b] + offset)
 
 
 def _errors(props, volume, centre, inertia, radius) -> tuple[float, float, float]:
@@ -107,9 +111,9 @@ _coordinate = st.integers(0, 48).map(lambda k: Fraction(k, 16))
 
 
 @st.composite
-def _boxes(draw) -> Box:
+def _boxes(draw, dim: int = 3) -> Box:
     out = []
-    for _ in range(3):
+    for _ in range(dim):
         lo = draw(_coordinate)
         out.append((lo, lo + Fraction(draw(st.integers(4, 32)), 16)))
     return tuple(out)
@@ -134,6 +138,26 @@ def test_box_booleans_agree_with_exact_rationals(offset, added, removed):
     assert max(errors) <= EXACT, (errors, props.notes)
     assert max(errors) <= max(props.relative_error, EXACT)
     assert "segments per turn" not in " ".join(props.notes)
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6], ids=["origin", "at_1e6"])
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(added=st.lists(_boxes(2), min_size=1, max_size=3),
+       removed=st.lists(_boxes(2), min_size=0, max_size=2))
+def test_rectangle_booleans_agree_with_exact_rationals(offset, added, removed):
+    """The same for laminas: shapely's booleans of polygons, exact but for round-off."""
+    area, centre, inertia = exact_properties(added, removed)
+    assume(area > 0.05 * float(_union_moments(added)["v"]))
+    shift = np.array([offset, -offset / 2])
+    body = union(*(_plumbob_box(b, shift) for b in added))
+    if removed:
+        body = difference(body, *(_plumbob_box(b, shift) for b in removed))
+    props = body.mass_properties()
+    radius = float(np.max(np.linalg.norm(body.hull_points() - centre - shift, axis=1)))
+    errors = _errors(props, area, centre + shift, inertia, radius)
+    assert props.exact, props.notes
+    assert max(errors) <= EXACT, (errors, props.notes)
+    assert max(errors) <= max(props.relative_error, EXACT)
 
 
 def test_l_bracket_is_exact():
