@@ -231,3 +231,13 @@ def test_check_json_and_exit_status_under_loads(capsys):
     assert close(ul["overturning_safety_factor"], ul["resisting_moment"] / ul["overturning_moment"])
     assert main(["check", path, "--json", "--hang=100@0.3,-0.3,1.0"]) == 1
     assert json.loads(capsys.readouterr().out)["under_loads"]["verdict"] == "topples"
+
+
+def test_the_picture_draws_the_loads_and_the_critical_edge():
+    pytest.importorskip("matplotlib")
+    v = check(block(), loads=[Force([300, 0, 0], [0, B / 2, 1.7]), Hang(10.0, [L + 0.2, B / 2, 1])])
+    fig = v.plot(body=block())
+    edges = [line for ax in fig.axes for line in ax.get_lines() if line.get_gid() == "critical edge"]
+    assert len(edges) == 1 and np.allclose(edges[0].get_xdata(), [L, L])
+    texts = " ".join(t.get_text() for ax in fig.axes for t in ax.texts)
+    assert "force: 300 N, 510 N·m" in texts and "under the loads: topples" in fig._suptitle.get_text()

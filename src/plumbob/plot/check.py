@@ -13,6 +13,7 @@ from matplotlib.patches import Polygon
 
 from .geometry import DISPLAY_FACES, Drawing, drawing, in_frame, rest_frame
 from .lamina import draw_com, draw_legend, draw_outline, draw_silhouette
+from .loads import draw_loads
 from .rose import tilt_rose
 from .solid import draw_3d, draw_com_3d, new_3d_axes
 from .style import (
@@ -210,6 +211,11 @@ def _summary(verdict) -> str:
     if verdict.required_tilt_deg is not None:
         text += f"; required tilt {fmt(verdict.required_tilt_deg, 3)}°: " + \
             ("PASS" if verdict.passes else "FAIL")
+    loaded = getattr(verdict, "loaded", None)
+    if loaded is not None:
+        factor = loaded.overturning_safety_factor
+        text += (f"; under the loads: {loaded.verdict}, factor of safety "
+                 f"{'—' if factor is None else fmt(factor, 3)}")
     return text
 
 
@@ -246,7 +252,9 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
     if lamina:
         fig = new_figure((12, 5.4))
         grid = fig.add_gridspec(1, 2, width_ratios=(1.7, 1))
-        _lamina_panel(fig.add_subplot(grid[0, 0]), verdict, d, rows)
+        main = fig.add_subplot(grid[0, 0])
+        _lamina_panel(main, verdict, d, rows)
+        draw_loads(main, verdict, rows, (0, 1), _size(verdict))
         tilt_rose(verdict, fig.add_subplot(grid[0, 1], projection="polar"))
     elif d is None:
         fig = new_figure((11, 5))
@@ -255,7 +263,9 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
     else:
         fig = new_figure((12, 10))
         _solid_3d_panel(new_3d_axes(fig, 2, 2, 1), verdict, d, rows)
-        _side_panel(fig.add_subplot(2, 2, 2), verdict, d, rows)
+        side = fig.add_subplot(2, 2, 2)
+        _side_panel(side, verdict, d, rows)
+        draw_loads(side, verdict, rows, (0, 2), _size(verdict))
         _plan_panel(fig.add_subplot(2, 2, 3), verdict, d, rows)
         tilt_rose(verdict, fig.add_subplot(2, 2, 4, projection="polar"))
     fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict),
