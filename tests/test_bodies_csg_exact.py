@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from plumbob.bodies.csg import difference, union
-from plumbob.bodies.primitives import box, cylinder, rectangle, sphere
+from plumbob.bodies.primitives import box, cylinder, disc, rectangle, sphere
 
 EXACT = 1e-12
 SEGMENTS = 64  # coarse facets: larger errors for the bounds to cover, and fast
@@ -261,3 +261,37 @@ def test_ball_on_a_cylinder_within_its_stated_bound(offset, a, big, length, cut)
     centre = np.array([0, 0, first / volume])
     radius = max(float(np.linalg.norm(p - centre)) for p in far)
     _check_bound(body.mass_properties(), volume, centre + shift, radius)
+
+
+def _segment(r: float, a: float) -> tuple[float, float]:
+    """Area of the circular segment of a disc r cut by a chord at distance a from its
+    centre (the far side), and its centroid's distance from the centre."""
+    alpha = math.acos(a / r)
+    area = r * r * (alpha - math.sin(alpha) * math.cos(alpha))
+    return area, 2 * r * math.sin(alpha) ** 3 / (3 * (alpha - math.sin(alpha) * math.cos(alpha)))
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6], ids=["origin", "at_1e6"])
+@settings(max_examples=6, deadline=None)
+@given(r1=st.floats(0.5, 2.0), r2=st.floats(0.5, 2.0), t=st.floats(0.05, 0.95),
+       cut=st.booleans())
+def test_two_discs_within_their_stated_bound(offset, r1, r2, t, cut):
+    """Laminas: the lens of two discs is two circular segments (closed forms)."""
+    d = abs(r1 - r2) + 0.05 + t * (r1 + r2 - abs(r1 - r2) - 0.1)
+    x0 = (d * d + r1 * r1 - r2 * r2) / (2 * d)
+    (a1, c1), (a2, c2) = _segment(r1, x0), _segment(r2, d - x0)
+    lens, moment = a1 + a2, a1 * c1 + a2 * (d - c2)
+    shift = np.array([offset, offset / 3])
+    a, b = disc(r1, density=1.0).translated(shift), disc(r2, density=1.0).translated(shift + [d, 0])
+    if cut:
+        assume(math.pi * r1 * r1 - lens > 0.05 * math.pi * r1 * r1)
+        body, area, first = difference(a, b, segments=SEGMENTS), math.pi * r1 * r1 - lens, -moment
+        far = [np.array([-r1, 0])]
+    else:
+        body = union(a, b, segments=SEGMENTS)
+        area = math.pi * (r1 * r1 + r2 * r2) - lens
+        first = math.pi * r2 * r2 * d - moment
+        far = [np.array([-r1, 0]), np.array([d + r2, 0])]
+    centre = np.array([first / area, 0])
+    radius = max(float(np.linalg.norm(p - centre)) for p in far)
+    _check_bound(body.mass_properties(), area, centre + shift, radius)

@@ -152,8 +152,9 @@ def box_union(cells: GridCells, chosen: np.ndarray):
     verts = np.stack([cells.lattice[k][keys[:, k]] for k in range(3)], axis=1)
     q = index.reshape(-1, 4)
     tris = np.concatenate((q[:, [0, 1, 2]], q[:, [0, 2, 3]]))
-    mesh = manifold3d.Mesh(vert_properties=verts.astype(np.float64),
-                           tri_verts=tris.astype(np.uint32))
+    # Mesh64: manifold3d's Mesh would round the lattice's corners to float32
+    mesh = manifold3d.Mesh64(vert_properties=np.ascontiguousarray(verts, dtype=np.float64),
+                             tri_verts=tris.astype(np.uint32))
     return manifold3d.Manifold(mesh)
 
 
