@@ -44,3 +44,16 @@ def test_balance_command_with_loads(capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["passes"] and out["after"]["under_loads"]["overturning_safety_factor"] >= 1
     assert out["before"]["under_loads"]["verdict"] == "topples"
+
+
+def test_solve_for_the_widest_foot_under_a_push(tmp_path, capsys):
+    """A box w × 1 × 2 m of 100 kg/m³ pushed along +x with 300 N at 1.5 m stands when
+    W w/2 ≥ 450 N·m, W = 200 g w: w = √(450 / (100 g))."""
+    spec = tmp_path / "wide.toml"
+    spec.write_text('[parameters]\nw = 0.4\n[[part]]\ntype = "box"\nlength = "w"\nwidth = 1\n'
+                    'height = 2\ndensity = 100\n[[load]]\nforce = [300, 0, 0]\nat = [0, 0.5, 1.5]\n')
+    assert main(["check", str(spec), "--solve-for", "w", "--json"]) == 1  # fails as it is
+    out = json.loads(capsys.readouterr().out)
+    sol = out["solution"]
+    assert sol["measure"] == "overturning_safety_factor"
+    assert math.isclose(sol["value"], math.sqrt(450 / (100 * G)), rel_tol=1e-6)

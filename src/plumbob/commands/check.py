@@ -108,17 +108,20 @@ def _spec_parameters(path: str) -> dict:
     return spec_parameters(path)
 
 
-def _solve(args, down=None):
-    """The smallest change of ``--solve-for``'s parameter that meets the requirement."""
+def _solve(args, down=None, loaded: bool = False):
+    """The smallest change of ``--solve-for``'s parameter that meets the requirement
+    (``loaded``: that it stands under its loads, a factor of safety of at least 1)."""
     import argparse as _argparse
 
     from ..balance.solve import solve_parameter
     from ..errors import SpecError, StabilityError
     from ._common import load_body, parameter_overrides
 
-    if (args.require_tilt is None) == (args.margin is None):
-        raise StabilityError("--solve-for needs one requirement: --require-tilt DEG or "
-                             "--margin M")
+    asked = (args.require_tilt is not None) + (args.margin is not None) + loaded
+    if asked != 1:
+        raise StabilityError(f"--solve-for needs {'a' if asked == 0 else 'one'} requirement: "
+                             "--require-tilt DEG, --margin M, or loads (--force, --hang, "
+                             "--push, --press, [[load]])")
     known = _spec_parameters(args.path)
     name = args.solve_for
     if name not in known:
@@ -129,12 +132,20 @@ def _solve(args, down=None):
 
     def evaluate(value: float) -> float:
         given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}), name: value}
-        body = load_body(_argparse.Namespace(**{**vars(args), "parameters": given})).body
-        v = _verdict(args, body, body.mass_properties(), down=down)
+        reading = load_body(_argparse.Namespace(**{**vars(args), "parameters": given}))
+        body = reading.body
+        loads = option_loads(args, reading) if loaded else ()
+        v = _verdict(args, body, body.mass_properties(), loads, down=down)
+        if loaded:
+            factor = v.loaded.overturning_safety_factor
+            return 1e9 if factor is None else factor
         if v.verdict == "neutral":
             return 0.0
         return v.critical_tilt_deg if tilt else v.margin
 
+    if loaded:
+        return solve_parameter(name, known[name], evaluate, 1.0,
+                               measure="overturning_safety_factor")
     return solve_parameter(name, known[name], evaluate,
                            args.require_tilt if tilt else args.margin,
                            measure="critical_tilt_deg" if tilt else "margin")
@@ -145,9 +156,6 @@ def run(args) -> int:
 
     if args.toward is not None and args.tilt is None:
         raise StabilityError("--toward needs --tilt DEG")
-    if args.solve_for is not None and args.require_tilt is None and args.margin is None:
-        raise StabilityError("--solve-for needs a requirement: --require-tilt DEG or "
-                             "--margin M")
     if args.solve_for is not None:
         _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
     explain = getattr(args, "explain", None)
@@ -163,7 +171,8 @@ def run(args) -> int:
     down = default_down(args, reading)
     v = _verdict(args, body, props, option_loads(args, reading), down)
     require_finite(v.as_dict())
-    solution = _solve(args, down) if args.solve_for is not None else None
+    solution = (_solve(args, down, bool(v.loaded is not None)) if args.solve_for is not None
+                else None)
     standard = None
     if args.standard is not None:
         from ..stability.standards import run_standard

@@ -191,9 +191,13 @@ def solution_text(sol) -> str:
     """The line of ``--solve-for``: the smallest change of a parameter that meets the
     requirement, or that it is met already."""
     num = format_number
-    what = (f"critical tilt {num(sol.achieved, 6)}° (≥ {num(sol.required, 4)}°)"
-            if sol.measure == "critical_tilt_deg"
-            else f"stability margin {num(sol.achieved)} m (≥ {num(sol.required)} m)")
+    if sol.measure == "critical_tilt_deg":
+        what = f"critical tilt {num(sol.achieved, 6)}° (≥ {num(sol.required, 4)}°)"
+    elif sol.measure == "overturning_safety_factor":
+        what = (f"factor of safety against overturning {num(sol.achieved, 6)} under the loads "
+                f"(≥ {num(sol.required, 4)})")
+    else:
+        what = f"stability margin {num(sol.achieved)} m (≥ {num(sol.required)} m)"
     if sol.change == 0:
         return f"{sol.name} = {num(sol.start)} meets it already: {what}"
     return (f"smallest change of {sol.name} that meets it: {num(sol.start)} → "
