@@ -1,5 +1,5 @@
-"""The ``>>>`` examples in docs/ run as doctests, from the repository's root (their
-paths, like shapes/spring_pair.toml, are the console examples' paths)."""
+"""The ``>>>`` examples in README.md and docs/ run as doctests, from the repository's
+root (their paths, like shapes/spring_pair.toml, are the console examples' paths)."""
 
 import doctest
 import os
@@ -11,11 +11,12 @@ DOCS = os.path.join(ROOT, "docs")
 WITH_EXAMPLES = sorted(
     name for name in os.listdir(DOCS)
     if name.endswith(".md") and ">>> " in open(os.path.join(DOCS, name), encoding="utf-8").read()
-)
+) + [os.path.join("..", "README.md")]
 
 
 def test_simulate_md_has_examples():
     assert "simulate.md" in WITH_EXAMPLES
+    assert ">>> " in open(os.path.join(ROOT, "README.md"), encoding="utf-8").read()
 
 
 @pytest.mark.parametrize("name", WITH_EXAMPLES)

@@ -90,3 +90,18 @@ def test_through_the_cli(capsys, name, com):
     assert main(["mass", os.path.join(SHAPES, name), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     np.testing.assert_allclose(data["center_of_mass"], com, rtol=1e-13, atol=1e-13 * 230)
+
+
+def test_the_semicircles_centre_is_within_one_ulp_of_4a_over_3pi():
+    """What the docs claim, against 4/(3π) to 50 digits: within one unit in the last
+    place of the double plumbob prints (docs/tutorial.md), not merely close."""
+    import math
+    from decimal import Decimal, getcontext
+
+    from plumbob.loading import read
+
+    getcontext().prec = 50
+    pi = Decimal("3.14159265358979323846264338327950288419716939937510")
+    true = Decimal(4) / (3 * pi)
+    y = read(os.path.join(SHAPES, "semicircle.toml")).body.mass_properties().center_of_mass[1]
+    assert abs(Decimal(float(y)) - true) <= Decimal(math.ulp(float(y)))
