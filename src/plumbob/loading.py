@@ -25,7 +25,9 @@ SUFFIXES = {".toml": "spec", **formats.SUFFIXES}
 def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
          units: str | None = None, repair: bool = False,
          allow_outside_files: bool = False, material: str | None = None,
-         density: float | None = None, units_override: bool = False) -> Reading:
+         density: float | None = None, units_override: bool = False,
+         shell: str | None = None, infill: str | None = None,
+         spelled: str = "keyword") -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -57,6 +59,13 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     material, density : optional
         A material name (``"pla"``) or a density (kg/m³ for solids, kg/m² for laminas)
         for every part that gives none (:func:`with_default_density`); at most one.
+    shell, infill : str, optional
+        The body as printed: walls ``shell`` thick (``"1.2mm"``; a bare number in
+        ``units``) at full density around an interior filled to ``infill`` (``"20%"``,
+        ``0.2``); both or neither (:func:`plumbob.bodies.printed.printed_from_options`).
+    spelled : str
+        How messages name these options: ``"keyword"`` (``material='oak'``) or
+        ``"option"``, as the command line (``--material oak``) and a batch run give them.
 
     Returns
     -------
@@ -110,14 +119,25 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
                         "this file is not one", path=path)
     else:
         reading = formats.read(path, units=units, repair=repair, units_override=units_override)
+    option = spelled == "option"
     if material is not None:
         from .materials import material as named
 
-        return with_default_density(reading, named(material).density, f"material={material!r}")
-    if density is not None:
+        reading = with_default_density(reading, named(material).density,
+                                       f"--material {material}" if option
+                                       else f"material={material!r}")
+    elif density is not None:
         from .materials import check_density
 
-        return with_default_density(reading, check_density(density, "density"), "density")
+        name = "--density" if option else "density"
+        reading = with_default_density(reading, check_density(density, name), name)
+    if shell is not None or infill is not None:
+        from .bodies.printed import printed_from_options
+        from .units import length_scale
+
+        body = printed_from_options(reading.body, shell, infill, scale=length_scale(units),
+                                    where="--shell/--infill" if option else "shell/infill")
+        reading = replace(reading, body=body)
     return reading
 
 

@@ -34,21 +34,13 @@ class FileResult:
 
 
 def read_body(path: str, options: Options):
-    """The file's :class:`~plumbob.formats.Reading`, with ``--density``/``--material`` applied to
-    parts that give none (as the single-file commands do)."""
-    from ..loading import read, with_default_density
-    from ..materials import check_density
+    """The file's :class:`~plumbob.reading.Reading`, with ``--density``/``--material``
+    applied to parts that give none, by the library's one reader
+    (:func:`plumbob.loading.read`), as the single-file commands read it."""
+    from ..loading import read
 
-    reading = read(path, units=options.units, repair=options.repair)
-    if options.material is not None:
-        from ..materials import material
-
-        return with_default_density(reading, material(options.material).density,
-                                    f"--material {options.material}")
-    if options.density is not None:
-        return with_default_density(reading, check_density(options.density, "--density"),
-                                    "--density")
-    return reading
+    return read(path, units=options.units, repair=options.repair, material=options.material,
+                density=options.density, spelled="option")
 
 
 def _plain(values: dict[str, Any]) -> dict[str, Any]:

@@ -11,12 +11,10 @@ import argparse
 import math
 import sys
 from collections.abc import Mapping
-from dataclasses import replace
 from typing import Any
 
 from ..errors import ArgumentError, DynamicsError, PlumbobError, SpecError
-from ..loading import read, with_default_density
-from ..materials import check_density
+from ..loading import read
 from ..reading import Reading
 from ..results import jsonable
 from ..units import SEED_GRAVITY, length_scale
@@ -430,31 +428,22 @@ def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
         getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
 
 
-def load_body(args: argparse.Namespace) -> Reading:
-    """Read ``args.path`` and apply ``--density`` / ``--material``, then ``--shell`` /
-    ``--infill`` (the part as printed)."""
-    reading = read(
-        args.path, units=getattr(args, "units", None), repair=getattr(args, "repair", False),
+def load_body(args: argparse.Namespace, *, path: str | None = None,
+              parameters: Mapping[str, Any] | None = None) -> Reading:
+    """Read ``path`` (default ``args.path``) with the body options of ``args``: ``--units``,
+    ``--repair``, ``--set`` (or ``parameters``), ``--density`` / ``--material``,
+    ``--shell`` / ``--infill``, all applied by :func:`plumbob.loading.read`."""
+    if parameters is None:
+        parameters = parameter_overrides(getattr(args, "parameters", None))
+    return read(
+        args.path if path is None else path, units=getattr(args, "units", None),
+        repair=getattr(args, "repair", False), parameters=parameters,
         units_override=getattr(args, "units_override", False),
-        parameters=parameter_overrides(getattr(args, "parameters", None)),
         allow_outside_files=getattr(args, "allow_outside_files", False),
+        material=getattr(args, "material", None), density=getattr(args, "density", None),
+        shell=getattr(args, "shell", None), infill=getattr(args, "infill", None),
+        spelled="option",
     )
-    if getattr(args, "material", None) is not None:
-        from ..materials import material
-
-        reading = with_default_density(reading, material(args.material).density,
-                                       f"--material {args.material}")
-    elif getattr(args, "density", None) is not None:
-        reading = with_default_density(reading, check_density(args.density, "--density"),
-                                       "--density")
-    if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
-        from ..bodies.printed import printed_from_options
-        from ..units import length_scale
-
-        body = printed_from_options(reading.body, args.shell, args.infill,
-                                    scale=length_scale(getattr(args, "units", None)))
-        reading = replace(reading, body=body)
-    return reading
 
 
 def open_body(args: argparse.Namespace) -> tuple:

@@ -215,8 +215,7 @@ def run(args) -> int:
     down, margin, tilt, toward = _target(args, body, props, default_down(args, reading))
     region = None
     if args.ballast_region:
-        region_args = argparse.Namespace(**{**vars(args), "path": args.ballast_region})
-        region = load_body(region_args).body
+        region = load_body(args, path=args.ballast_region).body
     density = None
     if args.ballast_material:
         from ..materials import material

@@ -111,8 +111,6 @@ def _spec_parameters(path: str) -> dict:
 def _solve(args, down=None, loaded: bool = False):
     """The smallest change of ``--solve-for``'s parameter that meets the requirement
     (``loaded``: that it stands under its loads, a factor of safety of at least 1)."""
-    import argparse as _argparse
-
     from ..balance.solve import solve_parameter
     from ..errors import SpecError, StabilityError
     from ._common import load_body, parameter_overrides
@@ -132,7 +130,7 @@ def _solve(args, down=None, loaded: bool = False):
 
     def evaluate(value: float) -> float:
         given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}), name: value}
-        reading = load_body(_argparse.Namespace(**{**vars(args), "parameters": given}))
+        reading = load_body(args, parameters=given)
         body = reading.body
         loads = option_loads(args, reading) if loaded else ()
         v = _verdict(args, body, body.mass_properties(), loads, down=down)
