@@ -170,3 +170,55 @@ def test_no_room_outside_bodies_switches_on_a_body_kind():
                 if names & kinds:
                     found.append(f"{path.relative_to(PACKAGE)}:{node.lineno} {sorted(names & kinds)}")
     assert not found, f"ask the body instead (a Body method): {found}"
+
+
+#: the most lines a function's code may take (its docstring aside: a numpydoc
+#: docstring with examples is documentation, not logic)
+MAX_FUNCTION_LINES = 100
+
+
+def _code_lines(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    lines = node.end_lineno - node.lineno + 1
+    first = node.body[0]
+    if (isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant)
+            and isinstance(first.value.value, str)):
+        lines -= first.end_lineno - first.lineno + 1
+    return lines
+
+
+def test_no_function_is_over_100_lines():
+    """One function, one job: a longer one is split into named steps."""
+    long = [f"{path.relative_to(PACKAGE)}:{node.lineno} {node.name} ({n} lines)"
+            for path in sorted(PACKAGE.rglob("*.py"))
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
+            and (n := _code_lines(node)) > MAX_FUNCTION_LINES]
+    assert not long, f"split these functions into named steps: {long}"
+
+
+def test_the_function_length_check_sees_a_long_function():
+    """The checker itself: a 101-line body is caught, its docstring not counted."""
+    body = "\n".join(f"    x{i} = {i}" for i in range(101))
+    node = ast.parse(f'def f():\n    """doc\n    more"""\n{body}\n').body[0]
+    assert _code_lines(node) == 102  # the def line and 101 statements
+
+
+def _forged_namespaces(source: str) -> list[int]:
+    """Lines that build an ``argparse.Namespace`` (``Namespace(...)``, however imported)."""
+    return [node.lineno for node in ast.walk(ast.parse(source))
+            if isinstance(node, ast.Call)
+            and (getattr(node.func, "attr", None) == "Namespace"
+                 or getattr(node.func, "id", None) == "Namespace")]
+
+
+def test_no_command_forges_a_namespace():
+    """A command never re-enters the CLI through a hand-built ``argparse.Namespace``:
+    what two commands share is a library call (or a ``_common`` helper taking keywords)."""
+    found = [f"{path.relative_to(PACKAGE)}:{line}" for path in sorted(PACKAGE.rglob("*.py"))
+             for line in _forged_namespaces(path.read_text(encoding="utf-8"))]
+    assert not found, f"call the library (or load_body(args, path=...)) instead: {found}"
+
+
+def test_the_namespace_check_sees_a_forged_one():
+    assert _forged_namespaces("import argparse\nargparse.Namespace(**vars(a))") == [2]
+    assert _forged_namespaces("from argparse import Namespace\nNamespace(path=p)") == [2]

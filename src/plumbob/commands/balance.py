@@ -265,8 +265,7 @@ def _run_loaded(args, reading, props, notes, loads) -> int:
     if args.ballast_region:
         from ._common import load_body
 
-        region_args = argparse.Namespace(**{**vars(args), "path": args.ballast_region})
-        options["region"] = load_body(region_args).body
+        options["region"] = load_body(args, path=args.ballast_region).body
     req = requirement(args, down, loads)
     if args.standard is not None:
         result = balance_standard(body, args.standard, req, **options)
