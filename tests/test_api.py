@@ -127,11 +127,16 @@ def test_no_command_module_imports_another():
 
 
 def test_report_only_formats_text():
-    tree = ast.parse(open(os.path.join(ROOT, "src", "plumbob", "report.py"), encoding="utf-8").read())
-    imported = {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
-    defined = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
-    assert "json" not in imported
-    assert not any("json" in name or "dict" in name for name in defined), defined
+    """The text reports' room (``report/``, every module of it) builds no JSON."""
+    room = os.path.join(ROOT, "src", "plumbob", "report")
+    modules = sorted(os.path.join(room, n) for n in os.listdir(room) if n.endswith(".py"))
+    assert modules
+    for path in modules:
+        tree = ast.parse(open(path, encoding="utf-8").read())
+        imported = {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+        defined = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
+        assert "json" not in imported, path
+        assert not any("json" in name or "dict" in name for name in defined), (path, defined)
 
 
 def test_load_takes_a_material_or_a_density(tmp_path):
@@ -186,3 +191,21 @@ def test_version_is_the_packages():
     assert project["tool"]["setuptools"]["dynamic"]["version"] == \
         {"attr": "plumbob.version.__version__"}
     assert plumbob.__version__.count(".") == 2
+
+
+def test_notebooks_show_bodies_as_pictures_and_results_as_tables():
+    """Jupyter calls ``_repr_png_`` and ``_repr_html_``: a body is drawn (PNG bytes) and
+    tabled with its mass properties; every result shows its JSON keys and values."""
+    body = plumbob.load("shapes/sculpture.toml")
+    assert body._repr_png_().startswith(b"\x89PNG\r\n\x1a\n")
+    page = body._repr_html_()
+    assert "<caption>Lamina: mass properties (SI units)</caption>" in page
+    verdict = plumbob.check(body)
+    for result in (body.mass_properties(), verdict, plumbob.lift(body)):
+        html = result._repr_html_()
+        keys = [k for k, v in result.as_dict().items() if v is not None]
+        assert all(f"<th>{k}</th>" in html for k in keys), type(result).__name__
+    poses = plumbob.poses(body)
+    assert poses._repr_html_().count("<tr><td>") == len(poses)
+    assert "<th>verdict</th><td>stands</td>" in verdict._repr_html_()
+    assert verdict._repr_png_().startswith(b"\x89PNG")

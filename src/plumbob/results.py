@@ -100,3 +100,20 @@ class Result:
     def __repr__(self) -> str:
         inner = ", ".join(f"{n}={short(v)}" for n, v in self._repr_items() if v is not None)
         return f"{type(self).__name__}({inner})"
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: the JSON keys (SI units) and values as a table, nested
+        values shown compactly.
+
+        >>> from plumbob.massprops import point_mass
+        >>> "<th>mass</th><td>2</td>" in point_mass(2.0, [1.0, 0.0, 0.0])._repr_html_()
+        True
+        """
+        from html import escape
+
+        rows = "".join(
+            f"<tr><th>{escape(str(key))}</th>"
+            f"<td>{escape(value if isinstance(value, str) else short(value))}</td></tr>"
+            for key, value in self.as_dict().items() if value is not None)
+        return (f"<table><caption>{escape(type(self).__name__)} (SI units)</caption>"
+                f"{rows}</table>")

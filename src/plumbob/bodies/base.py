@@ -196,6 +196,15 @@ class Body(ABC):
 
         return plot_body(self, ax, **options)
 
+    def _repr_png_(self) -> bytes:  # notebooks show the picture
+        from ..plot.files import png_bytes
+
+        return png_bytes(self.plot())
+
+    def _repr_html_(self) -> str:  # and, beside it, what it is and its mass properties
+        return self.mass_properties()._repr_html_().replace(
+            "<caption>MassProperties", f"<caption>{type(self).__name__}: mass properties", 1)
+
     def to_geometry(self, segments: int = 128):
         """The shape for boolean operations: a shapely geometry (laminas) or a
         manifold3d ``Manifold`` (solids), curves cut into ``segments`` per turn.

@@ -192,6 +192,22 @@ class Poses:
 
         return png_bytes(self.plot())
 
+    def _repr_html_(self) -> str:
+        """A notebook's table: a row per pose (probability, down, height, critical tilt)
+        under the keys of the whole (SI units)."""
+        from html import escape
+
+        head = "".join(f"<tr><th>{k}</th><td>{escape(str(v))}</td></tr>"
+                       for k, v in (("mass", _short(self.mass)), ("g", _short(self.g)),
+                                    ("method", self.method), ("hull_faces", self.hull_faces)))
+        rows = "".join(
+            f"<tr><td>{k}</td><td>{p.probability:.6f}</td><td>{escape(str(p.down.round(4)))}"
+            f"</td><td>{_short(p.com_height)}</td><td>{_short(p.critical_tilt_deg)}</td></tr>"
+            for k, p in enumerate(self.poses, 1))
+        return (f"<table><caption>Poses (SI units)</caption>{head}</table><table><tr><th>#</th>"
+                "<th>probability</th><th>down</th><th>com_height, m</th>"
+                f"<th>critical_tilt_deg</th></tr>{rows}</table>")
+
     def as_dict(self) -> dict:
         """The JSON object of ``plumbob poses --json`` without the keys naming the file
         (SI units).
