@@ -10,12 +10,13 @@ numbers without dumping arrays, so a result printed in a notebook is one line.
 from __future__ import annotations
 
 import math
-from dataclasses import fields
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, fields
 from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Result", "jsonable", "short"]
+__all__ = ["Result", "Key", "key_table", "undeclared_keys", "jsonable", "short"]
 
 #: arrays with more entries than this are summarised by their shape in a repr
 _INLINE = 4
@@ -78,16 +79,66 @@ def jsonable(value: Any) -> Any:
     return value
 
 
+@dataclass(frozen=True)
+class Key:
+    """One key of a result's JSON, declared once beside the result: its ``name`` (the
+    snake_case JSON key), ``unit`` (SI, ``""`` for none), ``when`` it appears (``""``:
+    always) and ``doc``, what it means. ``as_dict()`` is checked against these
+    declarations, and ``docs/cli.md``'s key tables are generated from them
+    (:func:`key_table`)."""
+
+    name: str
+    unit: str
+    doc: str
+    when: str = ""
+
+
+def key_table(keys: Iterable[Key]) -> str:
+    """The Markdown table of ``keys`` that ``docs/cli.md`` shows (and a test compares).
+
+    >>> print(key_table([Key("mass", "kg", "the mass"), Key("notes", "", "what was assumed",
+    ...                                                       "when there are any")]))
+    | key | unit | meaning |
+    | --- | --- | --- |
+    | `mass` | kg | the mass |
+    | `notes` |  | what was assumed (when there are any) |
+    """
+    rows = ["| key | unit | meaning |", "| --- | --- | --- |"]
+    for k in keys:
+        doc = f"{k.doc} ({k.when})" if k.when else k.doc
+        rows.append(f"| `{k.name}` | {k.unit} | {doc} |")
+    return "\n".join(rows)
+
+
+def undeclared_keys(out: Mapping[str, Any], keys: Iterable[Key]) -> list[str]:
+    """The keys of ``out`` (an ``as_dict()``) that ``keys`` does not declare, and the
+    always-present declared keys it lacks: empty when the JSON matches its schema.
+
+    >>> undeclared_keys({"mass": 1.0, "extra": 2}, [Key("mass", "kg", "the mass")])
+    ['extra']
+    >>> undeclared_keys({}, [Key("mass", "kg", "the mass")])
+    ['mass (missing)']
+    """
+    keys = tuple(keys)
+    named = {k.name for k in keys}
+    return ([name for name in out if name not in named]
+            + [f"{k.name} (missing)" for k in keys if not k.when and k.name not in out])
+
+
 class Result:
     """Mixin for the frozen dataclasses that hold results (declare them ``repr=False``).
 
     ``as_dict()`` defaults to every field, in order; a result whose JSON differs
-    (renamed, derived or flattened keys) overrides it. The repr shows
+    (renamed, derived or flattened keys) overrides it. ``KEYS`` declares the JSON's
+    keys once (name, unit, when, meaning: :class:`Key`), for the docs' tables and the
+    tests that hold ``as_dict()`` to them. The repr shows
     ``_repr_items()``: the fields named in ``_repr_fields`` (default: all), leaving
     out those that are ``None``.
     """
 
     _repr_fields: ClassVar[tuple[str, ...] | None] = None
+    #: the keys of ``as_dict()``, declared once (empty: not declared yet)
+    KEYS: ClassVar[tuple[Key, ...]] = ()
 
     def as_dict(self) -> dict[str, Any]:
         """The result's values keyed by the CLI's JSON keys, SI units."""

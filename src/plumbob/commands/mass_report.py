@@ -14,7 +14,7 @@ from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
 from ..report import ReportUnits, format_number, format_vector, table
-from ..results import Result
+from ..results import Key, Result
 from ..tolerances import TEXT_ROUND_OFF
 from ._common import header
 
@@ -41,6 +41,41 @@ class MassReport(Result):
     area: SurfaceArea | None = None
     box: BoundingBox | None = None
     about: np.ndarray | None = None
+
+    #: the keys of ``plumbob mass --json``, in order (docs/cli.md's table is made from them)
+    KEYS = (
+        Key("path", "", "the file read", "when read from a file"),
+        Key("name", "", "the body's name", "when it has one"),
+        Key("kind", "", "`lamina`, `solid`, `particles` or `assembly`"),
+        Key("mass", "kg", "the mass"),
+        Key("volume", "m³", "the volume", "solids and assemblies"),
+        Key("area", "m²", "the area", "laminas"),
+        Key("center_of_mass", "m", "the centre of mass (2 or 3 numbers)"),
+        Key("inertia", "kg·m²", "the inertia tensor about the centre of mass (3×3)"),
+        Key("principal_moments", "kg·m²", "the principal moments, ascending"),
+        Key("principal_axes", "", "the principal axes: rows, unit vectors, right-handed"),
+        Key("exact", "", "false when curves were faceted by a boolean or a density field was "
+                         "integrated numerically"),
+        Key("relative_error", "", "when not exact, the error's estimate (a bound for "
+                                  "booleans); when exact, a bound on the round-off of a boolean "
+                                  "of polytopes, else 0"),
+        Key("parts", "", "how many parts"),
+        Key("notes", "", "what was assumed or approximated (e.g. the assumed density of 1)",
+            "when there are any"),
+        Key("part_properties", "", "each part of an assembly: `name`, `kind`, `mass`, "
+                                   "`volume`/`area`, `center_of_mass`, `exact`", "assemblies"),
+        Key("radii_of_gyration", "m", "about the principal axes, sqrt(moment / mass)"),
+        Key("inertia_about", "m, kg·m²", "`point` and `inertia`, the 3×3 tensor about it",
+            "with `--about X,Y,Z`"),
+        Key("surface_area", "m²", "the boundary's area (an assembly's: the sum of its parts')",
+            "solids"),
+        Key("surface_area_exact", "", "false where curved faces were faceted", "solids"),
+        Key("surface_area_relative_error", "", "a bound for curved faces (faceted at 256 "
+                                               "chords a turn)", "solids"),
+        Key("bounding_box", "m", "`lower`, `upper`, `extents`: the farthest points along ±x, "
+                                 "±y, ±z, exact for curved primitives too"),
+        Key("notices", "", "what the reader assumed or repaired", "when there are any"),
+    )
 
     @classmethod
     def of(cls, reading: Reading, about=None) -> MassReport:

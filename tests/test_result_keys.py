@@ -1,0 +1,65 @@
+"""Results describe themselves once: each declares its JSON keys (``Result.KEYS``: name,
+unit, when, meaning), ``as_dict()`` keeps to them, and docs/cli.md's key tables are
+generated from them — this test holds all three together."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from conftest import ROOT
+
+from plumbob.batch.columns import _MASS
+from plumbob.commands.mass_report import MassReport
+from plumbob.loading import read
+from plumbob.results import Key, key_table, undeclared_keys
+
+#: the results whose keys docs/cli.md shows as generated tables, by the name in its marker
+DECLARED = {"MassReport": MassReport}
+DOCS = Path(ROOT) / "docs" / "cli.md"
+_BLOCK = re.compile(r"<!-- keys: (\w+) -->\n(.*?)\n<!-- /keys -->", re.S)
+
+
+def test_the_docs_tables_are_the_declared_keys():
+    blocks = dict(_BLOCK.findall(DOCS.read_text(encoding="utf-8")))
+    assert set(blocks) == set(DECLARED), "a key table in docs/cli.md without its result"
+    for name, table in blocks.items():
+        assert table == key_table(DECLARED[name].KEYS), (
+            f"docs/cli.md's table of {name} differs from {name}.KEYS: regenerate it with "
+            f"plumbob.results.key_table({name}.KEYS)")
+
+
+@pytest.mark.parametrize("shape", ["block", "l_shape", "mace_assembly", "graded_plate"])
+@pytest.mark.parametrize("about", [None, (0.0, 0.0, 0.0)])
+def test_the_mass_json_keeps_to_its_declared_keys(shape, about):
+    reading = read(str(Path(ROOT) / "shapes" / f"{shape}.toml"))
+    if about is not None and reading.body.dim == 2:
+        about = about[:2]
+    out = MassReport.of(reading, about=about).as_dict()
+    assert not undeclared_keys(out, MassReport.KEYS)
+    order = [k.name for k in MassReport.KEYS]
+    assert list(out) == sorted(out, key=order.index), "keys out of their declared order"
+
+
+def test_every_declared_key_has_a_meaning_and_a_unique_name():
+    for result in DECLARED.values():
+        names = [k.name for k in result.KEYS]
+        assert len(names) == len(set(names))
+        assert all(isinstance(k, Key) and k.doc and re.fullmatch(r"[a-z_]+", k.name)
+                   for k in result.KEYS)
+
+
+def test_the_batch_mass_columns_are_declared_keys():
+    """A batch row's mass columns are ``plumbob mass --json``'s keys (``units``, the
+    unit the file was read in, is the batch table's own)."""
+    names = {k.name for k in MassReport.KEYS}
+    assert {f.key for f in _MASS} - {"units"} <= names
+
+
+def test_the_undeclared_check_can_fail():
+    assert undeclared_keys({"mass": 1.0, "weight": 2.0}, MassReport.KEYS) == [
+        "weight", "kind (missing)", "center_of_mass (missing)", "inertia (missing)",
+        "principal_moments (missing)", "principal_axes (missing)", "exact (missing)",
+        "relative_error (missing)", "parts (missing)", "radii_of_gyration (missing)",
+        "bounding_box (missing)"]
