@@ -240,3 +240,21 @@ def test_cli_writes_the_table_quietly_off_a_terminal(tmp_path, capsys):
     assert captured.out == "" and "1 ok" in captured.err and "\r" not in captured.err
     (row,) = _rows_in(out)
     assert row["passes"] is True and row["required_tilt_deg"] == 10
+
+
+def test_parquet_columns_have_real_types(tmp_path, corpus):
+    """Read back with pyarrow alone: poses an integer, exact and stands booleans, the
+    notes a list of text (a CSV keeps them as JSON text)."""
+    pa = pytest.importorskip("pyarrow", reason="Parquet needs the batch extra")
+    import pyarrow.parquet as pq
+
+    folder, _ = corpus
+    out = str(tmp_path / "r.parquet")
+    plumbob.batch.run([folder], check=True, poses=True, units="mm", jobs=1, out=out)
+    schema = pq.read_schema(out)
+    assert schema.field("poses").type == pa.int64()
+    assert schema.field("exact").type == pa.bool_() and schema.field("stands").type == pa.bool_()
+    assert schema.field("notes").type == pa.list_(pa.string())
+    notes = [n for n in pq.read_table(out).column("notes").to_pylist() if n]
+    assert notes and all(isinstance(n, list) and all(isinstance(x, str) for x in n)
+                         for n in notes)

@@ -137,9 +137,10 @@ def unflatten(flat: dict[str, Any], fields: list[Field]) -> dict[str, Any]:
     """The row again from its flat cells (a lamina's 2-vectors lose their empty z)."""
     row: dict[str, Any] = {}
     for f in fields:
-        if f.type == "strings":
+        if f.type == "strings":  # JSON text in a CSV, a list already in Parquet
             text = flat.get(f.key)
-            row[f.key] = json.loads(text) if text else None
+            row[f.key] = (json.loads(text) if isinstance(text, str) else list(text)) \
+                if text else None
         elif not f.labels:
             row[f.key] = flat.get(f.key)
         else:

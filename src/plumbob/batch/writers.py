@@ -154,12 +154,17 @@ class ParquetWriter(Writer):
 
 
 def arrow_table(rows: list[Row], fields: list[Field]):
-    """A pyarrow table of the flat rows with the column types the fields give."""
+    """A pyarrow table of the flat rows with the column types the fields give: floats,
+    integers (``poses``, ``file_size``), booleans (``exact``, ``stands``), text, and
+    lists of text (``notes``, ``notices``), which a CSV keeps as JSON text."""
     pa = require("pyarrow", "an Arrow table")
-    kinds = {"float": pa.float64(), "int": pa.int64(), "bool": pa.bool_(), "str": pa.string()}
-    types = cell_types(fields)
+    kinds = {"float": pa.float64(), "int": pa.int64(), "bool": pa.bool_(), "str": pa.string(),
+             "strings": pa.list_(pa.string())}
+    types = {name: f.type for f in fields for name in f.names()}
     schema = pa.schema([(n, kinds[types[n]]) for n in flat_names(fields)])
-    return pa.Table.from_pylist([flatten(r, fields) for r in rows], schema=schema)
+    lists = [f.key for f in fields if f.type == "strings"]
+    flat = [{**flatten(r, fields), **{k: r.get(k) or None for k in lists}} for r in rows]
+    return pa.Table.from_pylist(flat, schema=schema)
 
 
 def open_writer(path: str, fields: list[Field]) -> Writer:
