@@ -183,6 +183,15 @@ def test_dxf_bad_insunits(tmp_path, value, phrases):
     assert "line" in line or "$INSUNITS" in line
 
 
+@pytest.mark.parametrize("value, shown", [("1e999", "inf"), ("nan", "nan"), ("4.5", "4.5")])
+def test_dxf_insunits_as_a_float_is_refused_in_one_line(tmp_path, value, shown):
+    """$INSUNITS written with a float's group code (40): ezdxf reads 1e999 as inf, which
+    int() cannot convert (an OverflowError, exit 3, before)."""
+    path = _patched(tmp_path, "$INSUNITS\n 70\n6\n", f"$INSUNITS\n 40\n{value}\n")
+    assert_bad_input(run_limited("mass", path), "bad.dxf", f"$INSUNITS = {shown}",
+                     "no unit code", "--units")
+
+
 @pytest.mark.parametrize("bulge, phrases", [
     ("1e300", ("bulge of 1e+300",)),
     ("1e999", ("not a finite number",)),

@@ -47,27 +47,23 @@ REFUSED = {
     "integer_beyond_float": (DISC + "radius = " + "9" * 400 + "\n", [],
                              ["part 1.radius", "400 digits", "beyond the range"]),
     "integer_of_5000_digits": (DISC + "radius = " + "9" * 5000 + "\n", [], ["4300 digits"]),
-    "toml_arrays_2000_deep": ("a = " + "[" * 2000 + "]" * 2000 + "\n", [], ["MAX_NESTING"]),
+    "toml_arrays_2000_deep": ("a = " + "[" * 2000 + "]" * 2000 + "\n", [], ["MAX_SPEC_NESTING"]),
     "toml_tables_2000_deep": ("a = " + "{b = " * 2000 + "1" + "}" * 2000 + "\n", [],
-                              ["MAX_NESTING"]),
+                              ["MAX_SPEC_NESTING"]),
     "groups_1000_deep": ("[[part]]\n" + "".join(
         "[[" + ".".join(["part"] * k) + "]]\n" for k in range(2, 1001))
-        + 'type = "disc"\nradius = 1\n', [], ["MAX_NESTING"]),
+        + 'type = "disc"\nradius = 1\n', [], ["MAX_SPEC_NESTING"]),
     "density_of_degree_4096": (DISC + 'radius = 1\ndensity = "1+((x^64)^64)"\n', [],
                                ["MAX_DENSITY_DEGREE", "4096"]),
     "sides_1e8": ('[[part]]\ntype = "regular_polygon"\nsides = 1e8\nradius = 1\n', [],
                   ["MAX_SIDES", "100000000"]),
     "sides_not_whole": ('[[part]]\ntype = "regular_polygon"\nsides = 6.5\nradius = 1\n', [],
                         ["sides must be a whole number"]),
-    "90000_cubes": ("".join(f'[[part]]\ntype="cube"\nside=1\nat=[{i % 300},{i // 300},0]\n'
-                            for i in range(90_000)), [], ["MAX_PARTS", "90000"]),
-    "90000_inline_cubes": ("part = [" + ",".join(
-        f'{{type="cube",side=1,at=[{i % 300},{i // 300},0]}}' for i in range(90_000)) + "]\n",
-        [], ["MAX_PARTS", "90000"]),
-    "20000_cubes": ("".join(f'[[part]]\ntype="cube"\nside=1\nat=[{i % 300},{i // 300},0]\n'
-                            for i in range(20_000)), [], ["MAX_PARTS", "20000"]),
-    "20000_particles": ("".join(f"[[particle]]\nmass = 1\nposition = [{i}, 0]\n"
-                                for i in range(20_000)), [], ["MAX_PARTS", "20000"]),
+    # (90,000 cubes and 20,000 particles were refused by a count of parts here; issue 20
+    # makes them legitimate: MAX_SPEC_BYTES bounds what is written out, see
+    # test_hostile_counts.py; a spec over the bytes is refused unparsed)
+    "cubes_over_8_MiB": ("".join(f'[[part]]\ntype="cube"\nside=1\nat=[{i % 300},{i // 300},0]\n'
+                                 for i in range(250_000)), [], ["bytes", "limit"]),
     # wrong-typed values: the key, the value and the type expected
     "shape_units_an_array": ('[shape]\nunits = ["m"]\n' + DISC + "radius = 1\n", [],
                              ["shape.units", "['m'] (an array)", "length unit as text"]),

@@ -66,7 +66,22 @@ FOREIGN = [
     ("pyramid(base 1)", lambda b: primitives.pyramid(1, 1), "base"),
     ("revolve(list)", lambda b: primitives.revolve([[0, 0]]), "profile"),
     ("box.translated('a')", lambda b: b.translated("a"), "offset"),
+    # issue 20: numpy's ValueError, an AttributeError, an OverflowError
+    ("box.transformed(eye(2))", lambda b: b.transformed(np.eye(2)), "matrix"),
+    ("box.transformed(offset of 2)", lambda b: b.transformed(np.eye(3), [1, 2]), "offset"),
+    ("disc.transformed(eye(3))", lambda b: primitives.disc(1).transformed(np.eye(3)), "matrix"),
+    ("load(units=5)", lambda b: plumbob.load("shapes/block.toml", units=5), "units"),
+    ("expr.evaluate(10**400)", lambda b: _evaluate(10**400), "beyond the range"),
+    ("expr.evaluate(names=5)", lambda b: _evaluate("a", 5), "names"),
+    ("expr.evaluate(names a='x')", lambda b: _evaluate("a", {"a": "x"}), "'a'"),
+    ("expr.evaluate(names a=10**400)", lambda b: _evaluate("a", {"a": 10**400}), "'a'"),
 ]
+
+
+def _evaluate(*args):
+    from plumbob.expr import evaluate
+
+    return evaluate(*args)
 
 def _model(**options):
     from plumbob.dynamics import MotionModel
@@ -155,6 +170,8 @@ SILENT = [
      lambda b: b.mass_properties().inertia_about([NAN, 0, 0]), "point"),
     ("prism(list)", lambda b: primitives.prism([[0, 0], [1, 0]], 1), "profile"),
     ("box.translated(nan)", lambda b: b.translated([NAN, 0, 0]), "offset"),
+    ("box.transformed(a stretch)", lambda b: b.transformed(2 * np.eye(3)), "orthogonal"),
+    ("box.transformed(nan)", lambda b: b.transformed(np.full((3, 3), NAN)), "matrix"),
     ("box.translated((1, 3))", lambda b: b.translated([[1, 0, 0]]), "offset"),
     ("crew_time(crew=2.5)", lambda b: _crew(2.5), "crew"),
     ("crew_time(work 1e-308) overflows", lambda b: _crew(1, work=1e-308, energy=1e12),
@@ -274,3 +291,34 @@ def test_every_public_callable_refuses_garbage_with_a_plumbob_error(name, functi
     """Enumerated, not listed by hand: a new public function is probed too."""
     with pytest.raises(PlumbobError):
         function(*[bad] * _required(function))
+
+
+def _bodies():
+    """One body of every kind a user builds (the placement methods are probed on each)."""
+    cylinder = primitives.cylinder(1, 2)
+    return {"mesh": primitives.box(1, 2, 3), "revolution": cylinder,
+            "extrusion": primitives.prism(primitives.rectangle(1, 2), 3),
+            "lamina": primitives.disc(1),
+            "particles": plumbob.ParticleSystem([1.0, 2.0], [[0, 0, 0], [1, 0, 0]]),
+            "placed": cylinder.translated([1, 0, 0]),
+            "union": plumbob.union(primitives.box(1, 1, 1),
+                                   primitives.box(1, 1, 1).translated([0.5, 0, 0]))}
+
+
+@pytest.mark.parametrize("bad", ["x", NAN, [[1.0, 2.0, 3.0]], "other size", "stretch",
+                                 10**400, None])
+@pytest.mark.parametrize("kind", list(_bodies()))
+def test_every_body_kind_refuses_a_bad_placement_with_a_plumbob_error(kind, bad):
+    """``transformed`` and ``translated`` of every kind of body: enumerated, so a new kind
+    is probed too (``MeshSolid.transformed(np.eye(2))`` gave numpy's ValueError). None is
+    a bad matrix but a good offset (no move)."""
+    body = _bodies()[kind]
+    bad = {"other size": np.eye(5 - body.dim), "stretch": 2 * np.eye(body.dim)}.get(
+        bad, bad) if isinstance(bad, str) else bad
+    with pytest.raises(PlumbobError):
+        body.transformed(bad)
+    if bad is not None and not (np.ndim(bad) == 2 and np.shape(bad)[0] == body.dim):
+        with pytest.raises(PlumbobError):
+            body.transformed(np.eye(body.dim), bad)
+        with pytest.raises(PlumbobError):
+            body.translated(bad)

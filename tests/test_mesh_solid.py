@@ -138,3 +138,58 @@ def _subdivide(t: np.ndarray, k: int = 4) -> np.ndarray:
             if i + j < k - 1:
                 out.append([p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)])
     return np.array(out)
+
+
+def _finned_ball(fins: int = 150):
+    """A closed icosphere with ``fins`` one-sided triangles standing on edges that share no
+    vertex: each fin opens a hole of two edges and makes its edge non-manifold (a scan's
+    stray faces). Returns the triangles and the fins' edges (their two corners)."""
+    import trimesh
+
+    ball = trimesh.creation.icosphere(subdivisions=4)
+    vertices, faces = np.asarray(ball.vertices), np.asarray(ball.faces)
+    used: set[int] = set()
+    chosen = []
+    for k, face in enumerate(faces):  # test set-up: a greedy pick of separate faces
+        if used.isdisjoint(face.tolist()):
+            chosen.append(k)
+            used.update(face.tolist())
+        if len(chosen) == fins:
+            break
+    a, b, c = (vertices[faces[chosen, i]] for i in range(3))
+    normal = np.cross(b - a, c - a)
+    tips = (a + b) / 2 + 0.01 * normal / np.linalg.norm(normal, axis=1)[:, None]
+    fin_tri = np.stack((a, b, tips), axis=1)
+    return np.concatenate((vertices[faces], fin_tri)), np.stack((a, b), axis=1)
+
+
+def test_repair_that_cannot_close_says_what_is_left_and_where():
+    """Issue 20, item 7: --repair filled the fins' holes, then the body was refused with
+    "... repair it or pass --repair". Now: what repair did, the 150 non-manifold edges,
+    a point on one of them, and what would fix it."""
+    tri, fin_edges = _finned_ball()
+    with pytest.raises(GeometryError) as caught:
+        mesh.check_solid(tri, repair=True)
+    message = str(caught.value)
+    assert "pass --repair" not in message
+    assert "--repair closed 150 holes (300 boundary edges)" in message
+    assert "150 edges are shared by more than two triangles" in message
+    assert "mesh editor" in message
+    near = np.array([float(v) for v in message.split("near (")[1].split(")")[0].split(",")])
+    midpoints = fin_edges.mean(axis=1)
+    # 6 significant digits of a point of size ~1
+    assert np.min(np.linalg.norm(midpoints - near, axis=1)) < 1e-5
+
+
+def test_the_command_with_repair_names_the_file_and_never_advises_repair(tmp_path):
+    from hostile import assert_bad_input, run_limited
+    from make_bad_inputs import binary_stl
+
+    tri, _ = _finned_ball()
+    path = tmp_path / "scan.stl"
+    path.write_bytes(binary_stl(tri))
+    line = assert_bad_input(run_limited("mass", path, "--repair"), "scan.stl",
+                            "150 edges are shared by more than two triangles")
+    assert "pass --repair" not in line
+    # without --repair, passing it is the right advice (it closes the holes)
+    assert_bad_input(run_limited("mass", path), "scan.stl", "pass --repair")

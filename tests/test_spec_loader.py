@@ -372,9 +372,9 @@ def test_a_caller_built_table_is_held_to_the_nesting_limit():
     from plumbob.errors import LimitError
 
     data: dict = {"type": "disc", "radius": 1}
-    for _ in range(100):
+    for _ in range(600):
         data = {"part": [data]}
-    with pytest.raises(LimitError, match="MAX_NESTING"):
+    with pytest.raises(LimitError, match="MAX_SPEC_NESTING"):
         build_spec(data)
 
 

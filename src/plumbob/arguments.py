@@ -23,6 +23,7 @@ from .errors import ArgumentError, PlumbobError
 from .limits import check_count
 
 __all__ = [
+    "placement",
     "number",
     "positive",
     "non_negative",
@@ -204,6 +205,30 @@ def matrix(value: Any, what: str, shape: tuple[int, ...], *,
         given = array.shape if array.shape != shape else "one with a non-finite entry"
         raise error(f"{what} must be a finite array of shape {shape}, not {given}")
     return array
+
+
+def placement(matrix_: Any, offset: Any, dim: int, *,
+              error: Error = ArgumentError) -> tuple[np.ndarray, np.ndarray]:
+    """A rigid placement of a body of ``dim`` dimensions: ``matrix_`` an orthogonal
+    ``dim`` × ``dim`` array (a rotation or a reflection: a body is moved, never stretched,
+    to within 1e-12) and ``offset`` one vector of ``dim`` numbers, m (None: no move).
+
+    >>> placement(np.eye(2), None, 3)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ArgumentError: matrix must be a finite array of shape (3, 3), not (2, 2)
+    >>> placement(2 * np.eye(2), [0, 0], 2)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ArgumentError: matrix must be orthogonal (a rotation or a reflection): a \
+body is moved, never stretched or skewed
+    """
+    turn = matrix(matrix_, "matrix", (dim, dim), error=error)
+    if not np.allclose(turn @ turn.T, np.eye(dim), rtol=0, atol=1e-12):
+        raise error("matrix must be orthogonal (a rotation or a reflection): a body is moved, "
+                    "never stretched or skewed")
+    move = np.zeros(dim) if offset is None else vector(offset, "offset", (dim,), error=error)
+    return turn, move
 
 
 def count(value: Any, what: str, limit: float, *, minimum: int = 0, hint: str = "",

@@ -15,6 +15,7 @@ import importlib
 import os
 import re
 import sys
+import warnings
 
 from .errors import PlumbobError, printable
 
@@ -143,6 +144,29 @@ def _escaped_output():
         sys.stdout = stream
 
 
+@contextlib.contextmanager
+def _warnings_caught():
+    """No warning text reaches the terminal while a command runs: a ``RuntimeWarning``
+    (numpy's or scipy's overflow, invalid value or division by zero: numbers out of double
+    precision's range) stops the command as an exception, which :func:`main` turns into
+    the one line; any other warning (a library's advice to its programmer) is dropped, as
+    what a user must know reaches them as plumbob's own notices."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        warnings.simplefilter("error", RuntimeWarning)
+        yield
+
+
+def _numeric_failure(args: argparse.Namespace, warning: Warning) -> str:
+    """The one line for a computation that left double precision's range."""
+    path = getattr(args, "path", None) or getattr(args, "spec", None)
+    where = f"{printable(path)}: " if isinstance(path, str) else ""
+    what = " ".join(str(warning).split())[:200]
+    return (f"plumbob: {where}a number left double precision's range ({printable(what)}): the "
+            "input's lengths, densities, positions or options are too large or too small to "
+            "compute with; check them, or give lengths in other units")
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(argv[0] if argv else None)
@@ -154,12 +178,17 @@ def main(argv: list[str] | None = None) -> int:
 
     succeeded = False
     try:
-        with _escaped_output():
+        with _escaped_output(), _warnings_caught():
             status = int(args.func(args) or 0)
         succeeded = True
         return status
     except PlumbobError as error:
         print(f"plumbob: {printable(error)}", file=sys.stderr)
+        return 2
+    except RuntimeWarning as warning:
+        if os.environ.get("PLUMBOB_DEBUG"):
+            raise
+        print(_numeric_failure(args, warning), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("plumbob: interrupted", file=sys.stderr)

@@ -22,6 +22,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -350,6 +351,11 @@ def evaluate(text: str | float | int, names: Mapping[str, float] | None = None) 
 
     >>> evaluate("a^2 + 1", {"a": 2})
     5.0
+    >>> evaluate(10**400)
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.ExpressionError: an integer of 1329 bits is beyond the range of a number \
+(about ±1.8e308)
     >>> evaluate("__import__('os')")
     Traceback (most recent call last):
     ...
@@ -358,11 +364,33 @@ def evaluate(text: str | float | int, names: Mapping[str, float] | None = None) 
     if isinstance(text, bool):
         raise ExpressionError(f"expected a number, not {text!r}")
     if isinstance(text, (int, float)):
-        value = float(text)
+        try:
+            value = float(text)
+        except OverflowError:  # an int beyond a double's range (10**400)
+            raise ExpressionError(f"an integer of {text.bit_length()} bits is beyond the range "
+                                  "of a number (about ±1.8e308)") from None
         if not math.isfinite(value):
             raise ExpressionError(f"{value} is not a finite number")
         return value
-    result = parse(text).evaluate(names)
+    result = parse(text).evaluate(_checked_names(names))
     if np.ndim(result) != 0:
         raise ExpressionError(f"{_quoted(text)} must be a single number")
     return float(result)
+
+
+def _checked_names(names: Any) -> dict[str, Any] | None:
+    """``names`` as a dict of names to numbers (or arrays of numbers), or an
+    :class:`ExpressionError` naming the one that is not."""
+    if names is None:
+        return None
+    if not isinstance(names, Mapping):
+        raise ExpressionError(f"names must map names to numbers, not {type(names).__name__}")
+    checked = {}
+    for key, value in names.items():
+        if not isinstance(key, str) or isinstance(value, (str, bytes, bool)):
+            raise ExpressionError(f"names: {key!r} must be a name with a number, not {value!r}")
+        try:  # a float (an int beyond a double's range is refused) or an array of them
+            checked[key] = float(value) if np.ndim(value) == 0 else np.asarray(value, dtype=float)
+        except (TypeError, ValueError, OverflowError):
+            raise ExpressionError(f"names: {key!r} must be a number, not {value!r:.60}") from None
+    return checked

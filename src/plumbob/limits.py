@@ -30,6 +30,7 @@ __all__ = [
     "MAX_SAMPLES",
     "MAX_SEGMENTS",
     "MAX_SIDES",
+    "MAX_SPEC_NESTING",
     "MAX_TRIANGLES",
     "check_count",
 ]
@@ -48,10 +49,18 @@ MAX_TRIANGLES = 50_000_000
 MAX_EXPRESSION_NODES = 2_000
 #: Depth of nesting: TOML tables and arrays, spec groups, SVG ``<use>``, DXF ``INSERT``.
 MAX_NESTING = 64
+#: Depth of a spec's TOML tables and arrays (two levels a group of parts: groups 490 deep).
+#: The reader and the builder walk it without deep recursion (900-deep groups were built
+#: in tests), so this bounds the work, far beyond the few levels an assembly needs.
+MAX_SPEC_NESTING = 1_000
 #: Depth of an SVG's element tree (groups within groups): svgelements follows it by
 #: recursion and fails near 1 000 levels; drawing programs nest a few dozen.
 MAX_ELEMENT_DEPTH = 256
-#: Parts (or particles, or placed block copies) one spec or drawing may build.
+#: Copies that references may place (SVG ``<use>``, DXF ``INSERT``/``MINSERT``), cells a
+#: hollowing may cut, jobs: work a few bytes can ask for. Parts written out in a file —
+#: a spec's parts and particles, a drawing's polygons, rings and rectangles — are not
+#: counted: each costs its bytes, so the file-size limits (and MAX_OUTLINES, MAX_FLAT_POINTS
+#: for a drawing's checks) bound their work.
 MAX_PARTS = 10_000
 #: Outlines (rings) one drawing may hold.
 MAX_OUTLINES = 100_000

@@ -16,6 +16,8 @@ import numpy as np
 from .errors import ArgumentError, PlumbobError
 
 __all__ = [
+    "MAX_LENGTH",
+    "too_long",
     "METRES_PER_UNIT",
     "LENGTH_UNITS",
     "UNIT_SPELLINGS",
@@ -34,6 +36,23 @@ __all__ = [
 #: m/s², the value of g the seed's worked answers use: the default wherever gravity enters
 #: (``--g`` and every ``g=`` argument), so those answers come out as the seed prints them
 SEED_GRAVITY = 9.81
+
+#: The largest length or coordinate a body may have, m. Mass properties multiply up to five
+#: lengths and a density (an inertia is ρ L⁵), which overflows double precision (1.8e308)
+#: from L ≈ 1e61 m; 1e50 m (some 10²³ times the observable universe) leaves room for the
+#: density and for distances between parts, and no real body comes near it.
+MAX_LENGTH = 1e50
+
+
+def too_long(what: str, value: float) -> str:
+    """The message for a length or coordinate ``value`` (m) beyond :data:`MAX_LENGTH`.
+
+    >>> too_long("radius", 1e200)
+    "radius 1e+200 m is beyond plumbob's largest length, 1e+50 m: its mass properties would \
+overflow double precision (give lengths in other units)"
+    """
+    return (f"{what} {value:g} m is beyond plumbob's largest length, {MAX_LENGTH:g} m: its mass "
+            "properties would overflow double precision (give lengths in other units)")
 #: m/s², standard gravity gₙ as defined (CGPM 1901, exact); pass it as ``g`` (``--g 9.80665``)
 #: for answers in the standard's terms
 STANDARD_GRAVITY = 9.80665

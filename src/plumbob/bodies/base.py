@@ -14,7 +14,7 @@ from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from ..arguments import vector
+from ..arguments import placement, vector
 from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 from ..materials import check_density
@@ -160,12 +160,11 @@ class Body(ABC):
         return lowest(self.hull_points(), np.asarray(down, dtype=float), tolerance)
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
-        """This body turned or mirrored by an orthogonal ``matrix`` (dim × dim), then moved."""
-        return Transformed(
-            self,
-            np.asarray(matrix, dtype=float),
-            np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float),
-        )
+        """This body turned or mirrored by an orthogonal ``matrix`` (dim × dim), then moved
+        by ``offset`` (dim,), m; a :class:`~plumbob.errors.GeometryError` naming the argument
+        for anything else (a 2×2 matrix for a solid, a stretch, a NaN)."""
+        matrix, offset = placement(matrix, offset, self.dim, error=GeometryError)
+        return Transformed(self, matrix, offset)
 
     def translated(self, offset: np.ndarray | list[float]) -> Body:
         """This body moved by ``offset`` (dim,), m."""
@@ -471,8 +470,7 @@ class Transformed(Body):
         return local @ self.matrix.T + self.offset
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
-        matrix = np.asarray(matrix, dtype=float)
-        offset = np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float)
+        matrix, offset = placement(matrix, offset, self.dim, error=GeometryError)
         return replace(self, matrix=matrix @ self.matrix, offset=matrix @ self.offset + offset)
 
     def with_default_density(self, density: float) -> Body:

@@ -50,6 +50,8 @@ class DensityField:
     degree: the polynomial degree in x, y, z, or None (not a polynomial, or
         not known): a polynomial field is integrated exactly.
     text: how the field is named in messages and notes.
+    path, place: the file and the place in it the field was given (``shape.density``),
+        named by every message about its values; None and "" for a field built in code.
 
     >>> f = DensityField.from_expression("1 + x")
     >>> f.degree, f(np.array([[0.5, 0.0]])).tolist()
@@ -59,6 +61,8 @@ class DensityField:
     function: Callable[[np.ndarray], np.ndarray]
     degree: int | None = None
     text: str = "the density field"
+    path: str | None = None
+    place: str = ""
 
     def __post_init__(self) -> None:
         if not callable(self.function):

@@ -148,7 +148,9 @@ def integrate_boolean(bodies: tuple[Body, ...], build, segments: int, what: str,
         parts = geometries if count == segments and geometries else [b.to_geometry(count) for b in local]
         geometry = build(parts)
         if not geometry_measure(geometry, dim) > 0:
-            raise GeometryError(f"the {what} is empty: the parts do not overlap")
+            raise GeometryError(
+                "the difference is empty: what is removed covers all of the body"
+                if what == "difference" else f"the {what} is empty: the parts do not overlap")
         moved = roundoff_moved(geometry, dim) + sum(
             faceting_moved(b, g, count, dim) for b, g in zip(local, parts))
         if dim == 2:

@@ -147,9 +147,11 @@ class GradedBody(Body):
 
     def _fail(self, point: np.ndarray, value: float, where: str) -> None:
         what = "not finite" if not np.isfinite(value) else "negative"
+        place = f"{self.field.place}: " if self.field.place else ""
         raise DensityError(
-            f"density {self.field.text!r} is {what} ({_num(value)} {self.units}) at "
-            f"{_point(point)}{self._where()}{where}")
+            f"{place}density {self.field.text!r} is {what} ({_num(value)} {self.units}) at "
+            f"{_point(point)}{self._where()}{where}; a density must be finite and at least 0 "
+            "everywhere in the body", path=self.field.path)
 
     def _check_corners(self, points: np.ndarray) -> None:
         """The field must be finite and ≥ 0 at the body's corners: the worst is reported."""
@@ -217,10 +219,12 @@ class GradedBody(Body):
             raise GeometryError(f"the body{self._where()} has no {'area' if self.dim == 2 else 'volume'}"
                                 " (or its boundary runs the wrong way)")
         if not np.isfinite(m.mass) or m.mass <= 0:
-            raise DensityError(f"density {self.field.text!r} is zero everywhere in the body"
-                               f"{self._where()}" if m.mass == 0 else
-                               f"density {self.field.text!r} gives the body{self._where()} "
-                               f"no positive mass ({_num(m.mass)} kg)")
+            place = f"{self.field.place}: " if self.field.place else ""
+            raise DensityError(f"{place}density {self.field.text!r} is zero everywhere in the "
+                               f"body{self._where()}" if m.mass == 0 else
+                               f"{place}density {self.field.text!r} gives the body"
+                               f"{self._where()} no positive mass ({_num(m.mass)} kg)",
+                               path=self.field.path)
         local = m.first / m.mass
         central = m.second - m.mass * np.outer(local, local)
         base_exact = bool(getattr(self.base, "exact", True))

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..arguments import placement
 from ..errors import GeometryError
 from ..massprops import MassProperties
 from ..tolerances import contact_tolerance, sampling_tolerance
@@ -109,10 +110,7 @@ class Lamina(Body):
         return lowest(np.concatenate(candidates), down, tolerance)
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
-        offset = np.zeros(2) if offset is None else np.asarray(offset, dtype=float)
-        matrix = np.asarray(matrix, dtype=float)
-        if matrix.shape != (2, 2) or not np.allclose(matrix @ matrix.T, np.eye(2), atol=1e-12):
-            raise GeometryError("a lamina is placed by a 2×2 rotation or reflection")
+        matrix, offset = placement(matrix, offset, 2, error=GeometryError)
         return replace(self, region=self.region.transformed(matrix, offset))
 
     def with_default_density(self, density: float) -> Body:

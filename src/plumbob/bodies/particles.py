@@ -6,7 +6,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..arguments import floats
+from ..arguments import floats, placement
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties
 from .base import Body, DensityCells
@@ -147,12 +147,7 @@ class ParticleSystem(Body):
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
         """The particles turned or mirrored by ``matrix`` (d × d) and moved by ``offset``;
         velocities turn with them."""
-        matrix = np.asarray(matrix, dtype=float)
-        offset = np.zeros(self.dim) if offset is None else np.asarray(offset, dtype=float)
-        if matrix.shape != (self.dim, self.dim) or not np.allclose(
-            matrix @ matrix.T, np.eye(self.dim), atol=1e-12
-        ):
-            raise GeometryError(f"particles are placed by a {self.dim}×{self.dim} rotation or reflection")
+        matrix, offset = placement(matrix, offset, self.dim, error=GeometryError)
         velocities = None if self.velocities is None else self.velocities @ matrix.T
         return replace(self, positions=self.positions @ matrix.T + offset, velocities=velocities)
 

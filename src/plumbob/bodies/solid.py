@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..arguments import placement
 from ..errors import GeometryError
 from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
@@ -87,7 +88,10 @@ def _circle_steps(radius: float, tolerance: float) -> int:
     """Points per turn so that chords stay within ``tolerance`` of a circle."""
     if radius <= tolerance:
         return 4
-    return int(min(4096, max(8, np.ceil(np.pi / np.arccos(1 - tolerance / radius)))))
+    # the half-angle of a chord whose sagitta is the tolerance, arccos(1 - t/r), written
+    # 2 arcsin(sqrt(t/2r)) so that a tolerance below round-off of r (1e-300) stays > 0
+    half_angle = 2.0 * np.arcsin(np.sqrt(tolerance / (2.0 * radius)))
+    return int(min(4096, max(8, np.ceil(np.pi / half_angle))))
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -186,8 +190,7 @@ class MeshSolid(_UniformSolid):
         return points, index
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray | None = None) -> Body:
-        matrix = np.asarray(matrix, dtype=float)
-        offset = np.zeros(3) if offset is None else np.asarray(offset, dtype=float)
+        matrix, offset = placement(matrix, offset, 3, error=GeometryError)
         tri = self.triangles.astype(float) @ matrix.T + offset
         if np.linalg.det(matrix) < 0:
             tri = tri[:, ::-1]  # a mirror turns the winding inside out

@@ -52,6 +52,9 @@ __all__ = [
     "simulate",
 ]
 
+#: The smallest relative tolerance the integrator can keep in double precision (scipy's
+#: solvers raise anything below 100 ulps ≈ 2.2e-14 to that, with a warning).
+MIN_RTOL = 1e-13
 #: At t = 0 a string counts as taut when |d| ≥ L (1 − _TAUT_RTOL). During a run the
 #: threshold is 100 × rtol: a string that the solver holds at |d| ≈ L stays taut.
 _TAUT_RTOL = 1e-7
@@ -472,8 +475,10 @@ def simulate(model: MotionModel, until: float, samples: int = 201, *, rtol: floa
 
     until = positive(until, "the end time (s)", error=DynamicsError)
     samples = count(samples, "samples", MAX_SAMPLES, minimum=2, error=DynamicsError)
-    if not (0 < rtol < 1):
-        raise DynamicsError(f"rtol must lie between 0 and 1 (got {rtol})")
+    if not (MIN_RTOL <= rtol < 1):
+        raise DynamicsError(f"rtol must lie between {MIN_RTOL:g} and 1 (got {rtol!r}): a "
+                            "double holds about 16 digits, and the integrator needs some to "
+                            "spare (scipy would quietly raise a smaller rtol to 100 ulps)")
     check_feasible(model, until, rtol, _scales)
     length, speed = _scales(model, until)
     if stabilization is None:

@@ -170,8 +170,11 @@ def _open(path: str):
 
 def _file_units(code, path: str) -> tuple[str | None, float | None]:
     """The unit ``$INSUNITS`` declares (name, metres per unit); (None, None) when unitless."""
-    if isinstance(code, bool) or not isinstance(code, int | float) or code != int(code) \
-            or not (code == 0 or int(code) in INSUNITS):
+    # a whole number first (a float 1e999 is infinite, a nan is no number: int() of either
+    # would raise), then one of the codes
+    whole = (isinstance(code, int) and not isinstance(code, bool)) or (
+        isinstance(code, float) and code.is_integer())
+    if not whole or not (code == 0 or int(code) in INSUNITS):
         raise FormatError(f"has $INSUNITS = {code!r}, which is no unit code (0 to 24): fix the "
                           "header or pass --units", path=path)
     return INSUNITS.get(int(code), (None, None))

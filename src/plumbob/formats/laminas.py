@@ -22,7 +22,7 @@ from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
 from ..bodies.validity import CHECK_TOLERANCE, validity_error
 from ..errors import FormatError, GeometryError, fmt_point
-from ..limits import MAX_FLAT_POINTS, MAX_OUTLINE_PAIRS, MAX_OUTLINES, MAX_PARTS, check_count
+from ..limits import MAX_FLAT_POINTS, MAX_OUTLINE_PAIRS, MAX_OUTLINES, check_count
 from .checks import check_extent
 from .parts import assemble, stem, unique_names
 
@@ -142,8 +142,6 @@ def body_from_outlines(outlines: list[Outline], *, path: str | None, name: str |
     direct = depth[inside[0]] == depth[inside[1]] - 1
     parent[inside[1, direct]] = inside[0, direct]
     outer = np.flatnonzero(depth % 2 == 0)
-    check_count("parts (outer outlines)", len(outer), MAX_PARTS, path=path,
-                hint="split the drawing into several files")
     names = unique_names([outlines[k].name or f"outline {i + 1}" for i, k in enumerate(outer)])
     holes_of = _group(parent, depth % 2 == 1)
     parts = []
@@ -275,7 +273,6 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
 
     if not named:
         raise FormatError("has no Polygon or MultiPolygon", path=path)
-    check_count("polygons", len(named), MAX_PARTS, path=path, hint="split the file")
     parts_of = shapely.get_parts([g for _, g in named])
     rings = len(parts_of) + int(shapely.get_num_interior_rings(parts_of).sum())
     check_count("rings", rings, MAX_OUTLINES, path=path, hint="split the file")
@@ -285,6 +282,16 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
         bounds = np.array([shapely.bounds(g) for g in geometries])
     if not np.isfinite(bounds).all():
         raise GeometryError("a coordinate is not a finite number (NaN or infinity)", path=path)
+    # bounds skip a NaN (GEOS compares with it), so every coordinate is looked at
+    counts = shapely.get_num_coordinates(geometries)
+    finite = np.isfinite(shapely.get_coordinates(geometries)).all(axis=1)
+    if not finite.all():
+        at = int(np.argmin(finite))
+        which = int(np.searchsorted(np.cumsum(counts), at, side="right"))
+        label = f"polygon {named[which][0]!r}" if len(named) > 1 else "the polygon"
+        point = at - int(np.sum(counts[:which])) + 1
+        raise GeometryError(f"{label}: point {point} has a coordinate that is not a finite "
+                            "number (NaN or infinity)", path=path)
     notices = check_extent(bounds[:, :2].min(axis=0), bounds[:, 2:].max(axis=0), path=path)
     names = unique_names([n for n, _ in named])
     parts = []

@@ -182,7 +182,10 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
         meshes, skipped, triangles = [], 0, 0
         graph = scene.graph
         for node in graph.nodes_geometry:  # per instance
-            transform, geometry_name = graph[node]
+            # a placement that scales by 1e300 overflows in trimesh's rigidity check and
+            # in ours: the coordinates it gives are refused by name after (check_reach)
+            with np.errstate(over="ignore", invalid="ignore"):
+                transform, geometry_name = graph[node]
             geometry = scene.geometry[geometry_name]
             if not isinstance(geometry, trimesh.Trimesh) or len(geometry.faces) == 0:
                 skipped += 1
@@ -197,9 +200,13 @@ def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]
                 raise FormatError(f"mesh {node!r} has a face referring to a vertex it does not "
                                   "have", path=path)
             matrix = np.asarray(transform, dtype=float)
+            if not np.isfinite(matrix).all():
+                raise FormatError(f"mesh {node!r} is placed by a matrix with a number that is "
+                                  "not finite", path=path)
             if not np.allclose(matrix, np.eye(4)):
-                vertices = vertices @ matrix[:3, :3].T + matrix[:3, 3]
-                if np.linalg.det(matrix[:3, :3]) < 0:
+                with np.errstate(over="ignore", invalid="ignore"):
+                    vertices = vertices @ matrix[:3, :3].T + matrix[:3, 3]
+                if np.linalg.slogdet(matrix[:3, :3])[0] < 0:
                     faces = faces[:, ::-1]  # a mirror turns the winding inside out
             meshes.append((str(node), vertices[faces]))
             triangles += len(faces)
@@ -264,16 +271,17 @@ def check_obj_indices(path: str) -> None:
         bad = int(np.count_nonzero(physical[: starts[face][0]] == 10)) + 1
         raise FormatError(f"a face (from line {bad} on) is not a list of whole vertex "
                           "numbers", path=path)
-    values = values.astype(np.int64)
     owner = np.repeat(np.arange(len(starts)), words)
     check_count("triangles", int(np.maximum(words[face] - 2, 0).sum()), limits.MAX_TRIANGLES,
                 path=path)
+    # checked as floats (whole numbers, exact to 2⁵³): an index beyond int64 (1e23) is
+    # refused here, never cast
     wrong = (values == 0) | (values > total) | (-values > before[owner])
     if wrong.any():
         at = int(np.argmax(wrong))
         line = int(np.count_nonzero(physical[: starts[owner[at]]] == 10)) + 1
         raise FormatError(
-            f"line {line}: face index {values[at]} refers to no vertex (the file has "
+            f"line {line}: face index {values[at]:.15g} refers to no vertex (the file has "
             f"{total} vertices{f', {before[owner[at]]} above that line' if values[at] < 0 else ''}"
             "; OBJ counts from 1, negative indices count back): a file counting from 0?",
             path=path)

@@ -22,7 +22,7 @@ from ..bodies.base import Body
 from ..bodies.region import Ring
 from ..errors import FormatError, GeometryError
 from ..files import read_bytes
-from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, check_count
+from ..limits import MAX_NESTING, MAX_OUTLINES, check_count
 from ..reading import Reading
 from ..units import reading_unit, units_scale
 from .laminas import Outline, body_from_outlines, body_from_polygons
@@ -181,7 +181,6 @@ def _walk_geojson(obj, name: str, found: list, skipped: dict, path: str, depth: 
         for geom in geoms:
             _walk_geojson(geom, name, found, skipped, path, depth + 1)
     elif kind in ("Polygon", "MultiPolygon"):
-        check_count("polygons", len(found) + 1, MAX_PARTS, path=path, hint="split the file")
         found.append((name, _geojson_polygon(obj, name, path)))
     elif isinstance(kind, str) and kind in ("Point", "MultiPoint", "LineString",
                                             "MultiLineString"):

@@ -19,7 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, fmt_point
 from ..integrals.mesh import VolumeMoments
 from ..tolerances import WELD, weld_tolerance
 from .closure import SurfaceSummary, edges_pair, holes, join_at_slits, open_message, surface_summary
@@ -27,7 +27,7 @@ from .repair import fill_holes
 from .shells import resolve_shells
 from .topology import mesh_topology
 
-__all__ = ["FULL_CHECK_LIMIT", "CheckedSolid", "check_solid"]
+__all__ = ["FULL_CHECK_LIMIT", "CheckedSolid", "check_solid", "unrepaired_message"]
 
 #: triangles; meshes up to this size always get the full topological check
 FULL_CHECK_LIMIT = 50_000
@@ -160,6 +160,10 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     before = faces
     faces, shell, united, more = resolve_shells(vertices, faces, shell, shells, label=prefix)
     notices.extend(more)
+    if found.loops and not surface_summary(united if united is not None
+                                           else vertices[faces]).closed:
+        raise GeometryError(unrepaired_message(vertices, faces, found, topo.nonmanifold,
+                                               prefix=prefix, scale=scale))
     if united is not None:
         return CheckedSolid(united, tuple(notices), None, summary)
     # The topology's vertices are the input's distinct corners; they are the output's
@@ -173,3 +177,24 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     if not changed:
         return CheckedSolid(triangles, tuple(notices), summary.moments, summary, known, index)
     return CheckedSolid(vertices[faces], tuple(notices), None, summary, known, index)
+
+
+def unrepaired_message(vertices: np.ndarray, faces: np.ndarray, found, nonmanifold: int, *,
+                       prefix: str = "", scale: float = 1.0) -> str:
+    """The one line for a mesh that ``--repair`` patched and that still encloses no volume:
+    what repair did, what is left and where (in file units, ``scale`` m per unit), and what
+    would fix it — never "pass --repair" again."""
+    did = (f"--repair closed {found.loops} hole{'s' if found.loops > 1 else ''} "
+           f"({found.edges} boundary edges)")
+    if not nonmanifold:
+        return (f"{prefix}{did}, but the surface still encloses no volume (its faces do not "
+                "cancel): close or rebuild it in a mesh editor")
+    edges = np.sort(np.concatenate((faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]])),
+                    axis=1)
+    keys, counts = np.unique(edges, axis=0, return_counts=True)
+    where = vertices[keys[int(np.argmax(counts))]].mean(axis=0) / scale
+    return (f"{prefix}{did}, but the surface still encloses no volume: {nonmanifold} edges are "
+            f"shared by more than two triangles, e.g. near {fmt_point(where)}, where faces hang "
+            "off the surface (fins, sheets, or parts touching along an edge); --repair only "
+            "fills holes: delete those faces or separate the parts in a mesh editor (MeshLab: "
+            "Select Non Manifold Edges, then delete them)")

@@ -24,7 +24,7 @@ from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import InputFileError, LimitError, SpecError
 from ..files import read_bytes
 from ..formats import read_checked
-from ..limits import MAX_NESTING, MAX_PARTS, MAX_SEGMENTS, check_count
+from ..limits import MAX_SEGMENTS, MAX_SPEC_NESTING, check_count
 from ..reading import Reading
 from ..units import length_scale
 from .loads import read_extendables, read_loads
@@ -42,7 +42,7 @@ else:  # pragma: no cover
 __all__ = ["load_spec", "build_spec", "spec_parameters", "load_simulation", "parse_simulation",
            "spec_kind"]
 
-MAX_SPEC_BYTES = 4 << 20
+MAX_SPEC_BYTES = 8 << 20
 #: the top-level keys of a shape spec
 TOP_KEYS = {"kind", "shape", "parameters", "part", "particle", "load", "extendable"}
 #: the keys of [shape] in a spec of particles
@@ -164,15 +164,11 @@ def _check_table(data: Any, path: str | None) -> None:
     a caller is checked as a file is)."""
     if not isinstance(data, dict):
         raise SpecError("a spec must be a TOML table", path=path)
-    if nesting_depth(data) > MAX_NESTING:
+    if nesting_depth(data) > MAX_SPEC_NESTING:
         raise _too_deep(path)
 
 
 def _simulation(data: dict, path: str | None, options: LoadOptions) -> SimulationSpec:
-    particles = data.get("particle")
-    if isinstance(particles, list):
-        check_count("particles", len(particles), MAX_PARTS, path=path,
-                    hint="plumbob.limits.MAX_PARTS")
     names = read_parameters(path, data.get("parameters", {}), options.parameters)
     return build_simulation(SpecContext(path, names, options=options), data)
 
@@ -226,14 +222,8 @@ def _shape(data: dict, spec: SpecContext) -> Body:
             None, "a spec needs [[part]] tables or [[particle]] tables (one kind, not both)"
         )
     if has_particles:
-        particles = data["particle"]
-        if isinstance(particles, list):
-            check_count("particles", len(particles), MAX_PARTS, path=spec.path,
-                        hint="plumbob.limits.MAX_PARTS")
-        body: Body = read_particles(spec, particles, simulation=False).system
+        body: Body = read_particles(spec, data["particle"], simulation=False).system
     else:
-        check_count("parts", count_parts(data["part"]), MAX_PARTS, path=spec.path,
-                    hint="split the spec, or raise plumbob.limits.MAX_PARTS")
         body = build_parts(spec, shape, data["part"])
     if "kind" in shape:
         expected = spec.text(shape["kind"], "shape.kind", ("lamina", "solid", "assembly",
@@ -267,7 +257,7 @@ def count_parts(parts: Any) -> int:
 
 def _read_toml(path: str) -> dict:
     """The parsed TOML of a spec file: a regular file of at most
-    :data:`MAX_SPEC_BYTES`, nested at most :data:`~plumbob.limits.MAX_NESTING` deep."""
+    :data:`MAX_SPEC_BYTES`, nested at most :data:`~plumbob.limits.MAX_SPEC_NESTING` deep."""
     raw = read_bytes(path, MAX_SPEC_BYTES)
     if not raw.strip():
         raise InputFileError(
@@ -277,18 +267,11 @@ def _read_toml(path: str) -> dict:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise InputFileError("not a text file (a TOML spec must be UTF-8)", path=path) from None
-    # Parsing costs ~50 µs a table: count the tables first ([[…]] headers and inline
-    # {…}), so a spec of far too many parts is refused before it is parsed. A table is
-    # at most one part, particle, spring, rod or string: within the limits, at most 4
-    # tables a part.
-    tables = text.count("\n[[") + text.startswith("[[") + text.count("{")
-    if tables > 4 * MAX_PARTS:
-        raise LimitError(f"the spec has {tables} tables, far over plumbob's limit of "
-                         f"{MAX_PARTS} parts; split the spec, or raise plumbob.limits.MAX_PARTS",
-                         path=path)
+    # Parts and particles are not counted: each is written out, so MAX_SPEC_BYTES bounds
+    # their number and the work of parsing and building them (90,000 cubes are ~6 MB).
     # a table header naming a path deeper than the limit ([[part.part.part…]]) is
     # refused before parsing, as the parsed nesting would be
-    if any(header.count(".") >= MAX_NESTING for header in _HEADER.findall(text)):
+    if any(header.count(".") >= MAX_SPEC_NESTING for header in _HEADER.findall(text)):
         raise _too_deep(path)
     try:
         data = tomllib.loads(text)
@@ -306,14 +289,14 @@ _HEADER = re.compile(r"^[ \t]*\[\[?([^\]\n]*)", re.MULTILINE)
 
 
 def _too_deep(path: str | None) -> LimitError:
-    return LimitError(f"the spec nests tables and arrays over {MAX_NESTING} deep, plumbob's "
-                      "limit (plumbob.limits.MAX_NESTING)", path=path)
+    return LimitError(f"the spec nests tables and arrays over {MAX_SPEC_NESTING} deep, plumbob's "
+                      "limit (plumbob.limits.MAX_SPEC_NESTING)", path=path)
 
 
 def nesting_depth(data: Any) -> int:
     """How deep tables and arrays nest in ``data`` (a scalar is 0), found with a list
     of what is left to visit, not by recursion; it stops counting once past
-    :data:`~plumbob.limits.MAX_NESTING`.
+    :data:`~plumbob.limits.MAX_SPEC_NESTING`.
 
     >>> nesting_depth({"part": [{"vertices": [[0, 0], [1, 0]]}]}), nesting_depth(3)
     (5, 0)
@@ -327,7 +310,7 @@ def nesting_depth(data: Any) -> int:
         elif not isinstance(value, list):
             continue
         deepest = max(deepest, depth)
-        if depth > MAX_NESTING:
+        if depth > MAX_SPEC_NESTING:
             break
         stack.extend((item, depth + 1) for item in value if isinstance(item, (dict, list)))
     return deepest

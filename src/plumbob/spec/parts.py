@@ -295,6 +295,7 @@ def _apply_field(spec: SpecContext, body: Body, mat: _Material, where: str) -> B
     scale = mat.thickness if (mat.thickness is not None and body.dim == 2) else 1.0
     with spec.at(f"{where}.density"):
         field = DensityField.from_expression(mat.density, scale=scale, constants=dict(spec.names))
+        field = replace(field, path=spec.path, place=f"{where}.density")
         return with_density_field(body, field)
 
 
@@ -384,28 +385,35 @@ def _build_group(
 def _combine(spec: SpecContext, built: list[tuple[str, Body, str]]) -> Body:
     if len(built) == 1:
         return built[0][1]
-    with spec.at("parts"):
-        if all(op == "add" for op, _, _ in built):
+    if all(op == "add" for op, _, _ in built):
+        with spec.at("parts"):
             return as_assembly(union(*(b for _, b, _ in built), segments=spec.segments))
-        # each run of one op is one boolean: a run of holes is cut in one pass
-        result = built[0][1]
-        start = 1
-        while start < len(built):
-            op = built[start][0]
-            end = start
-            while end < len(built) and built[end][0] == op:
-                end += 1
-            run = built[start:end]
-            if op == "add":
-                result = union(result, *(body for _, body, _ in run), segments=spec.segments)
-            elif op == "subtract":
-                result = difference(result, *(_hole_material(spec, result, body, label)
-                                              for _, body, label in run), segments=spec.segments)
-            else:
-                result = intersection(result, *(body for _, body, _ in run),
-                                      segments=spec.segments)
-            start = end
-        return result
+    # each run of one op is one boolean: a run of holes is cut in one pass; an error
+    # names the run's parts ("part 2 (subtract): the difference is empty ...")
+    result = built[0][1]
+    start = 1
+    while start < len(built):
+        op = built[start][0]
+        end = start
+        while end < len(built) and built[end][0] == op:
+            end += 1
+        run = built[start:end]
+        place = run[0][2] if len(run) == 1 else f"{run[0][2]} to {run[-1][2]}"
+        with spec.at(f"{place} ({op})"):
+            result = _apply(spec, op, result, run)
+        start = end
+    return result
+
+
+def _apply(spec: SpecContext, op: str, result: Body, run: list[tuple[str, Body, str]]) -> Body:
+    """``result`` with one run of parts of one ``op`` added, removed or intersected."""
+    bodies = [body for _, body, _ in run]
+    if op == "add":
+        return union(result, *bodies, segments=spec.segments)
+    if op == "subtract":
+        return difference(result, *(_hole_material(spec, result, body, label)
+                                    for _, body, label in run), segments=spec.segments)
+    return intersection(result, *bodies, segments=spec.segments)
 
 
 def _hole_material(spec: SpecContext, parent: Body, hole: Body, label: str) -> Body:

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from ..dynamics.motion import Link, MotionModel, Spring
+from ..dynamics.motion import MIN_RTOL, Link, MotionModel, Spring
 from ..errors import DynamicsError, PlumbobError
 from ..units import SEED_GRAVITY
 from .particles import read_particles
@@ -135,6 +135,10 @@ def _solver_options(spec: SpecContext, data: dict) -> dict[str, Any]:
         for key in ("rtol", "stabilization", "friction_speed"):
             if key in solver:
                 options[key] = spec.number(solver[key], f"solver.{key}")
+        if "rtol" in options and not MIN_RTOL <= options["rtol"] < 1:
+            raise spec.error("solver.rtol", f"{options['rtol']!r} is not a tolerance double "
+                             f"precision can keep: give one from {MIN_RTOL:g} up to 1 "
+                             "(1e-10 by default)", DynamicsError)
         if "method" in solver:
             options["method"] = spec.text(solver["method"], "solver.method", sorted(_METHODS),
                                           what="method")

@@ -18,7 +18,7 @@ import numpy as np
 from ..bodies.csg import DEFAULT_SEGMENTS
 from ..errors import LimitError, PlumbobError, SpecError
 from ..expr import CONSTANTS, parse
-from ..units import LENGTH_UNITS, parse_length, split_length, unit_symbol
+from ..units import LENGTH_UNITS, MAX_LENGTH, parse_length, split_length, too_long, unit_symbol
 
 __all__ = ["SpecContext", "LoadOptions", "suggest", "shown", "read_parameters", "RESERVED_NAMES"]
 
@@ -122,6 +122,8 @@ class SpecContext:
                              "(about ±1.8e308)") from None
         if not np.isfinite(result):
             raise self.error(where, f"{shown(value)} is not a finite number")
+        if length and abs(result * self.scale) > MAX_LENGTH:
+            raise self.error(where, too_long("the length", result * self.scale))
         return result * (self.scale if length else 1.0)
 
     def text(self, value: Any, where: str, choices: Iterable[str] | None = None,

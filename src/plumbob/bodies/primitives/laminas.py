@@ -13,6 +13,7 @@ import numpy as np
 from ...arguments import count, floats, positive
 from ...errors import GeometryError
 from ...limits import MAX_SIDES
+from ...units import MAX_LENGTH, too_long
 from ..lamina import Lamina
 from ..region import Region, Ring
 from ..validity import check_polygon
@@ -27,8 +28,16 @@ def positive_number(value: float, what: str) -> float:
     Traceback (most recent call last):
     ...
     plumbob.errors.GeometryError: radius must be a positive number, not inf
+    >>> positive_number(1e200, "radius")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.GeometryError: radius 1e+200 m is beyond plumbob's largest length, 1e+50 m: \
+its mass properties would overflow double precision (give lengths in other units)
     """
-    return positive(value, what, error=GeometryError)
+    size = positive(value, what, error=GeometryError)
+    if size > MAX_LENGTH:
+        raise GeometryError(too_long(what, size))
+    return size
 
 
 def counter_clockwise(vertices: np.ndarray) -> np.ndarray:
