@@ -331,3 +331,38 @@ def test_the_report_page_shows_a_mm_part_in_mm_and_g_and_an_assemblys_parts(tmp_
     for part in parts:
         assert f"<tr><td>{part['name']}</td><td>{part['kind']}</td>" in page
         assert f"<td>{part['mass']:.6g}</td>" in page
+
+
+def test_the_report_gallery_captions_are_as_large_as_the_tables_text(monkeypatch):
+    """The pose captions, in pixels of the PNG shown at its own size, are no smaller
+    than the tables' 16 px; the page shows the image unscaled up to its width."""
+    from plumbob.plot import files, html
+    from plumbob.stability.poses import resting_poses
+
+    drawn = []
+    real = files.png_bytes
+
+    def keep(fig, dpi=100):
+        drawn.append((fig, dpi, [ax.title.get_fontsize() for ax in fig.axes
+                                 if ax.get_gid() == "pose"]))
+        return real(fig, dpi)
+
+    monkeypatch.setattr(files, "png_bytes", keep)
+    body = P.box(1.0, 2.0, 3.0)
+    html._poses_html(resting_poses(body), body, html._SI())
+    (_, dpi, sizes), = drawn
+    assert sizes and min(sizes) * dpi / 72 >= html.TABLE_FONT_PX - 1e-9
+
+
+def test_the_report_rose_marks_the_weakest_direction_and_names_the_axes(tmp_path, capsys):
+    """The cabinet tips forward (−y) first: the rose's marker sits at −90° (e1 = +x,
+    e2 = +y on level ground) with its tilt, and the angular axis says toward +x."""
+    out = tmp_path / "c.html"
+    assert main(["report", os.path.join(SHAPES, "cabinet.toml"), "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert '"ticktext":["toward +x","\\u2212x","+y","\\u2212y"]' in page
+    capsys.readouterr()
+    assert main(["check", os.path.join(SHAPES, "cabinet.toml"), "--json"]) == 0
+    tilt = json.loads(capsys.readouterr().out)["critical_tilt_deg"]
+    assert f'"weakest {tilt:.3g}\\u00b0"' in page
+    assert '"theta":[-90.0]' in page

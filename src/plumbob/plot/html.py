@@ -15,12 +15,14 @@ import html
 import numpy as np
 
 from .geometry import Drawing, drawing, in_frame, rest_frame
-from .rose import rose_samples
+from .rose import _direction_name, rose_samples
 from .style import STATUS_COLOURS, fmt, fmt_point, part_colours, status
 
 __all__ = ["report_page", "REPORT_FACES"]
 
 REPORT_FACES = 60_000  # triangles in the interactive view: smooth, and a page of a few MB
+GALLERY_DPI = 80  # the pose gallery's PNG, shown at its own size (one image pixel a CSS pixel)
+TABLE_FONT_PX = 16  # the browser's default font size, the tables' (no CSS sets another)
 
 _STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 1100px; margin: 1.5em auto; color: #222;
@@ -202,13 +204,33 @@ def _rose(verdict):
         fig.add_trace(go.Scatterpolar(r=shown, theta=np.degrees(angles), fill="toself",
                                       line=dict(color="#222"), fillcolor=colour, opacity=0.6,
                                       name="critical tilt, °"))
+    g = np.asarray(verdict.support.frame.axes, dtype=float) @ np.asarray(verdict.critical_direction)
+    weakest = float(np.degrees(np.arctan2(g[1], g[0]))) if len(g) > 1 else \
+        (0.0 if g[0] > 0 else 180.0)
+    fig.add_trace(go.Scatterpolar(
+        r=[max(verdict.critical_tilt_deg, 0.0)], theta=[weakest], mode="markers+text",
+        marker=dict(symbol="triangle-down", size=14, color=STATUS_COLOURS["topples"],
+                    line=dict(color="#222", width=1)),
+        text=[f"weakest {fmt(verdict.critical_tilt_deg, 3)}°"], textposition="top center",
+        name=f"weakest: {fmt(verdict.critical_tilt_deg, 3)}° toward "
+             f"{fmt_point(verdict.critical_direction, 3)}"))
     if verdict.required_tilt_deg is not None:
         circle = np.arange(0, 361, 2.0)
         fig.add_trace(go.Scatterpolar(r=np.full(len(circle), verdict.required_tilt_deg),
                                       theta=circle, mode="lines", line=dict(dash="dash", color="#222"),
                                       name=f"required {fmt(verdict.required_tilt_deg, 3)}°"))
-    fig.update_layout(height=420, width=460, margin=dict(l=40, r=40, t=40, b=40),
-                      title="tilt rose: critical tilt, °")
+    axes = np.asarray(verdict.support.frame.axes, dtype=float)
+    names = [_direction_name(axes[0], "+e1"), _direction_name(-axes[0], "−e1")]
+    ticks = {0: names[0], 180: names[1]}
+    if len(axes) > 1:
+        ticks.update({90: _direction_name(axes[1], "+e2"), 270: _direction_name(-axes[1], "−e2")})
+    fig.update_layout(height=460, width=480, margin=dict(l=40, r=40, t=50, b=40),
+                      title="tilt rose: critical tilt, ° (toward each direction)",
+                      font=dict(size=14),
+                      polar=dict(angularaxis=dict(tickmode="array", tickvals=list(ticks),
+                                                  ticktext=[f"toward {ticks[0]}"] +
+                                                  [ticks[k] for k in list(ticks)[1:]])),
+                      legend=dict(orientation="h", y=-0.15))
     return fig
 
 
@@ -251,10 +273,16 @@ def _verdict_html(verdict, u) -> str:
 
 
 def _poses_html(poses, body, u) -> str:
+    import matplotlib
+
     from .files import png_bytes
     from .gallery import plot_poses
 
-    image = base64.b64encode(png_bytes(plot_poses(poses, body), dpi=80)).decode("ascii")
+    # Captions ("small", 0.833 of font.size) no smaller than the table's text on screen.
+    points = TABLE_FONT_PX * 72 / GALLERY_DPI / 0.833
+    with matplotlib.rc_context({"font.size": points}):
+        figure = plot_poses(poses, body)
+        image = base64.b64encode(png_bytes(figure, dpi=GALLERY_DPI)).decode("ascii")
     head = f"<tr><th>#</th><th>probability</th><th>down</th><th>height of G, {u.length_unit}" \
            "</th><th>critical tilt, °</th></tr>"
     body_rows = "".join(
