@@ -14,9 +14,10 @@ from plumbob.batch.columns import _MASS
 from plumbob.commands.mass_report import MassReport
 from plumbob.loading import read
 from plumbob.results import Key, key_table, undeclared_keys
+from plumbob.stability.verdict import Verdict
 
 #: the results whose keys docs/cli.md shows as generated tables, by the name in its marker
-DECLARED = {"MassReport": MassReport}
+DECLARED = {"MassReport": MassReport, "Verdict": Verdict}
 DOCS = Path(ROOT) / "docs" / "cli.md"
 _BLOCK = re.compile(r"<!-- keys: (\w+) -->\n(.*?)\n<!-- /keys -->", re.S)
 
@@ -63,3 +64,31 @@ def test_the_undeclared_check_can_fail():
         "principal_moments (missing)", "principal_axes (missing)", "exact (missing)",
         "relative_error (missing)", "parts (missing)", "radii_of_gyration (missing)",
         "bounding_box (missing)"]
+
+
+#: check options that bring out every conditional key of the verdict between them
+CHECKS = [{}, {"tilt_deg": 5.0, "toward_deg": 30.0, "friction": 0.4},
+          {"require_tilt_deg": 40.0, "margin": 5.0}, {"down": [1.0, 0.2, -0.1]}]
+
+
+@pytest.mark.parametrize("shape", ["block", "l_shape", "stepped_cylinder", "mace_assembly"])
+@pytest.mark.parametrize("options", CHECKS)
+def test_the_check_json_keeps_to_its_declared_keys(shape, options):
+    from plumbob.stability import check
+
+    body = read(str(Path(ROOT) / "shapes" / f"{shape}.toml")).body
+    if body.dim == 2:
+        options = {k: v for k, v in options.items() if k not in ("down", "tilt_deg", "toward_deg")}
+    out = check(body, **options).as_dict()
+    assert not undeclared_keys(out, Verdict.KEYS)
+    order = [k.name for k in Verdict.KEYS]
+    assert list(out) == sorted(out, key=order.index), "keys out of their declared order"
+
+
+def test_the_batch_check_columns_are_declared_keys():
+    """A batch row's check columns are ``plumbob check --json``'s keys (``slope``'s with
+    a ``slope_`` prefix)."""
+    from plumbob.batch.columns import _CHECK, _REQUIRE
+
+    names = {k.name for k in Verdict.KEYS}
+    assert {f.key for f in _CHECK + _REQUIRE} <= names
