@@ -74,7 +74,7 @@ def test_an_svg_of_many_rectangles(tmp_path):
 
 
 def test_a_spec_of_many_particles(tmp_path):
-    n = 20_000
+    n = N
     path = tmp_path / "swarm.toml"
     path.write_text('[shape]\nkind = "particles"\n' + "".join(
         f"[[particle]]\nmass = 1\nposition = [{k % 200}, {k // 200}, 0]\n" for k in range(n)))

@@ -163,7 +163,7 @@ def test_a_fine_sphere_is_fast_and_rolls():
     assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].members > 80_000
 
 
-@settings(max_examples=10, deadline=None)
+@settings(max_examples=6, deadline=None)
 @given(st.integers(0, 10_000), st.floats(1e-5, 1e-1))
 def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
     """rocking() sweeps only the points its exact filter keeps (those near the rim of the
@@ -171,7 +171,7 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
     import plumbob.stability.rocking as rocking_module
 
     rng = np.random.default_rng(seed)
-    X = rng.normal(size=(3000, 3))
+    X = rng.normal(size=(1500, 3))  # a rim of some hundred points the filter must keep
     X /= np.linalg.norm(X, axis=1)[:, None]
     X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
     down = rng.normal(size=3)
