@@ -168,7 +168,7 @@ def run(args) -> int:
     body = reading.body
     down = default_down(args, reading)
     v = _verdict(args, body, props, option_loads(args, reading), down)
-    require_finite(v.as_dict())
+    answer = require_finite(v.as_dict())  # built once: checked here, printed below
     solution = (_solve(args, down, bool(v.loaded is not None)) if args.solve_for is not None
                 else None)
     standard = None
@@ -192,7 +192,7 @@ def run(args) -> int:
             write_atomic(explain, sheet.encode("utf-8"))
     kind = getattr(body, "kind", "solid")
     if args.json:
-        out = {**header(reading, kind), **v.as_dict()}
+        out = {**header(reading, kind), **answer}
         if solution is not None:
             out["solution"] = solution.as_dict()
         if standard is not None:

@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
 
         about = [v * length_scale(reading.length_unit) for v in args.about]
     report = MassReport.of(reading, about=about)
-    require_finite(report.as_dict())
+    answer = require_finite(report.as_dict())  # built once: checked here, printed below
     if args.plot:
         write_plot(args.plot, "mass", reading.body, path=args.path)
     if getattr(args, "format", None):
@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
 
         print(inertial_xml(reading.body.mass_properties(), args.format))
     elif args.json:
-        dump_json(report.as_dict())
+        dump_json(answer)
     else:
         print(report.text(units))
     return 0

@@ -40,10 +40,10 @@ def run(args: argparse.Namespace) -> int:
                     minimum=2, error=DynamicsError)
     spec = load_simulation(args.spec)
     result = simulate(spec.model, until, samples, **spec.options)
-    require_finite(result.as_dict())
+    answer = require_finite(result.as_dict())  # built once: checked here, printed below
     if args.json:
         out = {"spec": args.spec, "title": spec.title, "until": until}
-        out.update(result.as_dict())
+        out.update(answer)
         dump_json(out)
         return 0
     print(_text(spec.title or args.spec, result))
