@@ -45,7 +45,7 @@ from .keys import VERDICT_KEYS
 from .loaded import LoadVerdict
 from .requirement import Requirement
 from .rocking import Rocking, rocking
-from .support import Support, body_size, hull_points, is_polytope, support_polygon
+from .support import Support, hull_points, is_polytope, support_polygon
 from .tipping import tipping_angle_deg, tipping_angles_deg
 
 if TYPE_CHECKING:  # the settling loads the poses: only for a point, a line or a sliver
@@ -557,7 +557,7 @@ def _check(body, requirement: Requirement, tolerance: float | None, props: MassP
 
         loaded = under_loads(body, sup, props.mass, requirement)
     result = verdict_from_support(sup, props.mass, requirement, loaded=loaded)
-    size = body_size(body)
+    size = sup.size  # measured once, by support_polygon
     if result.verdict == "neutral" and not is_polytope(body, size):
         # Over a point or line of contact on a curved surface: judge by curvature.
         sampling = sampling_tolerance(size)
