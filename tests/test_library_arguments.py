@@ -322,3 +322,13 @@ def test_every_body_kind_refuses_a_bad_placement_with_a_plumbob_error(kind, bad)
             body.transformed(np.eye(body.dim), bad)
         with pytest.raises(PlumbobError):
             body.translated(bad)
+
+
+@pytest.mark.parametrize("bad", [None, "x", NAN, [[1.0, 2.0, 3.0]], np.eye(2), 10**400],
+                         ids=["None", "text", "nan", "a (1, 3) array", "eye(2)", "10**400"])
+@pytest.mark.parametrize("method", ["scaled", "with_density", "mirrored", "translated",
+                                    "inertia_about"])
+def test_every_mass_properties_method_refuses_garbage_with_a_plumbob_error(block, method, bad):
+    """``MassProperties.scaled(None)`` gave a TypeError, ``mirrored('x')`` a ValueError."""
+    with pytest.raises(PlumbobError):
+        getattr(block.mass_properties(), method)(bad)

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .arguments import floats, instance, mass_fields, number, unit_vector, vector
+from .arguments import floats, instance, mass_fields, non_negative, number, positive, unit_vector, vector
 from .errors import GeometryError
 from .results import Result
 
@@ -356,6 +356,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         >>> point_mass(2.0, [1.0, 0.0]).scaled(1.5).mass
         3.0
         """
+        factor = non_negative(factor, "factor")
         return replace(self, mass=self.mass * factor, inertia=self.inertia * factor)
 
     def with_density(self, density: float) -> MassProperties:
@@ -383,7 +384,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         """
         if self.measure == 0:
             raise GeometryError("a body of zero size has no density to set")
-        return self.scaled(density * self.measure / self.mass)
+        return self.scaled(positive(density, "density") * self.measure / self.mass)
 
     def translated(self, offset: np.ndarray | list[float]) -> MassProperties:
         """Moved without turning: the tensor about the centre is unchanged.
@@ -482,8 +483,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         >>> point_mass(1.0, [1.0, 2.0, 3.0]).mirrored([0, 0, 1]).center_of_mass
         array([ 1.,  2., -3.])
         """
-        normal = _as_3d(np.asarray(normal, dtype=float))
-        normal = normal / np.linalg.norm(normal)
+        normal = _as_3d(unit_vector(normal, "normal", (self.dim, 3)))
         return self.transformed(np.eye(3) - 2 * np.outer(normal, normal))
 
     def to_3d(self) -> MassProperties:
