@@ -27,8 +27,8 @@ except ImportError:  # the balance room's targets are not on this branch yet
             pts = np.asarray(points, dtype=float)
             return self.normals @ pts.T - (self.offsets[:, None] if pts.ndim == 2 else self.offsets)
 
-    def target_for(body, *, down=None, margin=None, require_tilt=None, support=None):
-        assert require_tilt is None, "the local copy knows margins only"
+    def target_for(body, *, down=None, margin=None, require_tilt_deg=None, support=None):
+        assert require_tilt_deg is None, "the local copy knows margins only"
         support = support or support_polygon(body, down)
         frame = support.frame
         inward = -frame.from_ground(support.edge_normals)

@@ -50,7 +50,7 @@ def test_sculpture_closed_form():
     """The best point is the base's far corner (−2a, 0): it has the most slack per kg."""
     body = read(SCULPTURE).body
     props = body.mass_properties()
-    t = target_for(body, require_tilt=np.radians(10))
+    t = target_for(body, require_tilt_deg=10)
     corner = np.array([[-2 * A, 0.0]])
     expected = required_mass(t, props.mass, props.center_of_mass, corner)[0]
     r = balance(body, require_tilt_deg=10)
@@ -211,7 +211,7 @@ def test_the_point_search_meets_the_linear_program(tilt):
     body = pyramid([[0, 0], [2, 0], [1.5, 1], [-0.2, 1.2]], 3.0, apex=[2.6, 1.3],
                    density=100.0)
     r = balance(body, require_tilt_deg=tilt)
-    exact = _lp_least_mass(body, target_for(body, require_tilt=np.radians(tilt)))
+    exact = _lp_least_mass(body, target_for(body, require_tilt_deg=tilt))
     assert exact > 0
     assert exact <= r.ballast_mass <= exact * 1.001
     assert r.passes

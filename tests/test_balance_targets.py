@@ -29,14 +29,14 @@ def test_tilt_rows_vanish_at_the_critical_tilt(name):
     body = BODIES[name]()
     v = check(body)
     assert v.verdict == "stands"
-    t = target_for(body, require_tilt=np.radians(v.critical_tilt_deg))
+    t = target_for(body, require_tilt_deg=v.critical_tilt_deg)
     slack = t.slack(v.center_of_mass)
     size = body.size
     assert slack.min() == pytest.approx(0.0, abs=1e-9 * size)
     assert set(t.kinds) == {"tilt"}
     # a little more tilt is not met, a little less is
-    more = target_for(body, require_tilt=np.radians(v.critical_tilt_deg + 0.01))
-    less = target_for(body, require_tilt=np.radians(v.critical_tilt_deg - 0.01))
+    more = target_for(body, require_tilt_deg=v.critical_tilt_deg + 0.01)
+    less = target_for(body, require_tilt_deg=v.critical_tilt_deg - 0.01)
     assert not more.met_by(v.center_of_mass) and less.met_by(v.center_of_mass)
 
 
@@ -53,7 +53,7 @@ def test_margin_rows_vanish_at_the_margin(name):
 
 
 def test_both_targets_stack_rows():
-    t = target_for(box(1, 1, 4), margin=0.1, require_tilt=0.1)
+    t = target_for(box(1, 1, 4), margin=0.1, require_tilt_deg=float(np.degrees(0.1)))
     assert t.normals.shape == (8, 3) and t.kinds.count("margin") == 4
 
 
@@ -63,7 +63,7 @@ def test_linear_condition_matches_the_check_with_a_particle(x, y, z, m, theta):
     """M·slack(c) + m·slack(p) has the sign of the combined body's own tilt margin."""
     body = box(1, 1, 4, density=1000.0)
     props = body.mass_properties()
-    t = target_for(body, require_tilt=theta)
+    t = target_for(body, require_tilt_deg=float(np.degrees(theta)))
     p = np.array([x, y, z])
     combined_slack = props.mass * t.slack(props.center_of_mass) + m * t.slack(p)
     both = Assembly((body, ParticleSystem([m], [p])))
@@ -85,7 +85,7 @@ def test_bad_target_values():
     with pytest.raises(StabilityError, match="margin"):
         target_for(box(1, 1, 1), margin=-1)
     with pytest.raises(StabilityError, match="tilt"):
-        target_for(box(1, 1, 1), require_tilt=2.0)
+        target_for(box(1, 1, 1), require_tilt_deg=float(np.degrees(2.0)))
 
 
 def test_lamina_rows_are_in_its_plane():
@@ -101,9 +101,10 @@ def test_tilt_toward_one_way_matches_the_slope_check(toward_deg):
     body = BODIES["pyramid"]()
     slope = check(body, tilt_deg=1, toward_deg=toward_deg).slope
     limit = np.radians(slope.tipping_angle_deg)
-    t = target_for(body, require_tilt=limit, toward=slope.direction)
+    t = target_for(body, require_tilt_deg=float(np.degrees(limit)), toward=slope.direction)
     tilt_rows = np.array([k == "tilt" for k in t.kinds])
     c = body.mass_properties().center_of_mass
     assert t.slack(c)[tilt_rows].min() == pytest.approx(0.0, abs=1e-12 * body.size)
     assert t.slack(c)[~tilt_rows].min() > 0  # and it stands on level ground
-    assert not target_for(body, require_tilt=limit + 1e-4, toward=slope.direction).met_by(c)
+    steeper = float(np.degrees(limit + 1e-4))
+    assert not target_for(body, require_tilt_deg=steeper, toward=slope.direction).met_by(c)

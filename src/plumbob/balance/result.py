@@ -160,9 +160,8 @@ def balance(body, down=None, *, margin: float | None = None,
     before = check(body, down, g=g, props=props, require_tilt_deg=every)
     given = target is not None
     if target is None:
-        tilt = None if require_tilt_deg is None else float(np.radians(require_tilt_deg))
-        target = target_for(body, margin=margin, require_tilt=tilt, support=before.support,
-                            toward=toward)
+        target = target_for(body, margin=margin, require_tilt_deg=require_tilt_deg,
+                            support=before.support, toward=toward)
     depth = _depth(body) if density is not None and target.dim == 2 else None
     if density is not None and target.dim == 2 and depth is None:
         from ..errors import StabilityError

@@ -43,7 +43,7 @@ class Target:
     offsets: (k,) m.
     down: (dim,) the unit direction of gravity the target is for.
     margin: the static stability margin asked for, m (None: none asked).
-    require_tilt: the tilt asked for, radians (None: none asked).
+    require_tilt_deg: the tilt asked for, degrees (None: none asked).
     support: the support polygon the rows are built on.
     kinds: (k,) ``"margin"`` or ``"tilt"``, what each row asks.
     """
@@ -52,7 +52,7 @@ class Target:
     offsets: np.ndarray
     down: np.ndarray | None = None
     margin: float | None = None
-    require_tilt: float | None = None
+    require_tilt_deg: float | None = None
     support: Support | None = None
     kinds: tuple[str, ...] = ()
 
@@ -72,7 +72,7 @@ class Target:
 
 
 def target_for(body, *, down=None, margin: float | None = None,
-               require_tilt: float | None = None, support: Support | None = None,
+               require_tilt_deg: float | None = None, support: Support | None = None,
                toward=None) -> Target:
     """The :class:`Target` for ``body`` resting with gravity along ``down``.
 
@@ -84,18 +84,19 @@ def target_for(body, *, down=None, margin: float | None = None,
         Direction of gravity in the body's frame; default −z (−y for a lamina).
     margin : float, optional
         Static stability margin asked for, m (≥ 0).
-    require_tilt : float, optional
-        Critical tilt asked for in every direction, **radians**, in [0, π/2).
+    require_tilt_deg : float, optional
+        Critical tilt asked for in every direction, degrees, in [0, 90) (degrees at every
+        boundary of plumbob, as :class:`~plumbob.stability.requirement.Requirement`).
     support : Support, optional
         The support polygon, when already measured (its ``down`` is used).
     toward : array_like, optional
-        With ``require_tilt``: only a plane descending toward this horizontal direction
+        With ``require_tilt_deg``: only a plane descending toward this horizontal direction
         (body frame). It tips at ``atan(s/h)``, ``s`` the distance to the support's
         boundary along the direction: ``s = min d_e / cos_e`` over the edges facing it
         (``cos_e`` their outward normal's cosine with it), so the rows are
         ``d_e − cos_e · tan θ · h ≥ 0``.
 
-    Without ``margin`` and ``require_tilt`` the target is to stand: margin 0 (and with a
+    Without ``margin`` and ``require_tilt_deg`` the target is to stand: margin 0 (and with a
     tilt ``toward`` one way, margin 0 on the other edges too).
 
     Examples
@@ -104,7 +105,7 @@ def target_for(body, *, down=None, margin: float | None = None,
     atan(0.5 / 2): the tilt rows at that angle have slack 0 at its centre.
 
     >>> from plumbob.bodies.primitives import box
-    >>> t = target_for(box(1, 1, 4), require_tilt=float(np.arctan(0.25)))
+    >>> t = target_for(box(1, 1, 4), require_tilt_deg=float(np.degrees(np.arctan(0.25))))
     >>> t.slack(np.array([0.5, 0.5, 2.0])).round(12).tolist()
     [0.0, 0.0, 0.0, 0.0]
     """
@@ -123,11 +124,13 @@ def target_for(body, *, down=None, margin: float | None = None,
         margin = float(margin)
         if not (np.isfinite(margin) and margin >= 0):
             raise StabilityError(f"a stability margin must be ≥ 0, not {margin:g}")
-    if require_tilt is not None:
-        require_tilt = float(require_tilt)
-        if not (np.isfinite(require_tilt) and 0 <= require_tilt < np.pi / 2):
+    require_tilt = None
+    if require_tilt_deg is not None:
+        require_tilt_deg = float(require_tilt_deg)
+        if not (np.isfinite(require_tilt_deg) and 0 <= require_tilt_deg < 90):
             raise StabilityError(
-                f"a required tilt must be between 0° and 90°, not {np.degrees(require_tilt):g}°")
+                f"a required tilt must be between 0° and 90°, not {require_tilt_deg:g}°")
+        require_tilt = np.radians(require_tilt_deg)
     # a tilt toward one way still asks it to stand on level ground (margin 0 elsewhere)
     if margin is not None or require_tilt is None or toward is not None:
         rows.append(inward)
@@ -147,4 +150,4 @@ def target_for(body, *, down=None, margin: float | None = None,
         offsets.append(base[keep] - t[keep] * (up @ support.plane_point))
         kinds += ["tilt"] * int(keep.sum())
     return Target(np.concatenate(rows), np.concatenate(offsets), frame.down.copy(), margin,
-                  require_tilt, support, tuple(kinds))
+                  require_tilt_deg, support, tuple(kinds))

@@ -113,7 +113,6 @@ def _hollow(args, reading, props):
         raise StabilityError("--wall needs --out FILE.stl: where to write the carved body")
     if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
         raise StabilityError("--wall carves a solid body: give it without --shell/--infill")
-    import numpy as np
 
     from ..balance.hollow import hollow, write_hollow
     from ..balance.targets import target_for
@@ -123,7 +122,7 @@ def _hollow(args, reading, props):
         raise StabilityError("hollowing meets a margin, or a tilt in every direction: "
                              "--toward is for ballast alone")
     target = target_for(reading.body, down=down, margin=margin,
-                        require_tilt=None if tilt is None else float(np.radians(tilt)))
+                        require_tilt_deg=tilt)
     plan = hollow(reading.body, wall=args.wall, target=target, lightest=args.lightest,
                   cell_size=args.cell)
     written = write_hollow(plan, args.out, void=args.void, units=args.units, down=down)
