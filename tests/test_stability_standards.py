@@ -115,3 +115,15 @@ def test_batch_adds_a_column_per_test_and_the_loads(tmp_path):
     single = run_standard(read(os.path.join(SHAPES, "cabinet.toml")).body, "iec62368-1")
     assert math.isclose(float(rows["cabinet.toml"]["std_tilt_margin"]), single.tests[0].margin,
                         rel_tol=1e-12)
+
+
+def test_the_html_report_shows_the_load_case_and_the_standard(tmp_path):
+    pytest.importorskip("plotly")
+    out = tmp_path / "cabinet.html"
+    path = os.path.join(SHAPES, "cabinet.toml")
+    assert main(["report", path, "-o", str(out), "--hang", "10@0.3,-0.3,1",
+                 "--standard", "iec62368-1"]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert "Under the applied loads" in page and "factor of safety" in page
+    assert "Standard: iec62368-1" in page and "3rd edition (2018)" in page
+    assert "not a certification" in page

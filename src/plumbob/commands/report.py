@@ -12,9 +12,11 @@ import argparse
 import os
 
 from ._common import (
+    add_load_arguments,
     add_report_units_argument,
     add_stability_arguments,
     open_body,
+    option_loads,
     report_units,
     tilt_limit,
 )
@@ -38,6 +40,9 @@ def register(subparsers) -> None:
                         help="the HTML file to write (default: PATH's name with .html, here)")
     parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
                         help="draw this tilt on the tilt rose and say whether it passes")
+    add_load_arguments(parser)
+    parser.add_argument("--standard", metavar="NAME",
+                        help="add a standard's tests and their verdicts (docs/standards.md)")
     add_report_units_argument(parser)
     parser.set_defaults(func=run)
 
@@ -65,15 +70,23 @@ def run(args) -> int:
     reading, props, notes = open_body(args)
     units = report_units(args, reading)
     body = reading.body
+    loads = option_loads(args, reading)
     verdict = _attempt("stability", lambda: check(body, reading.default_down(), g=args.g, props=props,
-                                                  require_tilt_deg=args.require_tilt), notes)
+                                                  require_tilt_deg=args.require_tilt,
+                                                  loads=loads), notes)
+    standard = None
+    if args.standard is not None:
+        from ..stability.standards import run_standard
+
+        standard = _attempt("standard", lambda: run_standard(
+            body, args.standard, extendables=reading.extendables, props=props), notes)
     poses = _attempt("resting poses", lambda: resting_poses(body, g=args.g, props=props), notes)
     if poses is not None:
         notes += list(poses.notes)
     output = args.output or os.path.splitext(os.path.basename(args.path))[0] + ".html"
     page = report_page(body, props, verdict, poses, path=args.path,
                        notes=notes + list(reading.notices), units=units,
-                       parts=MassReport.of(reading).parts)
+                       parts=MassReport.of(reading).parts, standard=standard)
     write_atomic(output, page.encode("utf-8"))
     if args.json:
         dump_json({"path": args.path, "report": output, "bytes": len(page.encode("utf-8"))})

@@ -294,15 +294,44 @@ def _poses_html(poses, body, u) -> str:
             f"<table>{head}{body_rows}</table>")
 
 
+def _loads_html(loaded, u) -> str:
+    """The load case: each load's point, force and moment about the critical edge, the
+    moments and the factor of safety, the verdict under the loads."""
+    factor = loaded.overturning_safety_factor
+    rows = [("verdict under the loads", loaded.verdict),
+            ("critical edge", f"{fmt_point(u.length(loaded.edge_start), 4)}–"
+                              f"{fmt_point(u.length(loaded.edge_end), 4)} {u.length_unit}"),
+            ("resisting / overturning", f"{fmt(loaded.resisting_moment, 5)} / "
+                                        f"{fmt(loaded.overturning_moment, 5)} N·m"),
+            ("factor of safety", "— (nothing overturns it)" if factor is None else fmt(factor, 4))]
+    rows += [(f"{m.name} ({m.kind})", f"{fmt_point(m.force, 4)} N at "
+              f"{fmt_point(u.length(m.at), 4)} {u.length_unit}: {fmt(m.moment, 5)} N·m")
+             for m in loaded.moments]
+    return _table(rows)
+
+
+def _standard_html(result) -> str:
+    """A standard's tests: each one's clause, verdict and margin, and the bundle."""
+    rows = [(f"{t.name}{f' [{t.case}]' if t.case else ''} ({t.clause})",
+             f"{'PASS' if t.passes else 'FAIL'}: {t.verdict}, margin {fmt(t.margin, 4)} "
+             f"({'degrees' if t.margin_unit == 'deg' else 'factor of safety − 1'})")
+            for t in result.tests]
+    rows.append(("bundle", "PASSES" if result.passes else "FAILS"))
+    return (f"<p>{_e(result.title)}, {_e(result.edition)}, clause {_e(result.clause)}.</p>"
+            + _table(rows) + f'<p class="note">{_e(result.disclaimer)}.</p>')
+
+
 def report_page(body, props, verdict=None, poses=None, *, path: str | None = None,
-                notes=(), max_faces: int = REPORT_FACES, units=None, parts=()) -> str:
+                notes=(), max_faces: int = REPORT_FACES, units=None, parts=(),
+                standard=None) -> str:
     """The HTML of one self-contained report page (a string).
 
     body, props: the body and its mass properties. verdict: its stability verdict, or
     None. poses: its resting poses, or None. path: the file, for the title. notes: lines
     for the notes section (why a section is missing, the reader's notices). units: a
     :class:`plumbob.report.ReportUnits` for the tables (default SI). parts: (name, kind,
-    mass properties) of each part of an assembly, for the per-part table.
+    mass properties) of each part of an assembly, for the per-part table. standard: a
+    standard's tests (:func:`plumbob.stability.standards.run_standard`), or None.
     """
     u = units or _SI()
     parts_of = tuple(parts)
@@ -331,6 +360,10 @@ def report_page(body, props, verdict=None, poses=None, *, path: str | None = Non
         parts += ["<h2>Stability on level ground</h2>", '<div class="row"><div>',
                   _verdict_html(verdict, u), "</div><div>",
                   _rose(verdict).to_html(full_html=False, include_plotlyjs=False), "</div></div>"]
+        if getattr(verdict, "loaded", None) is not None:
+            parts += ["<h2>Under the applied loads</h2>", _loads_html(verdict.loaded, u)]
+    if standard is not None:
+        parts += [f"<h2>Standard: {_e(standard.standard)}</h2>", _standard_html(standard)]
     if poses is not None:
         parts += [f"<h2>Resting poses ({len(poses)}), most probable first</h2>",
                   _poses_html(poses, body, u)]
