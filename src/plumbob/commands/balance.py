@@ -129,80 +129,7 @@ def _hollow(args, reading, props):
     return written.body, written.mass_properties, written
 
 
-def _hollow_text(w, scale: float) -> str:
-    """The hollowing's lines: what was emptied and written, and the written file's check."""
-    from ..report import clean, format_number, format_vector, table
-
-    def num(value: float, digits: int = 6) -> str:
-        return format_number(float(clean(value, scale)), digits)
-
-    p = w.plan
-    rows = [("hollowed", f"walls {num(p.wall)} m: {int(p.emptied.sum())} of {len(p.cells)} cells "
-                         f"of {num(p.cells.size, 4)} m emptied, {num(p.removed_mass)} kg removed"),
-            ("before", f"mass {num(p.before.mass)} kg, centre of mass "
-                       f"{format_vector(clean(p.before.center_of_mass, scale))} m"),
-            ("after (written)", f"mass {num(w.mass_properties.mass)} kg, centre of mass "
-                                f"{format_vector(clean(w.mass_properties.center_of_mass, scale))} m, "
-                                f"{w.verdict.verdict}, margin {num(w.verdict.margin)} m, critical "
-                                f"tilt {num(w.verdict.critical_tilt_deg, 4)}°"),
-            ("wrote", w.out + (f" and the void {w.void}" if w.void else ""))]
-    return table(rows, title="hollowing")
-
-
-def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
-    from ..report import clean, format_number, format_vector, table
-
-    def num(value: float, digits: int = 6) -> str:
-        return format_number(float(clean(value, scale)), digits)
-
-    def vec(values, digits: int = 6) -> str:
-        return format_vector(clean(values, scale), digits)
-
-    wanted = []
-    if r.margin_target is not None:
-        wanted.append(f"margin ≥ {num(r.margin_target)} m")
-    if r.require_tilt_deg is not None:
-        way = "in every direction" if r.toward is None else f"toward {vec(r.toward, 4)}"
-        wanted.append(f"no toppling at {num(r.require_tilt_deg, 4)}° {way}")
-
-    def state(v) -> str:
-        way = ("" if r.toward is None or v.verdict != "stands" else
-               f", tips at {num(v.tipping_angle_deg(r.toward), 4)}° that way")
-        return (f"{v.verdict}, margin {num(v.margin)} m, critical tilt "
-                f"{num(v.critical_tilt_deg, 4)}°{way}, centre of mass "
-                f"{vec(v.center_of_mass)} m")
-
-    rows = [("target", ", ".join(wanted)), ("down", vec(r.down)), ("before", state(r.before))]
-    if r.ballast_mass == 0:
-        rows.append(("ballast", "none needed: it meets the target as it is"))
-    else:
-        rows.append(("ballast", f"{num(r.ballast_mass)} kg centred at {vec(r.ballast_point)} m"))
-        if r.ballast_density is not None:
-            dims = r.ballast_dimensions
-            if r.ballast_shape == "cylinder":
-                shape = f"a cylinder of radius {num(dims[0], 4)} m and height {num(dims[1], 4)} m"
-            elif r.ballast_shape == "square":
-                shape = (f"a square of side {num(dims[0], 4)} m through the lamina's "
-                         f"{num(r.ballast_depth, 4)} m")
-            else:
-                shape = f"a cube of side {num(dims[0], 4)} m"
-            rows.append(("ballast shape", f"{r.ballast_material} ({num(r.ballast_density)} "
-                                          f"kg/m³), {num(r.ballast_volume, 4)} m³: {shape}, "
-                                          "fits inside"))
-            if r.pocket:
-                rows.append(("pocket", f"it fills a pocket cut for it: the body gains "
-                                       f"{num(r.added_mass)} kg"))
-        rows.append(("after", state(r.after) + f", mass {num(r.after.mass)} kg"))
-    rows.append(("result", "meets the target (checked with the ballast added)" if r.passes
-                 else "does NOT meet the target"))
-    lines = [table(rows, title=f"plumbob balance {path} ({kind})")]
-    lines += [f"note: {note}" for note in notes]
-    return "\n".join(lines)
-
-
 def run(args) -> int:
-    import numpy as np
-
     from ..balance.result import balance
     from ._common import load_body
 
@@ -230,18 +157,19 @@ def run(args) -> int:
             out["hollow"] = carved.as_dict()
         print_json(out, reading, notes)
     else:
-        scale = float(np.linalg.norm(np.ptp(body.hull_points(), axis=0)))
+        from ..report.balance import balance_text, hollow_text
+        from ..stability.support import body_size
+
+        scale = body_size(body)
         if carved is not None:
-            print(_hollow_text(carved, scale))
-        print(_text(result, args.path, kind, notes, scale))
+            print(hollow_text(carved, scale))
+        print(balance_text(result, args.path, kind, notes, scale))
     return 0 if result.passes else 1
 
 
 def _run_loaded(args, reading, props, notes, loads) -> int:
     """balance with --force/--hang/--push/--press or --standard: the least ballast that
     stands under the loads (factor of safety ≥ 1), or passes the standard."""
-    import numpy as np
-
     from ..balance.loaded import balance_standard, balance_under_loads
     from ..errors import StabilityError
     from ..report import loads_report
@@ -278,8 +206,11 @@ def _run_loaded(args, reading, props, notes, loads) -> int:
             out["standard"] = args.standard
         print_json(out, reading, notes)
     else:
-        scale = float(np.linalg.norm(np.ptp(body.hull_points(), axis=0)))
-        print(_text(plain, args.path, kind, notes, scale))
+        from ..report.balance import balance_text
+        from ..stability.support import body_size
+
+        scale = body_size(body)
+        print(balance_text(plain, args.path, kind, notes, scale))
         if hasattr(result, "after"):
             which = f" ({args.standard}: its {result.test} test)" if args.standard else ""
             print(f"\nwith the ballast{which}:")
