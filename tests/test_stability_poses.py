@@ -498,3 +498,16 @@ def test_reprs_are_one_short_line():
     assert side.startswith("Pose(probability=") and "rolling about (0, 0, 1)" in side
     assert len(side) < 200
     assert "face=" not in side and "array" not in side  # no array dump
+
+
+def test_a_pose_by_its_rank():
+    """``Poses.ranked(k)`` is the k-th most probable (1-based, as --pose takes it); a rank
+    out of range names what was asked."""
+    from plumbob.stability.poses import resting_poses
+
+    poses = resting_poses(box(1, 2, 3, density=1.0))
+    assert poses.ranked(1) is poses[0] and poses.ranked(len(poses)) is poses[-1]
+    with pytest.raises(StabilityError, match="--pose must be between 1 and 6"):
+        poses.ranked(7, "--pose")
+    with pytest.raises(StabilityError):
+        poses.ranked(0)

@@ -319,15 +319,12 @@ def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--po
 
 def pose_down(body, index: int, option: str, g: float, props):
     """The down vector of the body's ``index``-th most probable resting pose (1-based);
-    ``option`` names the command-line option in the error for an index out of range."""
-    from ..errors import StabilityError
+    ``option`` names the command-line option in the error for an index out of range.
+    The rank is by probability, so every pose is found and weighed: no cheaper call
+    answers it (``Poses.ranked`` holds the rule)."""
     from ..stability.poses import resting_poses
 
-    poses = resting_poses(body, g=g, props=props)
-    if not 1 <= index <= len(poses):
-        raise StabilityError(f"{option} must be between 1 and {len(poses)} (the body has "
-                             f"{len(poses)} resting poses)")
-    return poses[index - 1].down
+    return resting_poses(body, g=g, props=props).ranked(index, option).down
 
 
 def _numbers(text: str, what: str, dims: tuple[int, ...]) -> list[float]:

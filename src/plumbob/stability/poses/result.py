@@ -154,6 +154,17 @@ class Poses:
     def __getitem__(self, index: int) -> Pose:
         return self.poses[index]
 
+    def ranked(self, rank: int, what: str = "rank") -> Pose:
+        """The ``rank``-th most probable pose (1-based, as ``plumbob poses`` numbers them
+        and ``--pose K`` takes them); a :class:`~plumbob.errors.StabilityError` naming
+        ``what`` for a rank out of range."""
+        from ...errors import StabilityError
+
+        if not 1 <= rank <= len(self.poses):
+            raise StabilityError(f"{what} must be between 1 and {len(self.poses)} (the body "
+                                 f"has {len(self.poses)} resting poses)")
+        return self.poses[rank - 1]
+
     @property
     def probabilities(self) -> np.ndarray:
         """(len,) the poses' probabilities, most probable first."""
