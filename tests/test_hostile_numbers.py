@@ -164,3 +164,17 @@ def test_load_of_a_huge_spec_raises_a_plumbob_error_without_warnings(tmp_path):
         warnings.simplefilter("error")
         with pytest.raises(PlumbobError, match="largest length"):
             plumbob.load(_spec(tmp_path, text))
+
+
+def test_a_batch_row_fails_an_overflow_without_a_warning(tmp_path):
+    """A batch worker measures each file as the command does: the overflow fails the row
+    ("failed", with the reason) and no warning text reaches the worker's stderr."""
+    from plumbob.batch.options import Options
+    from plumbob.batch.rows import process_file
+
+    path = _spec(tmp_path, SPEC_CASES["a box of density 1e308"][0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        row = process_file(path, Options()).row
+    assert row["status"] == "failed", row
+    assert "double precision" in row["reason"] and "overflow" in row["reason"]

@@ -13,6 +13,7 @@ from __future__ import annotations
 import hashlib
 import os
 import time
+import warnings
 from dataclasses import dataclass, field
 from stat import S_ISREG
 from typing import Any
@@ -135,6 +136,10 @@ def failure(error: BaseException, status: str | None = None) -> dict[str, Any]:
         status, reason = status or "failed", str(error)
     elif isinstance(error, MemoryError):
         status, reason = status or "failed", "too large to measure in memory"
+    elif isinstance(error, RuntimeWarning):  # numpy's overflow: as the CLI says it
+        status, reason = status or "failed", (
+            f"a number left double precision's range ({error}): the file's lengths, "
+            "densities or positions are too large or too small to compute with")
     else:
         status, reason = status or "error", f"{type(error).__name__}: {error}"
     return {"status": status, "error": type(error).__name__, "reason": " ".join(reason.split())}
@@ -165,11 +170,20 @@ def lost_row(path: str, shown: str, options: Options, status: str, reason: str) 
 
 
 def process_file(path: str, options: Options, shown: str | None = None) -> FileResult:
-    """Read and measure one file; never raises.
+    """Read and measure one file; never raises, never warns: a numpy ``RuntimeWarning``
+    (numbers beyond double precision) fails the file's row, as it fails the command, and
+    no warning text reaches a worker's standard error.
 
     path: where this process finds the file; shown: the path the row reports (the one
     the user gave, when ``path`` was made absolute for a remote worker).
     """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        warnings.simplefilter("error", RuntimeWarning)
+        return _process_file(path, options, shown)
+
+
+def _process_file(path: str, options: Options, shown: str | None) -> FileResult:
     start = time.perf_counter()
     shown = path if shown is None else shown
     row: dict[str, Any] = {"path": shown, "status": "ok", "units": options.units}
