@@ -17,7 +17,7 @@ from plumbob.bodies.primitives import box, cylinder, hemisphere, sphere
 from plumbob.bodies.solid import MeshSolid
 from plumbob.stability import check, resting_poses
 from plumbob.stability.poses.settling import SETTLE_STANDS_DEG, settle
-from plumbob.stability.verdict import contact_kind
+from plumbob.stability.support import contact_kind
 from plumbob.tolerances import SLIVER
 
 ANGLE = 1e-9  # degrees: the settling of exact geometry, to round-off of its angles

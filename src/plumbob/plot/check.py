@@ -1,9 +1,15 @@
 """``plot_check``: the verdict drawn — body, centre of mass, support, tipping edges, tilt rose.
 
-Everything is drawn in the verdict's ground frame (e1, e2, up), which is the body's own
-frame for the default down (−z; −y for a lamina), so the marks sit at the numbers the
-report prints. The foot of the centre of mass is coloured by margin: green stands,
-amber below the required tilt (or neutral), red topples; the words are in the legend.
+Everything is drawn in one frame per figure: the verdict's ground frame (e1, e2, up),
+which is the body's own frame (x, y, z) for the default down (−z; −y for a lamina), so
+the marks sit at the numbers the report prints; in any other orientation (``--pose K``,
+``--down``) every panel, the rose's directions and the centre of mass in the title are
+in e1, e2, up. The side view looks across the weakest direction (the critical
+direction runs left to right, and its axis says so), so what makes a body weak that
+way — an overhang, a drawer — is in view. The foot of the centre of mass is coloured by
+margin: green stands, amber below the required tilt (or neutral), red topples; the words
+are in the legend. Legends sit beside their panels and labels beside what they name, so
+nothing covers anything (the tests measure the drawn boxes).
 """
 
 from __future__ import annotations
@@ -53,9 +59,23 @@ def _names(verdict, rows: np.ndarray) -> tuple[str, ...]:
 
 
 def _com_label(verdict, rows: np.ndarray) -> str:
-    """G in the body's own coordinates, whatever frame the picture is drawn in."""
-    where = "" if np.allclose(rows, np.eye(len(rows))) else " (body frame)"
-    return f"centre of mass G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m{where}"
+    """G in the figure's frame (its axes' names when that is not the body's own)."""
+    names = _names(verdict, rows)
+    where = "" if names[0] == "x" else f" ({', '.join(names)})"
+    point = in_frame(verdict.center_of_mass, rows)
+    return f"centre of mass G{where} {fmt_point(point, scale=_size(verdict))} m"
+
+
+def _way_name(verdict, rows: np.ndarray, vector=None) -> str:
+    """A horizontal direction (default the side view's, :func:`side_rows`) in the figure's
+    frame: ``−y``, ``+e1``, or its components."""
+    names = _names(verdict, rows)
+    vector = side_rows(verdict, rows)[0] if vector is None else vector
+    g = in_frame(vector, rows)[:-1]
+    k = int(np.argmax(np.abs(g)))
+    if abs(abs(g[k]) - 1.0) < 1e-9:
+        return ("+" if g[k] > 0 else "−") + names[k]
+    return f"{fmt_point(g, 3)} in {', '.join(names[:-1])}"
 
 
 def _foot_label(verdict) -> str:
@@ -98,7 +118,7 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
                           markeredgecolor=INK, linestyle="none", zorder=16)
         mark.set_gid("tipping point")
         ax.annotate(f"tips here at {fmt(edge.tipping_angle_deg, 3)}°", xy=tip, xytext=(0, -22),
-                    textcoords="offset points", ha="center", fontsize="small",
+                    textcoords="offset points", ha="center", va="top", fontsize="small",
                     arrowprops=dict(arrowstyle="-", color=INK, linewidth=0.6))
     ax.update_datalim([[lo, ground - 0.12 * width]])
     ax.autoscale_view()
@@ -129,20 +149,37 @@ def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
         max(float(np.ptp(support, axis=0).max()), abs(verdict.margin), 1e-9)
     ax.update_datalim(np.vstack((support, foot)))
     direction = in_frame(verdict.critical_direction, rows)[:2]
-    ax.annotate(f"weakest way: {fmt(verdict.critical_tilt_deg, 3)}°", xy=foot + 0.3 * size * direction,
-                xytext=foot, zorder=21, fontsize="small", ha="center", va="top",
-                arrowprops=dict(arrowstyle="-|>", color=STATUS_COLOURS["topples"], linewidth=2))
+    # the arrow alone on the plan; its words in the legend, beside the panel
+    arrow = ax.annotate("", xy=foot + 0.3 * size * direction, xytext=foot, zorder=21,
+                        arrowprops=dict(arrowstyle="-|>", color=STATUS_COLOURS["topples"],
+                                        linewidth=2))
+    arrow.set_gid("weakest way")
+    ax.plot([], [], color=STATUS_COLOURS["topples"], linewidth=2, marker=">",
+            label=f"weakest way ({_way_name(verdict, rows, verdict.critical_direction)}): "
+                  f"{fmt(verdict.critical_tilt_deg, 3)}°")
     if len(verdict.edges) <= _MAX_EDGE_LABELS and verdict.support.kind == "polygon":
-        for edge in verdict.edges:
-            mid = in_frame((np.asarray(edge.start) + np.asarray(edge.end)) / 2, rows)[:2]
-            ax.text(*mid, f"{fmt(edge.tipping_angle_deg, 3)}°", fontsize="x-small", ha="center",
-                    va="center", bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8),
-                    zorder=12)
+        for edge in verdict.edges:  # just inside its edge, clear of the foot and the arrow
+            a, b = in_frame(edge.start, rows)[:2], in_frame(edge.end, rows)[:2]
+            ab = b - a
+            inward = -in_frame(edge.normal, rows)[:2]
+            # the arrow crosses the weakest edge, and the foot may sit near an edge, where
+            # each projects onto it: a label near there moves toward the far end
+            t0 = float((foot - a) @ ab / max(float(ab @ ab), 1e-300))
+            crossed = float(inward @ direction) < -0.999 or abs(edge.distance) < 0.15 * size
+            t = 0.5 if not crossed or abs(t0 - 0.5) > 0.3 else (0.2 if t0 > 0.5 else 0.8)
+            label = ax.annotate(f"{fmt(edge.tipping_angle_deg, 3)}°", xy=a + t * ab,
+                                xytext=tuple(6 * inward), textcoords="offset points",
+                                fontsize="x-small", zorder=12,
+                                ha="left" if inward[0] > 0.5 else "right" if inward[0] < -0.5
+                                else "center",
+                                va="bottom" if inward[1] > 0.5 else "top" if inward[1] < -0.5
+                                else "center")
+            label.set_gid("edge label")
     ax.autoscale_view()
     ax.set_aspect("equal", adjustable="datalim")
     names = _names(verdict, rows)
     label_axes(ax, names[:2])
-    ax.legend(fontsize="small", loc="upper right")
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title(f"ground plan ({names[0]}–{names[1]}): support and foot of G", fontsize="medium")
 
 
@@ -174,18 +211,37 @@ def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.plot(*np.array([com, foot]).T, linestyle="--", color=INK, label="weight", zorder=18)
     draw_com_3d(ax, com, label=_com_label(verdict, rows))
     _draw_foot(ax, foot, verdict)
-    label_axes(ax, _names(verdict, rows))
-    ax.set_title("3-D view, resting on the ground", fontsize="medium")
+    # the axes' names in the title: a 3-D axis' own label lands on its tick labels
+    ax.set_title(f"3-D view, resting on the ground (axes {', '.join(_names(verdict, rows))}, m)",
+                 fontsize="medium")
 
 
-def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+def side_rows(verdict, rows: np.ndarray) -> np.ndarray:
+    """Rows (along, across, up) of the side view: ``along`` the critical direction (body
+    frame, horizontal) — under loads, the critical edge's outward normal — so the side view
+    looks across the weakest way."""
+    up = rows[-1]
+    loaded = getattr(verdict, "loaded", None)
+    along = np.asarray(verdict.critical_direction if loaded is None else loaded.edge_normal,
+                       dtype=float)
+    along = along - (along @ up) * up
+    norm = float(np.linalg.norm(along))
+    along = rows[0] if norm < 1e-12 else along / norm
+    return np.array([along, np.cross(up, along), up])
+
+
+def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray,
+                legend: list[tuple[str, str]] | None = None) -> None:
+    """The body from the side, cut by the vertical plane of the critical direction: that
+    direction left to right (``d`` drawn in :func:`side_rows`)."""
+    side = side_rows(verdict, rows)
     if d is not None:
         colours, _ = part_colours(d.pieces)
         draw_silhouette(ax, d, colours, 0, 2)
-    com = in_frame(verdict.center_of_mass, rows)
-    foot = in_frame(verdict.support.plane_point, rows)
-    support = in_frame(verdict.support.polygon, rows)
-    lo, hi = ax.get_xlim()
+    com = in_frame(verdict.center_of_mass, side)
+    foot = in_frame(verdict.support.plane_point, side)
+    support = in_frame(verdict.support.polygon, side)
+    lo, hi = ax.get_xlim() if d is not None else (support[:, 0].min() - 1, support[:, 0].max() + 1)
     ax.axhline(foot[2], color=INK, linewidth=1.0)
     ax.axhspan(foot[2] - 0.04 * (hi - lo), foot[2], color=_GROUND, alpha=0.5, hatch="///",
                linewidth=0, gid="ground")
@@ -198,16 +254,23 @@ def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.update_datalim([[lo, foot[2] - 0.08 * (hi - lo)]])
     ax.autoscale_view()
     names = _names(verdict, rows)
-    label_axes(ax, (names[0], names[2]))
-    ax.set_title(f"from the side ({names[0]}–{names[2]})", fontsize="medium")
+    way = _way_name(verdict, rows)
+    ax.set_xlabel(f"along the weakest way, toward {way} →, m")
+    ax.set_ylabel(f"{names[-1]}, m")
+    ax.set_title(f"from the side, across the weakest way: toward {way}", fontsize="medium")
+    if legend:  # an assembly: one entry per part
+        draw_legend(ax, legend, loc="upper left", bbox_to_anchor=(1.02, 1.0))
 
 
-def _summary(verdict) -> str:
+def _summary(verdict, rows: np.ndarray) -> str:
     settled = getattr(verdict, "settling", None)
     word = verdict.verdict if settled is None else f"{verdict.verdict} ({settled.phrase})"
+    names = _names(verdict, rows)
+    where = "" if names[0] == "x" else f" ({', '.join(names)})"
+    point = in_frame(verdict.center_of_mass, rows)
     text = (f"{word}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
             f"{fmt(verdict.margin, 3)} m, energy to topple {fmt(verdict.energy_to_topple, 4)} J, "
-            f"G {fmt_point(verdict.center_of_mass, scale=_size(verdict))} m")
+            f"G{where} {fmt_point(point, scale=_size(verdict))} m")
     if verdict.required_tilt_deg is not None:
         text += f"; required tilt {fmt(verdict.required_tilt_deg, 3)}°: " + \
             ("PASS" if verdict.passes else "FAIL")
@@ -239,8 +302,10 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
     matplotlib.figure.Figure
     """
     rows = _frame(verdict)
-    d = drawing(body, max_faces).moved(rows) if body is not None else None
+    base = drawing(body, max_faces) if body is not None else None
+    d = base.moved(rows) if base is not None else None
     lamina = verdict.support.frame.dim == 2
+    names = _names(verdict, rows)
     if ax is not None:
         if lamina:
             _lamina_panel(ax, verdict, d, rows)
@@ -255,20 +320,23 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
         main = fig.add_subplot(grid[0, 0])
         _lamina_panel(main, verdict, d, rows)
         draw_loads(main, verdict, rows, (0, 1), _size(verdict))
-        tilt_rose(verdict, fig.add_subplot(grid[0, 1], projection="polar"))
+        tilt_rose(verdict, fig.add_subplot(grid[0, 1], projection="polar"), names=names[:1])
     elif d is None:
         fig = new_figure((11, 5))
         _plan_panel(fig.add_subplot(1, 2, 1), verdict, None, rows)
-        tilt_rose(verdict, fig.add_subplot(1, 2, 2, projection="polar"))
+        tilt_rose(verdict, fig.add_subplot(1, 2, 2, projection="polar"), names=names[:2])
     else:
-        fig = new_figure((12, 10))
+        fig = new_figure((14, 10))
         _solid_3d_panel(new_3d_axes(fig, 2, 2, 1), verdict, d, rows)
+        _, legend = part_colours(d.pieces)
         side = fig.add_subplot(2, 2, 2)
-        _side_panel(side, verdict, d, rows)
-        draw_loads(side, verdict, rows, (0, 2), _size(verdict))
+        across = side_rows(verdict, rows)
+        _side_panel(side, verdict, base.moved(across), rows,
+                    legend if len(d.pieces) > 1 else None)
+        draw_loads(side, verdict, across, (0, 2), _size(verdict))
         _plan_panel(fig.add_subplot(2, 2, 3), verdict, d, rows)
-        tilt_rose(verdict, fig.add_subplot(2, 2, 4, projection="polar"))
-    fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict),
+        tilt_rose(verdict, fig.add_subplot(2, 2, 4, projection="polar"), names=names[:2])
+    fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict, rows),
                  fontsize="medium")
     if d is not None and d.note:
         caption(fig, d.note)

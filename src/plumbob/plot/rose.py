@@ -1,9 +1,12 @@
 """The tilt rose: how far the ground may tilt toward each direction before the body goes over.
 
-A polar plot of the verdict's own ``tipping_angle_deg`` around the vertical (one
+A polar plot of the verdict's own ``tipping_over_deg`` around the vertical (one
 sample per degree; a lamina has two directions, along its ground line), with the
 required tilt as a dashed circle and the critical direction marked, so the weakest
-direction is obvious at a glance.
+direction is obvious at a glance. Every kind of support has its rose: on a line of
+contact it rolls across (a cylinder on its side) the rose is the tilt that tips it over
+the line's ends (and the legend says it rolls across the line at any tilt); on a
+rocking point, the rocker's tilt each way.
 """
 
 from __future__ import annotations
@@ -24,7 +27,8 @@ def rose_samples(verdict, step_deg: float = 1.0) -> tuple[np.ndarray, np.ndarray
     else:
         angles = np.radians(np.arange(0.0, 360.0 + step_deg / 2, step_deg))
         directions = np.cos(angles)[:, None] * axes[0] + np.sin(angles)[:, None] * axes[1]
-    tilts = np.array([verdict.tipping_angle_deg(d) for d in directions])
+    over = getattr(verdict, "tipping_over_deg", verdict.tipping_angle_deg)
+    tilts = np.array([over(d) for d in directions])
     return angles, tilts
 
 
@@ -36,11 +40,14 @@ def _direction_name(vector: np.ndarray, fallback: str) -> str:
     return ("+" if vector[k] > 0 else "−") + "xyz"[k]
 
 
-def tilt_rose(verdict, ax=None, *, require_tilt_deg: float | None = None):
+def tilt_rose(verdict, ax=None, *, require_tilt_deg: float | None = None,
+              names: tuple[str, ...] | None = None):
     """Draw the tilt rose of a :class:`~plumbob.stability.verdict.Verdict`; returns the figure.
 
     ax: a polar axes, or None for a new figure. require_tilt_deg: the circle to draw
-    (default: the verdict's own required tilt, if any).
+    (default: the verdict's own required tilt, if any). names: the ground axes' names in
+    the figure's frame (``("x", "y")``, ``("e1", "e2")``); default the body's axes they
+    lie along.
     """
     if ax is None:
         fig = new_figure((4.8, 4.8))
@@ -55,7 +62,7 @@ def tilt_rose(verdict, ax=None, *, require_tilt_deg: float | None = None):
     else:
         ax.fill(angles, shown, color=colour, alpha=0.35, gid="rose")
         ax.plot(angles, shown, color=INK, linewidth=1.4, label="critical tilt by direction")
-    top = max(float(shown.max()), float(required or 0.0), 1.0) * 1.15
+    top = max(float(shown.max()), float(required or 0.0), 1.0) * 1.3  # marks clear of labels
     if required is not None:
         circle = np.linspace(0, 2 * np.pi, 181)
         ax.plot(circle, np.full_like(circle, required), linestyle="--", color=INK, linewidth=1.2,
@@ -65,16 +72,34 @@ def tilt_rose(verdict, ax=None, *, require_tilt_deg: float | None = None):
     ax.plot([critical], [max(verdict.critical_tilt_deg, 0.0)], marker="v", markersize=11,
             color=STATUS_COLOURS["topples"], markeredgecolor=INK, linestyle="none",
             label=f"weakest: {fmt(verdict.critical_tilt_deg, 3)}°", gid="critical")
+    rolls = getattr(verdict, "rolls", None)
+    if rolls is not None:  # what the rose cannot show as a tilt
+        ax.plot([], [], linestyle="none", marker="$\\circlearrowleft$", color=INK,
+                label=f"rolls {rolls} at any tilt", gid="rolls")
     ax.set_ylim(0, top)
+    # the radial scale along the diagonal farthest from the weakest mark, few labels
+    diagonals = np.radians([22.5, 157.5, 202.5, 337.5])
+    away = diagonals[np.argmax(np.abs(np.angle(np.exp(1j * (diagonals - critical)))))]
+    ax.set_rlabel_position(np.degrees(away))
+    from matplotlib.ticker import MaxNLocator
+
+    ax.yaxis.set_major_locator(MaxNLocator(4))
     axes = np.asarray(verdict.support.frame.axes, dtype=float)
-    names = [_direction_name(axes[0], "+e1"), "", _direction_name(-axes[0], "−e1"), ""]
-    if len(axes) > 1:  # a lamina tilts only along its ground line
-        names[1::2] = _direction_name(axes[1], "+e2"), _direction_name(-axes[1], "−e2")
+    if names is not None:
+        labels = [f"+{names[0]}", "", f"−{names[0]}", ""]
+        if len(axes) > 1:
+            labels[1::2] = f"+{names[1]}", f"−{names[1]}"
+    else:
+        labels = [_direction_name(axes[0], "+e1"), "", _direction_name(-axes[0], "−e1"), ""]
+        if len(axes) > 1:  # a lamina tilts only along its ground line
+            labels[1::2] = _direction_name(axes[1], "+e2"), _direction_name(-axes[1], "−e2")
     ax.set_xticks(np.radians([0, 90, 180, 270]))
-    ax.set_xticklabels(["toward " + names[0]] + names[1:])
-    ax.set_title("tilt rose: critical tilt (°) by direction", fontsize="medium")
-    ax.legend(fontsize="small", loc="lower left", bbox_to_anchor=(-0.15, -0.22))
-    if verdict.verdict == "topples":
-        ax.text(0, 0, "topples\nalready", ha="center", va="center", color=STATUS_COLOURS["topples"],
-                fontweight="bold")
+    ax.set_xticklabels(["toward " + labels[0]] + labels[1:])
+    ax.tick_params(axis="x", pad=8)
+    title = "tilt rose: critical tilt (°) by direction"
+    if verdict.verdict == "topples":  # in the title, not over the marks at the centre
+        title = "tilt rose: it topples already, on level ground"
+    ax.set_title(title, fontsize="medium",
+                 color=STATUS_COLOURS["topples"] if verdict.verdict == "topples" else INK)
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.05, 1.0))
     return ax.figure

@@ -72,24 +72,35 @@ def equal_3d(ax, points: np.ndarray) -> None:
     ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
     ax.set_zlim(mid[2] - span[2] / 2, mid[2] + span[2] / 2)
     ax.set_box_aspect(tuple(span))
-    from matplotlib.ticker import MaxNLocator
+    from matplotlib.ticker import FixedLocator, MaxNLocator
 
-    for axis, extent in zip((ax.xaxis, ax.yaxis, ax.zaxis), span):
-        axis.set_major_locator(MaxNLocator(max(2, int(6 * extent / span.max()))))
+    # fewer ticks on a short side (its labels crowd in projection: one, at its middle)
+    for axis, extent, centre in zip((ax.xaxis, ax.yaxis, ax.zaxis), span, mid):
+        if extent < 0.35 * span.max():
+            axis.set_major_locator(FixedLocator([float(f"{centre:.3g}")]))
+        else:
+            axis.set_major_locator(MaxNLocator(max(2, int(5 * extent / span.max()))))
 
 
 def part_colours(pieces) -> tuple[list[str], list[tuple[str, str]]]:
-    """A colour per piece — one per material (density), so parts of one material match —
-    and the legend entries ``(colour, text)``."""
-    colours, legend, by_density = [], [], {}
-    for piece in pieces:
-        key = None if piece.density is None else round(piece.density, 6)
-        if key not in by_density:
-            by_density[key] = PART_COLOURS[len(by_density) % len(PART_COLOURS)]
-        colours.append(by_density[key])
+    """A colour per piece — every part its own, parts of one material too (a cabinet's
+    oak carcass and oak drawer are two things to tell apart) — and one legend entry
+    ``(colour, text)`` per part: its name (numbered when two share one) and its material's
+    density. Past :data:`PART_COLOURS` the colours repeat a shade darker."""
+    from matplotlib.colors import to_hex, to_rgb
+
+    colours, legend = [], []
+    names = [piece.label for piece in pieces]
+    for k, piece in enumerate(pieces):
+        base = np.array(to_rgb(PART_COLOURS[k % len(PART_COLOURS)]))
+        colour = to_hex(base * 0.75 ** (k // len(PART_COLOURS)))
+        colours.append(colour)
+        name = piece.label
+        if names.count(name) > 1:
+            name = f"{name} {names[:k + 1].count(name)}"
         units = "kg/m³" if piece.triangles is not None else "kg/m²"
-        text = piece.label if piece.density is None else f"{piece.label} ({fmt(piece.density)} {units})"
-        legend.append((by_density[key], text))
+        text = name if piece.density is None else f"{name} ({fmt(piece.density)} {units})"
+        legend.append((colour, text))
     return colours, legend
 
 

@@ -38,7 +38,7 @@ from ..arguments import unit_vector as _checked_unit_vector
 from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
-from ..tolerances import HULL_ROUND_OFF, size_of
+from ..tolerances import HULL_ROUND_OFF, SLIVER, size_of
 from .planar import drop_collinear, planar_hull
 
 __all__ = [
@@ -49,6 +49,7 @@ __all__ = [
     "ground_frame",
     "support_polygon",
     "body_size",
+    "contact_kind",
     "hull_points",
     "is_polytope",
     "support_points",
@@ -521,3 +522,21 @@ def _remeasure(body, frame: GroundFrame, com: np.ndarray, normals: np.ndarray,
 def _snap(distance: float, tol: float) -> float:
     """A re-measured distance within the tolerance of the foot is the foot itself: 0."""
     return 0.0 if abs(distance) <= tol else distance
+
+
+def contact_kind(sup: Support, size: float) -> str | None:
+    """``"point"``, ``"line"`` or ``"sliver"`` when a solid touches the ground with one
+    (``size``: the body's, m; a sliver is a support polygon narrower than
+    :data:`~plumbob.tolerances.SLIVER` of it, a segment shorter than that a point's
+    sampling), else None."""
+    if sup.dim != 3:
+        return None
+    if sup.kind == "point":
+        return "point"
+    if sup.kind == "segment":
+        length = float(np.linalg.norm(sup.vertices[1] - sup.vertices[0]))
+        return "line" if length >= SLIVER * size else "point"
+    v = sup.vertices  # the polygon's width: its least extent across an edge
+    across = np.einsum("ij,ij->i", sup.edge_starts, sup.edge_normals)[:, None] - (
+        sup.edge_normals @ v.T)
+    return "sliver" if float(across.max(axis=1).min()) < SLIVER * size else None

@@ -38,14 +38,14 @@ from ..arguments import answering, finite_result, instance
 from ..errors import StabilityError
 from ..massprops import MassProperties
 from ..results import Result
-from ..tolerances import SLIVER, sampling_tolerance
+from ..tolerances import sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
 from .keys import VERDICT_KEYS
 from .loaded import LoadVerdict
 from .requirement import Requirement
 from .rocking import Rocking, rocking
-from .support import Support, hull_points, is_polytope, support_polygon
+from .support import Support, contact_kind, hull_points, is_polytope, support_polygon
 from .tipping import tipping_angle_deg, tipping_angles_deg
 
 if TYPE_CHECKING:  # the settling loads the poses: only for a point, a line or a sliver
@@ -58,7 +58,6 @@ __all__ = [
     "SlopeCheck",
     "Verdict",
     "check",
-    "contact_kind",
     "verdict_from_support",
 ]
 
@@ -364,6 +363,33 @@ class Verdict(Result):
         horizontal ``direction`` (body frame, (dim,)); ≤ 0 when it does not stand."""
         return tipping_toward(self.support, self.verdict, self.margin, self.rocking, direction)
 
+    def tipping_over_deg(self, direction) -> float:
+        """The tilt, degrees, at which a plane descending toward the horizontal ``direction``
+        (body frame, (dim,)) tips the body over the edge of its support it faces, for every
+        kind of support: :meth:`tipping_angle_deg`, except on a line of contact it rolls
+        across (a cylinder on its side), where that is the tilt that tips it over one of
+        the line's ends — ``atan(d / (h cos φ))``, ``d`` the end's distance from the foot,
+        ``φ`` the angle from the line — and 90° straight across it (it only rolls)."""
+        sup = self.support
+        if not (sup.kind == "segment" and sup.dim == 3 and self.verdict == "neutral"):
+            return self.tipping_angle_deg(direction)
+        d = sup.frame.to_ground(np.asarray(direction, dtype=float))
+        d = d / np.linalg.norm(d)
+        cos = sup.edge_normals[2:] @ d  # a segment's edges: its two sides, then its ends
+        facing = cos > 1e-12
+        if not facing.any():
+            return 90.0
+        reach = float(np.min(sup.edge_distances[2:][facing] / cos[facing]))
+        return float(np.degrees(np.arctan2(max(reach, 0.0), sup.com_height)))
+
+    @property
+    def rolls(self) -> str | None:
+        """How a neutral body rolls: ``"across its line"`` (a cylinder on its side),
+        ``"every way"`` (a ball on its point), or None."""
+        if self.verdict != "neutral":
+            return None
+        return "across its line" if self.support.kind == "segment" else "every way"
+
 
 def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
     d = np.maximum(np.asarray(d, dtype=float), 0.0)
@@ -526,24 +552,6 @@ friction=0.3, slides_first=False)
                                  "not both")
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     return _check(body, requirement, tolerance, props, settle=True)
-
-
-def contact_kind(sup: Support, size: float) -> str | None:
-    """``"point"``, ``"line"`` or ``"sliver"`` when a solid touches the ground with one
-    (``size``: the body's, m; a sliver is a support polygon narrower than
-    :data:`~plumbob.tolerances.SLIVER` of it, a segment shorter than that a point's
-    sampling), else None."""
-    if sup.dim != 3:
-        return None
-    if sup.kind == "point":
-        return "point"
-    if sup.kind == "segment":
-        length = float(np.linalg.norm(sup.vertices[1] - sup.vertices[0]))
-        return "line" if length >= SLIVER * size else "point"
-    v = sup.vertices  # the polygon's width: its least extent across an edge
-    across = np.einsum("ij,ij->i", sup.edge_starts, sup.edge_normals)[:, None] - (
-        sup.edge_normals @ v.T)
-    return "sliver" if float(across.max(axis=1).min()) < SLIVER * size else None
 
 
 def _check(body, requirement: Requirement, tolerance: float | None, props: MassProperties,
