@@ -29,7 +29,7 @@ depends on its curvature, which this verdict does not judge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -160,12 +160,8 @@ class Verdict(Result):
     requirement: what was asked (g, m/s², is ``requirement.g``).
     slope: the check on a tilted plane, when asked for.
     design: the design checks, when asked for.
-    settling: for a solid set down on a point, a line or a sliver of contact, where it
-        comes to rest (:class:`~plumbob.stability.poses.settling.Settling`). When it
-        settles there (``settling.stays``: within the poses' roll angle, or rocking back
-        into a bowl's bottom) every other field is the verdict where it rests, ``down``
-        included (the down it was set down with is ``settling.down_from``); when it rolls
-        away they are the verdict where it was set down.
+    settling: set down on a point, a line or a sliver, where it comes to rest (see
+        :mod:`~plumbob.stability.settled`; the other fields are where it rests if it stays).
     """
 
     verdict: str
@@ -339,12 +335,9 @@ class Verdict(Result):
 
     @property
     def summary(self) -> str:
-        """The verdict in words, with where it settles: ``"stands"``, ``"stands (settles
-        0.05° into pose 3)"``, ``"topples (rolls 80° onto pose 2, where it stands, critical
-        tilt 45°)"``."""
-        if self.settling is None:
-            return self.verdict
-        return f"{self.verdict} ({self.settling.phrase})"
+        """The verdict in words, with where it settles: ``"stands (settles 0.05° into pose
+        3)"``, ``"topples (rolls 80° onto pose 2, where it stands, critical tilt 45°)"``."""
+        return self.verdict + ("" if self.settling is None else f" ({self.settling.phrase})")
 
     def plot(self, ax=None, *, body=None, **options):
         """Draw the verdict (with ``body``'s outline if given); returns the matplotlib figure.
@@ -364,31 +357,22 @@ class Verdict(Result):
         return tipping_toward(self.support, self.verdict, self.margin, self.rocking, direction)
 
     def tipping_over_deg(self, direction) -> float:
-        """The tilt, degrees, at which a plane descending toward the horizontal ``direction``
-        (body frame, (dim,)) tips the body over the edge of its support it faces, for every
-        kind of support: :meth:`tipping_angle_deg`, except on a line of contact it rolls
-        across (a cylinder on its side), where that is the tilt that tips it over one of
-        the line's ends — ``atan(d / (h cos φ))``, ``d`` the end's distance from the foot,
-        ``φ`` the angle from the line — and 90° straight across it (it only rolls)."""
+        """The tilt, degrees, that tips it over the edge it faces, the plane descending toward
+        ``direction`` (body frame): :meth:`tipping_angle_deg`, but on a line it rolls across
+        the tilt over the line's ends (:func:`~.settled.tipping_over_line`)."""
         sup = self.support
         if not (sup.kind == "segment" and sup.dim == 3 and self.verdict == "neutral"):
             return self.tipping_angle_deg(direction)
-        d = sup.frame.to_ground(np.asarray(direction, dtype=float))
-        d = d / np.linalg.norm(d)
-        cos = sup.edge_normals[2:] @ d  # a segment's edges: its two sides, then its ends
-        facing = cos > 1e-12
-        if not facing.any():
-            return 90.0
-        reach = float(np.min(sup.edge_distances[2:][facing] / cos[facing]))
-        return float(np.degrees(np.arctan2(max(reach, 0.0), sup.com_height)))
+        from .settled import tipping_over_line
+
+        return tipping_over_line(sup, direction)
 
     @property
     def rolls(self) -> str | None:
-        """How a neutral body rolls: ``"across its line"`` (a cylinder on its side),
-        ``"every way"`` (a ball on its point), or None."""
-        if self.verdict != "neutral":
-            return None
-        return "across its line" if self.support.kind == "segment" else "every way"
+        """How a neutral body rolls: ``"across its line"`` or ``"every way"`` (else None)."""
+        if self.verdict == "neutral":
+            return "across its line" if self.support.kind == "segment" else "every way"
+        return None
 
 
 def _energy(weight: float, d: np.ndarray | float, h: float) -> np.ndarray:
@@ -576,26 +560,7 @@ def _check(body, requirement: Requirement, tolerance: float | None, props: MassP
     contact = contact_kind(sup, size) if settle else None
     if contact is None:
         return result
-    from .poses.settling import settle as settle_from  # only a point, a line or a sliver
+    from .settled import settled_verdict  # the poses: only for a point, a line or a sliver
 
-    rolls_here = result.verdict == "neutral" and result.rocking is not None
-    settling, _ = settle_from(body, sup.frame.down, contact=contact, g=requirement.g,
-                              props=props, rolls_here=rolls_here)
-    there = _check(body, requirement.replace(down=settling.down), tolerance, props,
-                   settle=False)
-    if settling.pose_kind == "rocking" and settling.own_face and there.verdict == "stands":
-        # at a bowl's bottom a tilt rocks it, not over its facet's edge: the rocker's tilt
-        there = _rocker_tilt(there, settling.critical_tilt_deg)
-    else:
-        settling = replace(settling, verdict=there.verdict,
-                           critical_tilt_deg=there.critical_tilt_deg)
-    return replace(there if settling.stays else result, settling=settling)
-
-
-def _rocker_tilt(there: Verdict, tilt: float) -> Verdict:
-    """``there`` with the critical tilt of the rocker it rests in, degrees (and the tilt
-    design check on it)."""
-    design = there.design
-    if design is not None and design.required_tilt_deg is not None:
-        design = replace(design, passes=bool(tilt >= design.required_tilt_deg))
-    return replace(there, critical_tilt_deg=tilt, design=design)
+    return settled_verdict(body, result, contact, requirement.g, props, lambda down: _check(
+        body, requirement.replace(down=down), tolerance, props, settle=False))
