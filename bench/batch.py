@@ -6,15 +6,17 @@ toward the small end as real part libraries are), and about 4.5 % broken on purp
 (truncated, open, garbage). Each file gets mass properties and resting poses:
 
 * ``plumbob batch CORPUS --poses --jobs 1`` and ``--jobs N`` (N = every core), the
-  whole command timed as a process, writing CSV;
+  whole command timed as a process, writing CSV; and ``--jobs N`` again with
+  ``OPENBLAS_NUM_THREADS=OMP_NUM_THREADS=MKL_NUM_THREADS=8`` in its environment;
 * ``plumbob.batch.run(..., scheduler=...)`` on a Dask ``LocalCluster`` of N
   single-threaded worker processes (cluster start-up not timed);
 * a trimesh loop doing the same (``trimesh.load``, ``mass_properties``,
   ``compute_stable_poses`` at the centre of mass) in a process pool of 1 and of N.
 
 Printed: files per second for each, the ratios plumbob / trimesh at 1 and at N
-processes, and the scaling from 1 to N jobs. Issue 13 asks for at least 5× trimesh
-with one process and at least 1.7× from 1 to 2 jobs on a 2-core machine.
+processes, and the scaling from 1 to N jobs. Issue 24 asks for at least 5× a trimesh
+process pool of the same size and at least 1.7× from 1 to 2 jobs on a 2-core machine;
+the ratios are printed, never asserted (a shared machine's timings are noisy).
 
 Run: ``python bench/batch.py [--files N] [--folder DIR] [--skip-trimesh] [--skip-dask]``;
 ``--smoke``: four tiny files, no Dask, every step run once and no target judged (the
@@ -98,8 +100,15 @@ def trimesh_loop(paths: list[str], jobs: int) -> float:
     return time.perf_counter() - start
 
 
-def plumbob_cli(folder: str, jobs: int, out: str) -> float:
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) -> float:
+    """Wall time of the whole command; ``threads``: what the environment asks BLAS and
+    OpenMP for (the workers must not follow it)."""
     env = dict(os.environ, PYTHONPATH=SRC)
+    if threads:
+        env.update(dict.fromkeys(THREAD_VARIABLES, threads))
     start = time.perf_counter()
     done = subprocess.run([PYTHON, "-m", "plumbob.cli", "batch", folder, "--poses", "--out",
                            out, "--jobs", str(jobs), "--quiet"], env=env, check=False)
@@ -123,6 +132,8 @@ def plumbob_dask(folder: str, jobs: int) -> tuple[float, list]:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--files", type=int, default=2000)
+    parser.add_argument("--largest", type=int, default=200_000,
+                        help="the largest part's triangles (default 200,000)")
     parser.add_argument("--folder", help="keep the corpus here (default: a temporary folder)")
     parser.add_argument("--jobs", type=int, default=None, help="N (default: every core)")
     parser.add_argument("--skip-trimesh", action="store_true")
@@ -140,7 +151,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         started = time.perf_counter()
         info = make_corpus(os.path.join(folder, "corpus"), args.files,
-                           largest=300 if args.smoke else 200_000)
+                           largest=300 if args.smoke else args.largest)
         print(f"corpus: {info['files']} STL files, {info['broken']} broken, "
               f"{info['triangles']:,} triangles in the good ones "
               f"(written in {time.perf_counter() - started:.1f} s)")
@@ -155,6 +166,8 @@ def main(argv: list[str] | None = None) -> int:
         report("plumbob batch --jobs 1", plumbob_cli(corpus, 1, os.path.join(folder, "1.csv")))
         report(f"plumbob batch --jobs {jobs}",
                plumbob_cli(corpus, jobs, os.path.join(folder, "n.csv")))
+        eight = f"--jobs {jobs}, BLAS env 8"
+        report(eight, plumbob_cli(corpus, jobs, os.path.join(folder, "e.csv"), threads="8"))
         if not args.skip_dask:
             seconds, _ = plumbob_dask(corpus, jobs)
             report(f"plumbob on Dask ({jobs} workers)", seconds)
@@ -164,6 +177,8 @@ def main(argv: list[str] | None = None) -> int:
         print()
         one, many = rate["plumbob batch --jobs 1"], rate[f"plumbob batch --jobs {jobs}"]
         print(f"scaling, --jobs 1 -> --jobs {jobs}: {many / one:.2f}x (target 1.7x for 2 jobs)")
+        print(f"--jobs {jobs} with OPENBLAS/OMP/MKL_NUM_THREADS=8 / without: "
+              f"{rate[eight] / many:.2f}x (the workers keep one thread each)")
         if not args.skip_trimesh:
             print(f"plumbob / trimesh, 1 process: "
                   f"{one / rate['trimesh loop, 1 process']:.1f}x (target 5x)")

@@ -72,18 +72,30 @@ def _high_water(pid: int) -> float | None:
     return None
 
 
+def _cpu(pid: int) -> float:
+    """A process's own CPU time so far, s (0 once it has gone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as handle:
+            fields = handle.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return 0.0
+
+
 class PeakWatch:
     """Polls the peak memory of a process and its descendants every ``every`` s; the
     pool's workers are the root's grandchildren (children of its fork server)."""
 
     def __init__(self, root: int, every: float = 0.5) -> None:
         self.root, self.every, self.peaks, self.depth = root, every, {}, {}
+        self.cpu = 0.0  # the root's own CPU time so far, s (user + system)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
 
     def _run(self) -> None:
         while not self._stop.is_set():
+            self.cpu = max(self.cpu, _cpu(self.root))
             for pid, depth in _descendants(self.root).items():
                 self.depth[pid] = depth
                 peak = _high_water(pid)
@@ -91,12 +103,12 @@ class PeakWatch:
                     self.peaks[pid] = max(self.peaks.get(pid, 0.0), peak)
             self._stop.wait(self.every)
 
-    def stop(self) -> tuple[float, list[float]]:
-        """(the root's peak, the workers' peaks), MB."""
+    def stop(self) -> tuple[float, list[float], float]:
+        """(the root's peak, the workers' peaks), MB, and the root's own CPU time, s."""
         self._stop.set()
         self._thread.join()
         return (self.peaks.get(self.root, 0.0),
-                [v for pid, v in self.peaks.items() if self.depth.get(pid) == 2])
+                [v for pid, v in self.peaks.items() if self.depth.get(pid) == 2], self.cpu)
 
 
 def _rows(path: str) -> int:
@@ -108,8 +120,10 @@ def _rows(path: str) -> int:
 
 
 def batch(corpus: str, out: str, jobs: int, *extra: str, stop_at: int | None = None
-          ) -> tuple[float, int, tuple[float, list[float]]]:
-    """Run the command; (wall s, exit status, (its own peak, its workers' peaks) MB).
+          ) -> tuple[float, int, tuple[float, list[float], float]]:
+    """Run the command; (wall s, exit status, (its own peak, its workers' peaks) MB and
+    its own CPU time, s: the work the parent does per file bounds the rate many workers
+    can reach).
     ``stop_at``: send SIGINT once the table holds that many rows."""
     env = dict(os.environ, PYTHONPATH=SRC)
     start = time.perf_counter()
@@ -126,8 +140,8 @@ def batch(corpus: str, out: str, jobs: int, *extra: str, stop_at: int | None = N
     return seconds, child.returncode, peaks
 
 
-def _memory(peaks: tuple[float, list[float]]) -> str:
-    own, workers = peaks
+def _memory(peaks: tuple[float, list[float], float]) -> str:
+    own, workers, _ = peaks
     if not workers:
         return f"peak memory {own:.0f} MB (measured in the command's own process)"
     return (f"peak memory per worker {min(workers):.0f}-{max(workers):.0f} MB "
@@ -181,7 +195,8 @@ def main(argv: list[str] | None = None) -> int:
         if not args.skip_full:
             seconds, status, peaks = batch(corpus, full, args.jobs)
             print(f"plumbob batch --jobs {args.jobs}: {seconds:.1f} s, {n / seconds:.1f} files/s, "
-                  f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}", flush=True)
+                  f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}; the command's own "
+                  f"CPU {1e3 * peaks[2] / n:.2f} ms per file", flush=True)
 
         # An interruption late in a run: the table as a run killed with 95 % of its rows
         # written leaves it (a prefix of the rows), resumed; that resume interrupted
@@ -196,12 +211,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--resume from {kept:,} rows, interrupted (SIGINT) after {seconds:.1f} s with "
               f"{_rows(cut):,} rows on disk, exit {status}", flush=True)
         kept = _rows(cut)
-        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
+        seconds, status, peaks = batch(corpus, cut, args.jobs, "--resume")
         print(f"--resume: {seconds:.1f} s to keep {kept:,} rows and measure the "
-              f"{n - kept:,} files left, exit {status}, {_rows(cut):,} rows", flush=True)
-        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume")
-        print(f"--resume of the finished table (nothing to measure): {seconds:.2f} s",
-              flush=True)
+              f"{n - kept:,} files left, exit {status}, {_rows(cut):,} rows; the command's "
+              f"own CPU {peaks[2]:.2f} s", flush=True)
+        seconds, status, peaks = batch(corpus, cut, args.jobs, "--resume")
+        print(f"--resume of the finished table (nothing to measure): {seconds:.2f} s, its "
+              f"own CPU {peaks[2]:.2f} s", flush=True)
         if not args.skip_dask:
             seconds, peaks, rows = dask_run(corpus, args.jobs, args.dask_files or n)
             print(f"Dask LocalCluster, {args.jobs} workers x 1 thread: {seconds:.1f} s, "

@@ -225,11 +225,12 @@ def run_case(name: str, path: str, faces: int, repeat: int, trimesh: bool,
     return {"name": name, "faces": faces, "plumbob": plumbob, "trimesh": tm, "floor": floor}
 
 
-def cases(size: int, seeds: list[int], smoke: bool) -> list[tuple[str, np.ndarray]]:
+def cases(size: int, seeds: list[int], smoke: bool, legacy: bool = True
+          ) -> list[tuple[str, np.ndarray]]:
     """(name, triangles in mm) of the meshes timed at ``size``."""
     if smoke:
         return [("box + tilted cylinder #1", 1e3 * SMOOTH["box + tilted cylinder"](size, 1))]
-    out = [("box with cylinder", box_with_cylinder(size)), ("capsule", capsule(size))]
+    out = [("box with cylinder", box_with_cylinder(size)), ("capsule", capsule(size))] * legacy
     out += [(f"{name} #{seed}", 1e3 * make(size, seed))
             for name, make in SMOOTH.items() for seed in seeds]
     return out
@@ -245,6 +246,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="seeds of the smooth meshes (default 1,2,3)")
     parser.add_argument("--profile", action="store_true", help="profile plumbob on each mesh")
     parser.add_argument("--no-trimesh", action="store_true", help="skip trimesh (slow)")
+    parser.add_argument("--trimesh-up-to", type=int, default=None, metavar="FACES",
+                        help="run trimesh only on meshes of at most FACES triangles")
+    parser.add_argument("--no-legacy", action="store_true",
+                        help="only the smooth meshes (no box with boss, capsule, CAD files)")
     parser.add_argument("--hulls", action="store_true",
                         help="also time manifold3d's hull against qhull on each mesh")
     parser.add_argument("--smoke", action="store_true",
@@ -265,13 +270,14 @@ def main(argv: list[str] | None = None) -> int:
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for size in sizes:
-            for name, triangles in cases(size, seeds, args.smoke):
-                path = os.path.join(tmp, f"{name.replace(' ', '_')}_{size}.stl")
+            for name, triangles in cases(size, seeds, args.smoke, not args.no_legacy):
+                path = os.path.join(tmp, f"{name.replace(' ', '_').replace('#', '')}_{size}.stl")
                 write_binary_stl(path, triangles)
-                results.append(run_case(name, path, len(triangles), args.repeat,
-                                        not args.no_trimesh, args.profile, args.hulls))
+                trimesh = not args.no_trimesh and len(triangles) <= (args.trimesh_up_to or 1e12)
+                results.append(run_case(name, path, len(triangles), args.repeat, trimesh,
+                                        args.profile, args.hulls))
             real = os.path.join(MODELS, REAL.get(size, ""))
-            if size in REAL and os.path.exists(real) and not args.smoke:
+            if size in REAL and os.path.exists(real) and not (args.smoke or args.no_legacy):
                 import trimesh  # as binary STL, which the floor's reader reads
 
                 mesh = trimesh.load(real, force="mesh", process=False)
