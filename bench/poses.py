@@ -117,17 +117,30 @@ def _env() -> dict[str, str]:
     return dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"))
 
 
+GNU_TIME = "/usr/bin/time"  # its child's peak memory starts afresh (see run_once)
+
+
 def run_once(args: list[str]) -> tuple[float, float]:
-    """Wall time (s) and peak resident memory (MB) of one whole process."""
-    start = time.perf_counter()
-    child = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             env=_env())
-    _, status, usage = os.wait4(child.pid, 0)
-    seconds = time.perf_counter() - start
-    child.returncode = os.waitstatus_to_exitcode(status)
-    if child.returncode != 0:
-        raise SystemExit(f"{' '.join(args[:4])} … exited {child.returncode}")
-    return seconds, usage.ru_maxrss / 1024
+    """Wall time (s) and peak resident memory (MB) of one whole process.
+
+    The peak is read by GNU time when there is one: a process started straight from
+    this one would inherit this process's own high-water mark (Linux carries it over a
+    fork and exec), so small processes would all read as this benchmark's size. Without
+    GNU time, the peak from ``wait4`` is an upper bound (NaN is printed for none)."""
+    with tempfile.NamedTemporaryFile("r", suffix=".peak") as peak_file:
+        wrapped = ([GNU_TIME, "-f", "%M", "-o", peak_file.name, *args]
+                   if os.path.exists(GNU_TIME) else args)
+        start = time.perf_counter()
+        child = subprocess.Popen(wrapped, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                 env=_env())
+        _, status, usage = os.wait4(child.pid, 0)
+        seconds = time.perf_counter() - start
+        child.returncode = os.waitstatus_to_exitcode(status)
+        if child.returncode != 0:
+            raise SystemExit(f"{' '.join(args[:4])} … exited {child.returncode}")
+        text = peak_file.read().strip().splitlines() if wrapped is not args else []
+    kb = float(text[-1]) if text and text[-1].isdigit() else usage.ru_maxrss
+    return seconds, kb / 1024
 
 
 def median_process(args: list[str], repeat: int) -> float:
