@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import shutil
 import subprocess
 import sys
@@ -93,11 +94,22 @@ def _trimesh_one(path: str) -> bool:
         return False
 
 
+def _children_cpu() -> float:
+    """CPU time (user + system, s) of the finished child processes waited for so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+CPU: dict[str, float] = {}  # CPU seconds of each run, where every process of it is counted
+
+
 def trimesh_loop(paths: list[str], jobs: int) -> float:
-    start = time.perf_counter()
+    cpu, start = _children_cpu(), time.perf_counter()
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         list(pool.map(_trimesh_one, paths, chunksize=8))
-    return time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    CPU[f"trimesh {jobs}"] = _children_cpu() - cpu
+    return seconds
 
 
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
@@ -109,11 +121,13 @@ def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) ->
     env = dict(os.environ, PYTHONPATH=SRC)
     if threads:
         env.update(dict.fromkeys(THREAD_VARIABLES, threads))
-    start = time.perf_counter()
+    cpu, start = _children_cpu(), time.perf_counter()
     done = subprocess.run([PYTHON, "-m", "plumbob.cli", "batch", folder, "--poses", "--out",
                            out, "--jobs", str(jobs), "--quiet"], env=env, check=False)
     if done.returncode not in (0, 1):  # 1: the corpus's broken files
         raise SystemExit(f"plumbob batch exited {done.returncode}")
+    if jobs == 1:  # in the command's own process (a pool's workers are not waited for here)
+        CPU["plumbob 1"] = _children_cpu() - cpu
     return time.perf_counter() - start
 
 
@@ -184,6 +198,10 @@ def main(argv: list[str] | None = None) -> int:
                   f"{one / rate['trimesh loop, 1 process']:.1f}x (target 5x)")
             print(f"plumbob / trimesh, {jobs} processes: "
                   f"{many / rate[f'trimesh loop, {jobs} processes']:.1f}x")
+        if not args.skip_trimesh:
+            print(f"CPU time, one process each: plumbob {CPU['plumbob 1']:.1f} s, trimesh "
+                  f"{CPU['trimesh 1']:.1f} s: {CPU['trimesh 1'] / CPU['plumbob 1']:.1f}x (the "
+                  "ratio a machine shared with other work distorts least)")
         if not args.skip_dask:
             print(f"Dask / --jobs {jobs}: "
                   f"{rate[f'plumbob on Dask ({jobs} workers)'] / many:.2f}x")
