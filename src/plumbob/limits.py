@@ -31,6 +31,8 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_SIDES",
     "MAX_SPEC_NESTING",
+    "MAX_STEP_BYTES",
+    "MAX_STEP_ENTITIES",
     "MAX_TRIANGLES",
     "check_count",
 ]
@@ -43,6 +45,10 @@ MAX_ARCHIVE_BYTES = 1024**3
 MAX_ARCHIVE_MEMBERS = 10_000
 #: How many times larger than its compressed size an archive member may expand.
 MAX_ARCHIVE_RATIO = 200
+#: Bytes of one STEP file, checked before OpenCASCADE reads it.
+MAX_STEP_BYTES = 512 * 1024**2
+#: Entities (``#n = …`` records) in one STEP file, counted before OpenCASCADE reads it.
+MAX_STEP_ENTITIES = 2_000_000
 #: Triangles in one mesh.
 MAX_TRIANGLES = 50_000_000
 #: Nodes in one spec expression (numbers, names, operators, calls).

@@ -14,6 +14,7 @@ from dataclasses import replace
 from . import formats
 from .arguments import file_path
 from .errors import ArgumentError, DensityError, PlumbobError, SpecError
+from .formats.parts import require_part_densities, with_part_materials
 from .reading import Reading
 
 __all__ = ["read", "with_default_density", "SUFFIXES"]
@@ -27,7 +28,7 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
          allow_outside_files: bool = False, material: str | None = None,
          density: float | None = None, units_override: bool = False,
          shell: str | None = None, infill: str | None = None,
-         spelled: str = "keyword") -> Reading:
+         part_materials: Mapping[str, str] | None = None, spelled: str = "keyword") -> Reading:
     """Read the body in ``path``: a shape or simulation spec (``.toml``), a mesh or an
     outline file, chosen by the extension.
 
@@ -66,6 +67,12 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     spelled : str
         How messages name these options: ``"keyword"`` (``material='oak'``) or
         ``"option"``, as the command line (``--material oak``) and a batch run give them.
+    part_materials : mapping of str to str, optional
+        ``{name or glob: material}``: a material name (or a density, kg/m³) for the
+        parts of an assembly whose names match (:func:`with_part_materials`), applied
+        before ``material``/``density``. The parts of a CAD assembly (STEP) must each
+        get a density, from here or from ``material``/``density``: else one error lists
+        those without.
 
     Returns
     -------
@@ -120,6 +127,9 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     else:
         reading = formats.read(path, units=units, repair=repair, units_override=units_override)
     option = spelled == "option"
+    if part_materials:
+        reading = with_part_materials(reading, part_materials,
+                                      "--part-material" if option else "part_materials")
     if material is not None:
         from .materials import material as named
 
@@ -131,6 +141,8 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
 
         name = "--density" if option else "density"
         reading = with_default_density(reading, check_density(density, name), name)
+    reading = require_part_densities(reading, "--part-material NAME=MATERIAL" if option
+                                     else "part_materials={NAME: MATERIAL}")
     if shell is not None or infill is not None:
         from .bodies.printed import printed_from_options
         from .units import length_scale

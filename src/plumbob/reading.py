@@ -30,6 +30,9 @@ class Reading:
     (:class:`~plumbob.loads.Extendable`).
     up: the up axis the file's format specifies (glTF: +y), a unit vector in the body's
     frame; None when the format has none (then +z is assumed for solids, +y for laminas).
+    materials: (part name, material) for the parts given a material by name
+    (``--part-material``, a spec's ``materials``, a 3MF's base materials), for the
+    reports' part tables.
     """
 
     body: Body
@@ -39,6 +42,7 @@ class Reading:
     loads: tuple = ()
     extendables: tuple = ()
     up: tuple[float, ...] | None = None
+    materials: tuple[tuple[str, str], ...] = ()
 
     def default_down(self) -> list[float] | None:
         """Gravity's direction when the user gives none: against the file's up axis, or

@@ -194,6 +194,13 @@ def add_body_arguments(parser: argparse.ArgumentParser) -> None:
         help="a material from 'plumbob materials' for parts that give no density",
     )
     parser.add_argument(
+        "--part-material",
+        action="append",
+        metavar="NAME=MATERIAL",
+        help="a material (or a density, kg/m³) for the assembly's parts named NAME, a glob "
+             "such as 'post*'; repeat for each part (a STEP assembly needs one for every part)",
+    )
+    parser.add_argument(
         "--units",
         type=length_unit,
         metavar="UNIT",
@@ -425,11 +432,26 @@ def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
         getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
 
 
+def part_materials(given: list[str] | None) -> dict[str, str] | None:
+    """``--part-material NAME=MATERIAL`` options as ``{name or glob: material}``, in order."""
+    if not given:
+        return None
+    out: dict[str, str] = {}
+    for item in given:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip() or not value.strip():
+            raise ArgumentError(f"--part-material {item!r}: write NAME=MATERIAL, e.g. "
+                                "--part-material 'post*=aluminium'")
+        out[name.strip()] = value.strip()
+    return out
+
+
 def load_body(args: argparse.Namespace, *, path: str | None = None,
               parameters: Mapping[str, Any] | None = None) -> Reading:
     """Read ``path`` (default ``args.path``) with the body options of ``args``: ``--units``,
     ``--repair``, ``--set`` (or ``parameters``), ``--density`` / ``--material``,
-    ``--shell`` / ``--infill``, all applied by :func:`plumbob.loading.read`."""
+    ``--part-material``, ``--shell`` / ``--infill``, all applied by
+    :func:`plumbob.loading.read`."""
     if parameters is None:
         parameters = parameter_overrides(getattr(args, "parameters", None))
     return read(
@@ -439,7 +461,7 @@ def load_body(args: argparse.Namespace, *, path: str | None = None,
         allow_outside_files=getattr(args, "allow_outside_files", False),
         material=getattr(args, "material", None), density=getattr(args, "density", None),
         shell=getattr(args, "shell", None), infill=getattr(args, "infill", None),
-        spelled="option",
+        part_materials=part_materials(getattr(args, "part_material", None)), spelled="option",
     )
 
 

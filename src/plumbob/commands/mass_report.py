@@ -113,8 +113,10 @@ class MassReport(Result):
         ``center_of_mass``, ``exact``) and the reader's ``notices``."""
         out = {**header(self.reading, self.kind), **self.props.as_dict(self.kind)}
         if self.parts:
+            materials = dict(self.reading.materials)
             out["part_properties"] = [
-                {"name": name, **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
+                {"name": name, **({"material": materials[name]} if name in materials else {}),
+                 **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
                 for name, kind, props in self.parts
             ]
         out["radii_of_gyration"] = self.radii_of_gyration
@@ -182,12 +184,16 @@ class MassReport(Result):
         if self.parts:
             names = [printable(n) for n, _, _ in self.parts]
             width = max(len(n) for n in names)
-            lines = ["", f"{'part':<{width}}  {f'mass ({u.mass_unit})':>12}  "
+            given = dict(self.reading.materials)
+            materials = [printable(given.get(n, "")) for n, _, _ in self.parts]
+            mwidth = max(len(m) for m in materials)
+            column = f"{'material':<{mwidth}}  " if mwidth else ""
+            lines = ["", f"{'part':<{width}}  {column}{f'mass ({u.mass_unit})':>12}  "
                          f"centre of mass ({u.length_unit})"]
             lines += [
-                f"{name:<{width}}  {format_number(u.mass(p.mass)):>12}  "
-                f"{format_vector(u.length(p.center_of_mass))}"
-                for name, (_, _, p) in zip(names, self.parts)
+                f"{name:<{width}}  {f'{m:<{mwidth}}  ' if mwidth else ''}"
+                f"{format_number(u.mass(p.mass)):>12}  {format_vector(u.length(p.center_of_mass))}"
+                for name, m, (_, _, p) in zip(names, materials, self.parts)
             ]
             text += "\n" + "\n".join(lines)
         for note in props.notes:

@@ -8,12 +8,13 @@ sizes). A file holding several bodies gives an
 Formats (see ``docs/formats.md``):
 
 * solids — STL (binary and ASCII, plumbob's own fast reader), OBJ, PLY, OFF,
-  3MF, GLB and glTF (through trimesh);
+  3MF, GLB and glTF (through trimesh); STEP, IGES and BREP CAD solids from their
+  B-rep (through OpenCASCADE, ``plumbob[cad]``: :mod:`plumbob.formats.step`);
 * laminas — GeoJSON, WKT, WKB, CSV vertex lists, SVG paths and DXF outlines;
 * any of these compressed (``.gz``, ``.bz2``, ``.xz``) or alone in an archive
   (``.zip``, ``.tar``, ``.tgz``, ``.tar.gz``, …; :mod:`plumbob.formats.archives`).
 
-Formats plumbob knows of but does not read (COLLADA, 3DXML, STEP, …: see
+Formats plumbob knows of but does not read (COLLADA, 3DXML, FBX, …: see
 :data:`FOREIGN`) are refused in one line naming the format and what to convert to.
 
 TOML specs are not read here: :func:`plumbob.loading.read` sends them to
@@ -46,16 +47,16 @@ SUFFIXES = {
     ".csv": "outline", ".svg": "outline", ".dxf": "outline",
     ".zip": "archive", ".gz": "archive", ".bz2": "archive", ".xz": "archive", ".tgz": "archive",
     ".tar": "archive",
+    ".step": "cad", ".stp": "cad", ".iges": "cad", ".igs": "cad", ".brep": "cad",
 }
 
 #: extensions of 3D formats plumbob does not read → the format's name. None of them is
 #: read as a watertight volume here (trimesh's COLLADA, 3DXML and XAML loaders split
-#: every face group into an open sheet; OpenCTM, Gmsh, binvox and STEP need libraries
+#: every face group into an open sheet; OpenCTM, Gmsh and binvox need libraries
 #: plumbob does not use), so each is refused, saying what to convert it to.
 FOREIGN = {
     ".dae": "COLLADA", ".zae": "zipped COLLADA", ".3dxml": "3DXML", ".xaml": "XAML",
-    ".ctm": "OpenCTM", ".msh": "Gmsh mesh", ".binvox": "binvox voxels", ".step": "STEP CAD",
-    ".stp": "STEP CAD", ".iges": "IGES CAD", ".igs": "IGES CAD", ".brep": "OpenCASCADE B-rep",
+    ".ctm": "OpenCTM", ".msh": "Gmsh mesh", ".binvox": "binvox voxels",
     ".fbx": "FBX", ".blend": "Blender", ".3ds": "3D Studio", ".x3d": "X3D", ".wrl": "VRML",
     ".dwg": "DWG", ".amf": "AMF", ".vtk": "VTK",
 }
@@ -138,6 +139,10 @@ def _dispatch(kind: str, path: str, units: str | None, repair: bool,
         from .meshes import read_mesh
 
         return read_mesh(path, units=units, repair=repair, units_override=units_override)
+    if kind == "cad":
+        from .step import read_step
+
+        return read_step(path, units=units, units_override=units_override)
     from .outlines import read_outline
 
     return read_outline(path, units=units, units_override=units_override)

@@ -8,10 +8,18 @@ outlines of a drawing); they become the named parts of one
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
+from dataclasses import replace
 
 from ..bodies.base import Body
+from ..errors import DensityError
+from ..reading import Reading
 
-__all__ = ["stem", "unique_names", "assemble"]
+__all__ = ["stem", "unique_names", "assemble", "with_part_materials", "require_part_densities",
+           "CAD_SUFFIXES"]
+
+#: the files whose assemblies need a density for every part (:func:`require_part_densities`)
+CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
 
 
 def stem(path: str) -> str:
@@ -44,3 +52,71 @@ def assemble(parts: list[Body], name: str | None) -> Body:
     from ..bodies.csg import Assembly
 
     return Assembly(tuple(parts), name=name)
+
+
+def with_part_materials(reading: Reading, materials: Mapping[str, str], option: str) -> Reading:
+    """``reading`` with a density for each part of its assembly (or its one body) whose
+    name matches a key of ``materials`` (an exact name or a glob: ``"post*"``); the value
+    is a material name from ``plumbob materials`` or a density in kg/m³. A part takes
+    the first key that matches it. A key that matches no part, or a part that gives its
+    own density, is an error (``option`` names the option in messages).
+
+    >>> from plumbob.bodies.csg import Assembly
+    >>> from plumbob.bodies.primitives import box
+    >>> two = Reading(Assembly((box(1, 1, 1, name="base"), box(1, 1, 1, name="post"))))
+    >>> read = with_part_materials(two, {"base": "steel", "p*": "1000"}, "--part-material")
+    >>> [p.mass_properties().mass for p in read.body.assembly_parts()], read.materials
+    ([7850.0, 1000.0], (('base', 'steel'), ('post', '1000 kg/m³')))
+    """
+    from fnmatch import fnmatchcase
+
+    from ..materials import check_density
+    from ..materials import material as named
+
+    body = reading.body
+    parts = body.assembly_parts() or (body,)
+    names = [p.name or f"part {i + 1}" for i, p in enumerate(parts)]
+    unused = [key for key in materials if not any(fnmatchcase(n, key) for n in names)]
+    if unused:
+        raise DensityError(f"{option}: {', '.join(repr(k) for k in unused)} matches no part; "
+                           f"the parts are {', '.join(repr(n) for n in names)}", path=reading.path)
+    new, given = [], []
+    for part, name in zip(parts, names):
+        key = next((k for k in materials if fnmatchcase(name, k)), None)
+        if key is None:
+            new.append(part)
+            continue
+        value = str(materials[key]).strip()
+        try:
+            density, label = check_density(float(value), f"{option} {key}"), f"{value} kg/m³"
+        except ValueError:
+            density, label = named(value).density, value
+        if part.densities() != {None}:
+            raise DensityError(f"{option}: part {name!r} gives its own density in the file; "
+                               "remove it from the option", path=reading.path)
+        new.append(part.with_default_density(density))
+        given.append((name, label))
+    if body.assembly_parts():
+        from ..bodies.csg import Assembly
+
+        body = Assembly(tuple(new), name=body.name)
+    else:
+        body = new[0]
+    return replace(reading, body=body, materials=reading.materials + tuple(given))
+
+
+def require_part_densities(reading: Reading, how: str) -> Reading:
+    """``reading`` unchanged when it is not a CAD assembly or every part has a density;
+    else a :class:`DensityError` listing every part without one (``how``: the option
+    that gives them). A CAD file's parts are of different materials: one default
+    density for all would be a wrong answer, not an assumption."""
+    parts = reading.body.assembly_parts()
+    if (len(parts) < 2 or reading.path is None
+            or not reading.path.lower().endswith(CAD_SUFFIXES)):
+        return reading
+    missing = [p.name or f"part {i + 1}" for i, p in enumerate(parts) if None in p.densities()]
+    if missing:
+        raise DensityError(f"{len(missing)} part{'s' if len(missing) > 1 else ''} with no "
+                           f"density: {', '.join(repr(n) for n in missing)}; give each a "
+                           f"material with {how} (a glob matches several)", path=reading.path)
+    return reading

@@ -137,6 +137,7 @@ PRIMITIVES: dict[str, tuple[int, set[str], set[str], Callable[[SpecContext, dict
                 lambda s, t, w: prim.prism(_profile(s, t, w), _n(s, t, "height", w))),
     "revolve": (3, {"profile"}, set(), lambda s, t, w: prim.revolve(_profile(s, t, w))),
     "mesh": (3, {"file"}, {"units"}, lambda s, t, w: _mesh_file(s, t, w)),
+    "step": (3, {"file"}, {"units", "materials"}, lambda s, t, w: _step_file(s, t, w)),
 }
 
 
@@ -173,6 +174,36 @@ def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
     spec.notices.extend(f"{MESH_NOTICE}{name}: {notice}" for notice in reading.notices)
     if repair and not reading.notices:
         spec.notices.append(f"{MESH_NOTICE}{name}: nothing to repair")
+    return reading.body
+
+
+def _step_file(spec: SpecContext, t: dict, where: str) -> Body:
+    """A STEP (IGES, BREP) file in the spec's folder, its parts given materials by
+    ``materials = { "base" = "steel", "post*" = "aluminium" }`` (names or globs; a
+    density in kg/m³ also serves). Every part needs one, unless the part's own
+    ``material`` or ``density`` gives the rest theirs."""
+    from ..formats.parts import CAD_SUFFIXES, require_part_densities, with_part_materials
+
+    name = spec.text(t["file"], f"{where}.file", what="a file name")
+    path = spec_file(spec, name, f"{where}.file")
+    if not path.lower().endswith(CAD_SUFFIXES):
+        raise spec.error(f"{where}.file", f"a step part must name a CAD file ({', '.join(CAD_SUFFIXES)})")
+    units = spec.unit_name(t["units"], f"{where}.units") if "units" in t else None
+    reading = read_file(path, units=units)
+    materials = t.get("materials", {})
+    if not isinstance(materials, dict) or not all(isinstance(v, (str, int, float))
+                                                  for v in materials.values()):
+        raise spec.error(f"{where}.materials", 'expected a table of part names and materials, '
+                         'e.g. materials = { "base" = "steel", "post*" = "aluminium" }')
+    if materials:
+        reading = with_part_materials(reading, {k: str(v) for k, v in materials.items()},
+                                      f"{where}.materials")
+    if not MATERIAL_KEYS & set(t):
+        reading = require_part_densities(reading, f"{where}.materials")
+    spec.notices.extend(f"{MESH_NOTICE}{name}: {notice}" for notice in reading.notices)
+    if reading.materials:
+        spec.notices.append(f"{MESH_NOTICE}{name}: materials: " + ", ".join(
+            f"{part} = {material}" for part, material in reading.materials))
     return reading.body
 
 
