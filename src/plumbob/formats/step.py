@@ -184,9 +184,8 @@ def step_unit(path: str) -> str:
 
 def _run_worker(path: str) -> dict:
     """The child process's result for ``path`` (see :mod:`.step_worker`)."""
-    import plumbob
-
-    root = os.path.dirname(os.path.dirname(os.path.abspath(plumbob.__file__)))
+    # the folder holding the plumbob package, so the child imports this very copy
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [root] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])}
 
