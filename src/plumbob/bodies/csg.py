@@ -232,15 +232,15 @@ def combined(parts: tuple[Body, ...], signs: list[float] | None,
     10.0
     """
     props = [p.mass_properties() for p in parts] if props is None else props
+    dims = {p.dim for p in parts} | {len(p.center_of_mass) for p in props}
+    if len(parts) < 2 or len(dims) > 1:  # a lamina in a solid assembly: combined as it is
+        return combine(props, signs)
     masses = np.array([abs(p.mass) for p in props])
     centres = np.array([p.center_of_mass for p in props])
     anchor = centres[int(np.argmax(masses))]
     spread = float(np.max(np.linalg.norm(centres - anchor, axis=1))) + max(
         float(np.sqrt(np.trace(p.inertia) / p.mass)) if p.mass > 0 else 0.0 for p in props)
-    if not float(np.max(np.abs(anchor))) > spread or len(parts) < 2:
-        return combine(props, signs)
-    dims = {p.dim for p in parts}
-    if len(dims) > 1 or len(anchor) != dims.pop():
+    if not float(np.max(np.abs(anchor))) > spread:
         return combine(props, signs)
     local = combine([p.translated(-anchor).mass_properties() for p in parts], signs)
     return local.transformed(np.eye(len(anchor)), anchor)
