@@ -278,6 +278,22 @@ def test_exports_and_pictures_take_the_tessellation(files, tmp_path):
     assert fig is not None
 
 
+def test_brep_and_iges_files_go_the_same_way(tmp_path):
+    from OCP.BRepTools import BRepTools
+    from OCP.IGESControl import IGESControl_Writer
+
+    assert BRepTools.Write_s(M.cylinder(10.0, 30.0), str(tmp_path / "cylinder.brep"))
+    reading = read(str(tmp_path / "cylinder.brep"))
+    volume, _, _ = _cylinder_props(10.0, 30.0)
+    assert reading.body.mass_properties().measure == pytest.approx(volume * MM**3, rel=1e-9)
+    assert reading.body.name == "cylinder" and "BREP file states none" in reading.notices[0]
+    writer = IGESControl_Writer("MM", 0)  # faces only: an IGES surface model, not a solid
+    writer.AddShape(M.cylinder(10.0, 30.0))
+    writer.ComputeModel()
+    assert writer.Write(str(tmp_path / "cylinder.igs"))
+    _refused(tmp_path / "cylinder.igs", "faces only, not a closed solid")
+
+
 # --------------------------------------------------------------- hostile files
 def _refused(path, match, error=FormatError):
     with pytest.raises(error, match=match) as caught:

@@ -236,6 +236,8 @@ def read_step(path: str, *, units: str | None = None, units_override: bool = Fal
         declared = "mm"
     scale, notices = units_scale(units, declared, _METRES[declared], override=units_override,
                                  path=path)
+    if suffix == ".brep" and units is None:
+        notices = ("units: mm (a BREP file states none; OpenCASCADE's convention)",)
     result = _run_worker(path)
     if "defect" in result:
         raise FormatError(str(result["defect"]), path=path)

@@ -148,6 +148,15 @@ def read(path: str, deviation: float) -> dict:
     from OCP.TopLoc import TopLoc_Location
     from OCP.XCAFDoc import XCAFDoc_DocumentTool
 
+    if path.lower().endswith(".brep"):  # OpenCASCADE's own format: one shape, no names
+        from OCP.BRep import BRep_Builder
+        from OCP.BRepTools import BRepTools
+        from OCP.TopoDS import TopoDS_Shape
+
+        shape = TopoDS_Shape()
+        if not BRepTools.Read_s(shape, path, BRep_Builder()) or shape.IsNull():
+            return {"defect": "OpenCASCADE cannot parse it as a BREP file"}
+        return _parts([(os.path.splitext(os.path.basename(path))[0], shape)], deviation)
     if path.lower().endswith((".igs", ".iges")):
         from OCP.IGESCAFControl import IGESCAFControl_Reader as Reader
     else:
@@ -166,6 +175,11 @@ def read(path: str, deviation: float) -> dict:
     for i in range(1, free.Length() + 1):
         label = free.Value(i)
         _instances(label, TopLoc_Location(), _name(label), 0, found)
+    return _parts(found, deviation)
+
+
+def _parts(found: list, deviation: float) -> dict:
+    """Each (name, placed shape) checked and measured, or the first defect."""
     if not found:
         return {"defect": "holds no shape"}
     parts = []
