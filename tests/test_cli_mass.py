@@ -192,7 +192,7 @@ def test_mass_reports_radii_area_box_and_the_inertia_about_a_point(tmp_path, cap
     path = tmp_path / "box.stl"
     trimesh.creation.box(extents=(40, 20, 60)).apply_translation((20, 10, 30)).export(path)
     assert main(["mass", str(path), "--units", "mm", "--material", "pla", "--about", "0,0,0",
-                 "--json"]) == 0
+                 "--sizes", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     a, b, c = 0.04, 0.02, 0.06
     m = a * b * c * 1240
@@ -204,8 +204,9 @@ def test_mass_reports_radii_area_box_and_the_inertia_about_a_point(tmp_path, cap
     assert out["radii_of_gyration"] == pytest.approx(np.sqrt(np.array(central) / m), rel=1e-12)
     assert out["surface_area"] == pytest.approx(2 * (a * b + b * c + a * c), rel=1e-12)
     assert out["surface_area_exact"] is True
-    assert out["bounding_box"]["extents"] == pytest.approx([a, b, c], rel=1e-12)
-    assert main(["mass", str(path), "--units", "mm", "--about", "0,0,0"]) == 0
+    assert out["bounding_box_lower"] == pytest.approx([0, 0, 0], abs=1e-15)
+    assert out["bounding_box_upper"] == pytest.approx([a, b, c], rel=1e-12)
+    assert main(["mass", str(path), "--units", "mm", "--about", "0,0,0", "--sizes"]) == 0
     text = capsys.readouterr().out
     assert "inertia (about (0, 0, 0) mm)" in text and "surface area" in text
     assert "8800 mm²" in text and "40 × 20 × 60 mm" in text

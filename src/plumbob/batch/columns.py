@@ -54,7 +54,8 @@ _MASS = [Field("kind", "str"), Field("units", "str"), Field("mass", "float"),
          Field("volume", "float"), Field("area", "float"), _vec("center_of_mass"),
          Field("inertia", "float", (XYZ, XYZ)), _vec("principal_moments", ("1", "2", "3")),
          Field("principal_axes", "float", (("1", "2", "3"), XYZ)), Field("exact", "bool"),
-         Field("relative_error", "float"), Field("parts", "int")]
+         Field("relative_error", "float"), Field("parts", "int"),
+         _vec("radii_of_gyration", ("1", "2", "3"))]
 _CHECK = [Field("verdict", "str"), Field("stands", "bool"), Field("margin", "float"),
           Field("critical_tilt_deg", "float"), _vec("critical_direction"),
           Field("energy_to_topple", "float"), Field("com_height", "float"), _vec("down"),

@@ -56,6 +56,9 @@ def mass_row(reading, props) -> dict[str, Any]:
     keys = ("kind", "mass", "volume", "area", "center_of_mass", "inertia", "principal_moments",
             "principal_axes", "exact", "relative_error", "parts", "notes")
     row = {k: out.get(k) for k in keys}
+    from ..bodies.measures import size_keys  # the body's sizes, as plumbob mass gives them
+
+    row.update(size_keys(reading.body, props))
     row["name"] = getattr(reading.body, "name", None) or None
     row["notices"] = list(reading.notices) or None
     return _plain(row)

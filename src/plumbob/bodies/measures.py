@@ -19,7 +19,7 @@ from ..tolerances import CONTACT
 from .base import Body
 
 __all__ = ["SurfaceArea", "BoundingBox", "surface_area", "bounding_box", "oriented_bounding_box",
-           "FACET_SEGMENTS"]
+           "size_keys", "has_surface", "FACET_SEGMENTS"]
 
 #: chords a turn for curved faces when measuring their area (a relative error under 1.6e-4)
 FACET_SEGMENTS = 256
@@ -165,3 +165,38 @@ def oriented_bounding_box(body: Body) -> BoundingBox:
     center = origin - rotation.T @ shift
     half = np.asarray(extents, dtype=float) / 2
     return BoundingBox(-half, half, rotation, center)
+
+
+def has_surface(body: Body) -> bool:
+    """Whether ``body`` has a closed boundary to measure: a solid, or an assembly of
+    solids (not a lamina, not particles)."""
+    parts = body.assembly_parts() or (body,)
+    return all(p.dim == 3 and p.kind != "particles" for p in parts)
+
+
+def size_keys(body: Body, props, sizes: bool = False) -> dict[str, Any]:
+    """The size keys of ``plumbob mass --json`` (and of a batch row): the radii of
+    gyration (m, about the principal axes, sqrt(moment / mass)); with ``sizes``
+    (``--sizes``: it facets curved faces and asks every part of an assembly, so it costs
+    more than the mass properties) the bounding box's ``bounding_box_lower`` and
+    ``bounding_box_upper`` (m), and for solids ``surface_area`` (m²),
+    ``surface_area_exact`` and ``surface_area_relative_error``.
+
+    >>> from plumbob.bodies.primitives import box
+    >>> cube = box(1, 1, 1, density=6.0)
+    >>> sorted(size_keys(cube, cube.mass_properties()))
+    ['radii_of_gyration']
+    >>> keys = size_keys(cube, cube.mass_properties(), sizes=True)
+    >>> keys["surface_area"], keys["bounding_box_upper"].tolist()
+    (6.0, [1.0, 1.0, 1.0])
+    >>> bool(np.allclose(keys["radii_of_gyration"], np.sqrt(1 / 6)))
+    True
+    """
+    out: dict[str, Any] = {
+        "radii_of_gyration": np.sqrt(np.maximum(props.principal_moments, 0.0) / props.mass)}
+    if sizes:
+        box = bounding_box(body)
+        out.update(bounding_box_lower=box.lower, bounding_box_upper=box.upper)
+        if has_surface(body):
+            out.update(surface_area(body).as_dict())
+    return out

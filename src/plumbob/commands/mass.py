@@ -30,6 +30,9 @@ def register(subparsers) -> None:
     parser.add_argument("--about", type=parse_vector, metavar="X,Y,Z",
                         help="also give the inertia tensor about this point (in the file's "
                              "length unit, like its coordinates)")
+    parser.add_argument("--sizes", action="store_true",
+                        help="also the bounding box and, for solids, the surface area (curved "
+                             "faces faceted, with a stated bound)")
     parser.add_argument("--format", choices=("urdf", "sdf", "mjcf"),
                         help="print the simulator's inertial block instead (SI units); needs "
                              "a density for every part (--density, --material or the file's)")
@@ -53,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
         from ..units import length_scale
 
         about = [v * length_scale(reading.length_unit) for v in args.about]
-    report = MassReport.of(reading, about=about)
+    report = MassReport.of(reading, about=about, sizes=args.sizes)
     answer = require_finite(report.as_dict())  # built once: checked here, printed below
     if args.plot:
         write_plot(args.plot, "mass", reading.body, path=args.path)

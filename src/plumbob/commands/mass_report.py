@@ -3,13 +3,13 @@ part's, as a JSON object (:meth:`MassReport.as_dict`) or a text table."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..arguments import vector
-from ..bodies.measures import BoundingBox, SurfaceArea, bounding_box, surface_area
+from ..bodies.measures import size_keys
 from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
@@ -30,16 +30,15 @@ class MassReport(Result):
 
     reading: the body, its file and the reader's notices. props: the body's mass
     properties. parts: (name, kind, mass properties) of each part of an assembly
-    (empty for other bodies). area: the solid's surface area (None for laminas and
-    particles). box: its axis-aligned bounding box. about: a point, m, to give the
+    (empty for other bodies). sizes: radii of gyration, bounding box and surface area
+    (:func:`~plumbob.bodies.measures.size_keys`). about: a point, m, to give the
     inertia tensor about as well (``--about``), or None.
     """
 
     reading: Reading
     props: MassProperties
     parts: tuple[tuple[str, str, MassProperties], ...] = ()
-    area: SurfaceArea | None = None
-    box: BoundingBox | None = None
+    sizes: dict = field(default_factory=dict)
     about: np.ndarray | None = None
 
     #: the keys of ``plumbob mass --json``, in order (docs/cli.md's table is made from them)
@@ -67,35 +66,31 @@ class MassReport(Result):
         Key("radii_of_gyration", "m", "about the principal axes, sqrt(moment / mass)"),
         Key("inertia_about", "m, kg·m²", "`point` and `inertia`, the 3×3 tensor about it",
             "with `--about X,Y,Z`"),
+        Key("bounding_box_lower", "m", "the bounding box's least corner: the farthest points "
+                                       "along −x, −y (, −z), exact for curved primitives too",
+            "with `--sizes`"),
+        Key("bounding_box_upper", "m", "its greatest corner, along +x, +y (, +z)",
+            "with `--sizes`"),
         Key("surface_area", "m²", "the boundary's area (an assembly's: the sum of its parts')",
-            "solids"),
-        Key("surface_area_exact", "", "false where curved faces were faceted", "solids"),
+            "solids, with `--sizes`"),
+        Key("surface_area_exact", "", "false where curved faces were faceted",
+            "solids, with `--sizes`"),
         Key("surface_area_relative_error", "", "a bound for curved faces (faceted at 256 "
-                                               "chords a turn)", "solids"),
-        Key("bounding_box", "m", "`lower`, `upper`, `extents`: the farthest points along ±x, "
-                                 "±y, ±z, exact for curved primitives too"),
+                                               "chords a turn)", "solids, with `--sizes`"),
         Key("notices", "", "what the reader assumed or repaired", "when there are any"),
     )
 
     @classmethod
-    def of(cls, reading: Reading, about=None) -> MassReport:
-        """The report on the body of ``reading`` (``about``: a point for the inertia)."""
+    def of(cls, reading: Reading, about=None, sizes: bool = False) -> MassReport:
+        """The report on the body of ``reading`` (``about``: a point for the inertia;
+        ``sizes``: the bounding box and surface area too)."""
         body = reading.body
         parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
                       for i, p in enumerate(body.assembly_parts()))
-        area = None
-        if body.dim == 3 and body.kind != "particles" and all(
-                p.dim == 3 and p.kind != "particles" for p in body.assembly_parts()):
-            area = surface_area(body)
         props = body.mass_properties()
         if about is not None:
             about = vector(about, "about", (props.dim, 3))
-        return cls(reading, props, parts, area, bounding_box(body), about)
-
-    @property
-    def radii_of_gyration(self) -> np.ndarray:
-        """sqrt(principal moment / mass) about each principal axis, m."""
-        return np.sqrt(np.maximum(self.props.principal_moments, 0.0) / self.props.mass)
+        return cls(reading, props, parts, size_keys(body, props, sizes), about)
 
     @property
     def kind(self) -> str:
@@ -119,15 +114,11 @@ class MassReport(Result):
                  **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
                 for name, kind, props in self.parts
             ]
-        out["radii_of_gyration"] = self.radii_of_gyration
+        out["radii_of_gyration"] = self.sizes["radii_of_gyration"]
         if self.about is not None:
             out["inertia_about"] = {"point": self.about,
                                     "inertia": self.props.inertia_about(self.about)}
-        if self.area is not None:
-            out.update(self.area.as_dict())
-        if self.box is not None:
-            out["bounding_box"] = {"lower": self.box.lower, "upper": self.box.upper,
-                                   "extents": self.box.extents}
+        out.update((k, v) for k, v in self.sizes.items() if k != "radii_of_gyration")
         if self.reading.notices:
             out["notices"] = list(self.reading.notices)
         return out
@@ -159,8 +150,9 @@ class MassReport(Result):
                                           f"{u.unit('inertia')}"))
         for i, axis in enumerate(props.principal_axes):
             rows.append((f"principal axis {i + 1}", format_vector(np.round(axis, 12))))
-        rows.append(("radii of gyration", f"{format_vector(u.length(self.radii_of_gyration))} "
-                                          f"{u.length_unit}"))
+        sizes = self.sizes
+        rows.append(("radii of gyration", f"{format_vector(u.length(sizes['radii_of_gyration']))}"
+                                          f" {u.length_unit}"))
         if self.about is not None:
             about = self.props.inertia_about(self.about)
             about = np.where(np.abs(about) < 1e-12 * np.abs(about).max(initial=0.0), 0.0, about)
@@ -168,15 +160,17 @@ class MassReport(Result):
             for label, row in zip((point, "", ""), u.inertia(about)):
                 rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row)
                              + f"]  {u.unit('inertia')}"))
-        if self.area is not None:
-            bound = "" if self.area.exact else \
-                f" (curved faces faceted: within {self.area.relative_error:.1e} relative)"
-            rows.append(("surface area", f"{format_number(u.measure(self.area.area, 2))} "
+        if "surface_area" in sizes:
+            bound = "" if sizes["surface_area_exact"] else (
+                f" (curved faces faceted: within {sizes['surface_area_relative_error']:.1e} "
+                "relative)")
+            rows.append(("surface area", f"{format_number(u.measure(sizes['surface_area'], 2))} "
                                          f"{u.unit('measure', 2)}{bound}"))
-        if self.box is not None:
-            size = self.box.extents
-            rows.append(("bounding box", " × ".join(format_number(v) for v in u.length(size))
-                         + f" {u.length_unit}, from {format_vector(u.length(self.box.lower))}"))
+        if "bounding_box_lower" in sizes:
+            lower, upper = sizes["bounding_box_lower"], sizes["bounding_box_upper"]
+            rows.append(("bounding box", " × ".join(format_number(v)
+                                                    for v in u.length(upper - lower))
+                         + f" {u.length_unit}, from {format_vector(u.length(lower))}"))
         rows.append(("exact", props.exactness))
         rows.append(("parts", str(props.parts)))
         title = getattr(self.reading.body, "name", None) or self.reading.path or "body"
