@@ -219,8 +219,8 @@ class Body(ABC):
         Examples
         --------
         >>> from plumbob.bodies.primitives import box, sphere
-        >>> box(1, 2, 3).surface().triangles.shape, box(1, 2, 3).surface().exact
-        ((12, 3, 3), False)
+        >>> box(1, 2, 3).surface().triangles.shape, box(1, 2, 3).surface().exact  # its own mesh
+        ((12, 3, 3), True)
         >>> sphere(1).surface(16).exact
         False
         """
