@@ -1,27 +1,30 @@
 """Hollowing: empty part of a body's interior so that it stands.
 
-Why it is a small linear problem (Prévost et al., *Make It Stand*, 2013): cut the
-interior — what lies deeper than the wall thickness, the inward offset
-(:mod:`plumbob.bodies.offset`) — into cells (:mod:`plumbob.balance.cells`), cell
-``i`` of mass ``m_i`` and centre ``c_i``. Emptying it adds a negative mass at
-``c_i``, so with ``x_i ∈ {0, 1}`` (emptied or not) a stability target's rows
-(:class:`plumbob.balance.targets.Target`: ``M·slack(c) + Σ m_j·slack(p_j) ≥ 0``)
-read::
+Why it is nearly linear (Prévost et al., *Make It Stand*, 2013): the interior — what
+lies deeper than the wall thickness, the inward offset (:mod:`plumbob.bodies.offset`)
+— may be emptied anywhere. Emptying a piece of mass ``m_i`` at ``c_i`` adds ``−m_i`` at
+``c_i``, so every row of a stability target
+(:class:`plumbob.balance.targets.Target`: ``M·slack(c) + Σ m_j·slack(p_j) ≥ 0``) is
+linear in what is emptied, and over the interior cut into cells
+(:mod:`plumbob.balance.cells`) the continuous relaxation is a linear program
+(:mod:`plumbob.balance.relax`). Its optimum is a **threshold carve**: the cells on one
+side of a plane — the overhanging side — emptied, the rest kept.
 
-    Σ_i x_i m_i slack_k(c_i) ≤ M slack_k(c)            for every row k
+So the carve is a plane cut of the interior, and it is taken exactly: the relaxation
+gives the bound at the cell size and the plane's direction, and the plane is then
+refined on the interior's own mesh (:mod:`plumbob.balance.search`) — the continuous
+limit, no cells left to round. That gives
 
-and the least material removed is ``min Σ x_i m_i`` (``--lightest``: the most),
-a 0–1 linear program that HiGHS (``scipy.optimize.milp``) solves at once for the
-few hundred cells and handful of rows a body has. More rows keep the emptied cells
-*well-composed* (no two touching only along an edge or at a corner,
-:func:`plumbob.balance.cells.manifold_rows`), so the carved mesh is a 2-manifold
-that any slicer accepts. The carved body is the body less
-the emptied cells, one closed mesh with an inner shell (manifold3d), and the void
-(the emptied cells' union) is a mesh of its own, for a slicer's modifier.
+* **the bound**: the best margin (or tilt, or least slack) any carve keeping the walls
+  reaches (:class:`HollowBound`); a target beyond it is refused with the bound stated;
+* **the carve**: the plane that meets the target emptying the least material
+  (``lightest``: the most). The void is the interior beyond the plane, one boolean
+  (manifold3d): the carved body is a closed 2-manifold with an inner shell, and every
+  piece of the void reaches the interior's surface (where a drain hole may go).
 
-What the plan predicts is checked where it matters: :func:`write_hollow` writes
-both meshes, reads the carved one back and measures its mass properties and its
-stability from the file, as ``plumbob check`` would.
+What the plan predicts is checked where it matters: :func:`write_hollow` writes both
+meshes, reads the carved one back and measures its mass properties and its stability
+from the file, as ``plumbob check`` would.
 """
 
 from __future__ import annotations
@@ -32,48 +35,103 @@ from typing import Any
 import numpy as np
 
 from ..bodies.base import Body
-from ..bodies.offset import InwardOffset, inward_offset, manifold_triangles
+from ..bodies.offset import InwardOffset, manifold_triangles
 from ..bodies.solid import MeshSolid
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
 from ..results import Result
 from ..tolerances import size_of
-from .cells import GridCells, box_union, grid_cells, manifold_rows
+from .cells import grid_cells
+from .interior import carving_interior
+from .relax import best_relaxed, least_relaxed
+from .search import Carver, Cut
 
-__all__ = ["HollowResult", "WrittenHollow", "hollow", "write_hollow", "CELLS_ALONG"]
+__all__ = ["HollowBound", "HollowResult", "Hollowing", "WrittenHollow", "hollow",
+           "hollow_bound", "write_hollow", "CELLS_ALONG"]
 
-#: the default cell size is the interior's longest extent over this
+#: the relaxation's default cell size is the interior's longest extent over this
 CELLS_ALONG = 16
-#: seconds HiGHS may spend choosing cells before the best choice found is taken
-TIME_LIMIT = 30.0
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class HollowBound(Result):
+    """The best any carve keeping the walls reaches.
+
+    measure: ``"margin"`` (m), ``"critical_tilt_deg"`` (degrees) or ``"slack"`` (m, the
+        least slack of a target's rows): what ``value`` and ``relaxed`` are.
+    value: the best of any carve, by exact plane cuts of the interior (the continuous
+        limit of the relaxation).
+    relaxed: the same from the linear-programming relaxation at the cell size.
+    cell_size: m, the relaxation's cells.
+    wall: m.
+    normal, offset: the best cut: the interior where ``normal · p ≥ offset`` emptied.
+    """
+
+    measure: str
+    value: float
+    relaxed: float
+    cell_size: float
+    wall: float
+    normal: np.ndarray
+    offset: float
+
+    _repr_fields = ("measure", "value", "relaxed")
+
+    def as_dict(self) -> dict[str, Any]:
+        """``measure``, ``value``, ``relaxed``, ``cell_size``, ``wall``, ``normal``,
+        ``offset`` (SI, degrees for a tilt)."""
+        return {"measure": self.measure, "value": self.value, "relaxed": self.relaxed,
+                "cell_size": self.cell_size, "wall": self.wall, "normal": self.normal,
+                "offset": self.offset}
+
+    def sentence(self) -> str:
+        """The bound in words: ``the best any carve with 2 mm walls reaches is …``."""
+        if self.measure == "critical_tilt_deg":
+            what = f"a critical tilt of {self.value:.3g}°"
+        elif self.measure == "margin":
+            what = f"a margin of {_length(self.value)}"
+        else:
+            what = f"a least slack of {_length(self.value)} (the target's rows)"
+        return f"the best any carve with {_length(self.wall)} walls reaches is {what}"
+
+
+def _length(value: float) -> str:
+    """A length for a sentence: in mm below a metre (``3.4 mm``), else m."""
+    return f"{value * 1e3:.3g} mm" if abs(value) < 1 else f"{value:.4g} m"
 
 
 @dataclass(frozen=True, eq=False, repr=False)
 class HollowResult(Result):
-    """A hollowing plan: which cells of the interior to empty, and the bodies it gives.
+    """A hollowing plan: the plane cut of the interior that is emptied, and the bodies it gives.
 
-    carved: the body less the emptied cells (a mesh with an inner shell), or the body's
-        own mesh when nothing need be emptied.
-    void: the emptied cells' union (None when none are).
+    carved: the body less the void (a mesh with an inner shell), or the body's own mesh
+        when nothing need be emptied.
+    void: the emptied part of the interior (None when nothing is).
     wall: m, the wall thickness asked for (the walls are at least this thick).
     offset: the interior's inward offset (how it was made, its error).
-    cells: the interior's cells; emptied: (n,) bool, which are emptied.
+    bound: the best any carve reaches (:class:`HollowBound`).
+    cut: the cut emptied (None when nothing is): ``cut.normal`` (3,), ``cut.offset`` m.
     before, after: mass properties of the body's mesh (a curved body's faceting, 256
         segments per turn) and of the carved body, as planned.
     target_met: whether the carved body's centre meets every row of the target.
     lightest: whether the most material was removed (else the least).
+    pieces: how many separate pieces the void has (each reaches the interior's surface,
+        where a drain hole may go).
+    seconds: s, the time the plan took.
     """
 
     carved: MeshSolid
     void: MeshSolid | None
     wall: float
     offset: InwardOffset
-    cells: GridCells
-    emptied: np.ndarray
+    bound: HollowBound
+    cut: Cut | None
     before: MassProperties
     after: MassProperties
     target_met: bool
     lightest: bool = False
+    pieces: int = 0
+    seconds: float = 0.0
 
     _repr_fields = ("wall", "target_met", "lightest")
 
@@ -83,18 +141,20 @@ class HollowResult(Result):
         return self.before.mass - self.after.mass
 
     def as_dict(self) -> dict[str, Any]:
-        """``wall``, ``cell_size``, ``cells``, ``cells_emptied``, ``mass_before``,
-        ``mass_after``, ``removed_mass``, ``center_of_mass_before``,
-        ``center_of_mass_after``, ``target_met``, ``lightest``, ``offset`` (SI)."""
+        """``wall``, ``mass_before``, ``mass_after``, ``removed_mass``,
+        ``center_of_mass_before``, ``center_of_mass_after``, ``target_met``, ``lightest``,
+        ``cut`` (``normal``, ``offset`` m, or None), ``void_pieces``, ``bound``,
+        ``offset``, ``seconds`` (SI)."""
+        cut = None if self.cut is None else {"normal": self.cut.normal,
+                                             "offset": self.cut.offset}
         return {
-            "wall": self.wall, "cell_size": self.cells.size, "cells": len(self.cells),
-            "cells_emptied": int(self.emptied.sum()),
-            "mass_before": self.before.mass, "mass_after": self.after.mass,
+            "wall": self.wall, "mass_before": self.before.mass, "mass_after": self.after.mass,
             "removed_mass": self.removed_mass,
             "center_of_mass_before": self.before.center_of_mass,
             "center_of_mass_after": self.after.center_of_mass,
-            "target_met": self.target_met, "lightest": self.lightest,
-            "offset": self.offset.as_dict(),
+            "target_met": self.target_met, "lightest": self.lightest, "cut": cut,
+            "void_pieces": self.pieces, "bound": self.bound.as_dict(),
+            "offset": self.offset.as_dict(), "seconds": self.seconds,
         }
 
 
@@ -107,43 +167,119 @@ def _density(body: Body) -> float | None:
     return density if isinstance(density, float) else None
 
 
-def _choose(cells: GridCells, density: float, mass: float, centre: np.ndarray, target,
-            lightest: bool, safety: float) -> np.ndarray:
-    """Which cells to empty (n,) bool: the 0–1 program of the module's doc."""
-    from scipy.optimize import Bounds, LinearConstraint, milp
+def _measure(target, slack: float) -> tuple[str, float]:
+    """What a target's best least slack means: a margin (m) for a margin target, else the
+    slack itself (a tilt is measured by :func:`_best_tilt`)."""
+    kinds = set(getattr(target, "kinds", ()) or ())
+    if kinds == {"margin"} and getattr(target, "margin", None) is not None:
+        return "margin", float(target.margin) + slack
+    return "slack", slack
 
-    masses = density * cells.volumes
-    rows = masses[None, :] * target.slack(cells.centres)  # (k, n), kg·m
-    limit = mass * np.asarray(target.slack(centre), dtype=float) - safety
-    # in units of the body's mass and the cells' reach, so that HiGHS's absolute
-    # feasibility tolerance (1e-7) is far below every moment that matters
-    unit = mass * max(float(np.abs(rows).max()) / max(float(masses.max()), 1e-300), 1e-300)
-    rows, limit = rows / unit, limit / unit
-    cost = (-masses if lightest else masses) / mass
-    shape, shape_limit = manifold_rows(cells)
-    constraints = [LinearConstraint(rows, -np.inf, limit)]
-    if shape.shape[0]:
-        constraints.append(LinearConstraint(shape, -np.inf, shape_limit))
-    result = milp(cost, constraints=constraints, integrality=np.ones(len(masses)),
-                  bounds=Bounds(0, 1), options={"time_limit": TIME_LIMIT})
-    if result.x is None:
-        best = np.where(rows.sum(axis=0) > 0, 0.0, 1.0)  # every cell that helps every row…
-        short = float(np.min(mass * target.slack(centre) - rows @ best)) / mass
-        raise StabilityError(
-            "hollowing cannot meet the target: even emptying the interior leaves the centre "
-            f"of mass about {-short:.3g} m short of it; give a thinner --wall, add ballast, "
-            "or widen the base")
-    chosen = np.rint(result.x)
-    if np.any(rows @ chosen > limit + 1e-9) or np.any(shape @ chosen > shape_limit + 0.5):
-        raise StabilityError("hollowing found no choice of whole cells that meets the target "
-                             "within its time: give a smaller --cell size or a thinner --wall")
-    return chosen.astype(bool)
+
+class _Problem:
+    """A body's interior, cut into cells, ready for the relaxation and the exact search.
+
+    The search runs on ``rough`` (the level set as extracted: fewer triangles, its surface
+    within a few hundredths of the step of ``interior``'s), and its answers are finished
+    on ``interior`` itself, the one carved."""
+
+    def __init__(self, interior, rough, rho: float, before: MassProperties, cell: float):
+        self.cells = grid_cells(rough, cell)
+        self.masses = rho * self.cells.volumes
+        self.mass, self.centre = before.mass, before.center_of_mass
+        self.carver = Carver(manifold_triangles(interior), rho, before.mass,
+                             before.center_of_mass)
+        self.rough = self.carver if rough is interior else Carver(
+            manifold_triangles(rough), rho, before.mass, before.center_of_mass)
+
+    def best(self, target) -> tuple[float, Cut]:
+        """The relaxation's best least slack (m), and the exact best cut."""
+        relaxed = best_relaxed(self.masses, self.cells.centres, self.mass, self.centre, target)
+        cut = self.rough.best(target, relaxed.normal)
+        return relaxed.value, self.carver.best_along(target, cut.normal)
+
+    def least(self, target, safety: float, lightest: bool, best: Cut) -> Cut | None:
+        relaxed = least_relaxed(self.masses, self.cells.centres, self.mass, self.centre,
+                                target, safety)
+        start = relaxed.normal if np.any(relaxed.normal) else best.normal
+        cut = self.rough.least(target, start, safety, lightest, best)
+        found = None if cut is None else self.carver.least_along(target, cut.normal, safety,
+                                                                 lightest)
+        return found or self.carver.least_along(target, best.normal, safety, lightest)
+
+
+def _best_tilt(problem: _Problem, target, found: tuple[float, Cut]) -> tuple[float, float, Cut]:
+    """The best critical tilt (degrees) of any carve, relaxed and exact, by bisection on the
+    tilt: the largest at which the best least slack is still ≥ 0."""
+    from .targets import target_for
+
+    def at(angle: float) -> tuple[float, Cut]:
+        return problem.best(target_for(None, require_tilt_deg=float(np.degrees(angle)),
+                                       support=target.support))
+
+    results = []
+    for pick in (0, 1):  # the relaxed bound, then the exact one
+        lo, hi = 0.0, float(np.radians(target.require_tilt_deg))
+        value = found[pick] if pick == 0 else found[1].slack
+        if value >= 0:
+            lo, hi = hi, np.pi / 2 - 1e-6
+        for _ in range(30):
+            mid = 0.5 * (lo + hi)
+            value = at(mid)[pick] if pick == 0 else at(mid)[1].slack
+            lo, hi = (mid, hi) if value >= 0 else (lo, mid)
+            if hi - lo < 1e-5:
+                break
+        results.append(float(np.degrees(lo)))
+    return results[0], results[1], at(np.radians(results[1]))[1]
+
+
+def hollow_bound(problem: _Problem, target, wall: float) -> tuple[HollowBound, Cut]:
+    """The best any carve reaches (see :class:`HollowBound`), and the best cut for the
+    target's own rows."""
+    relaxed, cut = problem.best(target)
+    kinds = set(getattr(target, "kinds", ()) or ())
+    if kinds == {"tilt"} and getattr(target, "support", None) is not None:
+        low, high, best = _best_tilt(problem, target, (relaxed, cut))
+        bound = HollowBound("critical_tilt_deg", high, low, problem.cells.size, wall,
+                            best.normal, best.offset)
+        return bound, cut
+    measure, value = _measure(target, cut.slack)
+    return HollowBound(measure, value, _measure(target, relaxed)[1], problem.cells.size, wall,
+                       cut.normal, cut.offset), cut
+
+
+def _void(interior, cut: Cut, carver: Carver, target, safety: float):
+    """The interior beyond the cut, its separate pieces that the target does not need
+    dropped (the smallest first); returns the manifold and how many pieces it has."""
+    import manifold3d
+
+    void = interior.trim_by_plane(list(map(float, cut.normal)), float(cut.offset))
+    pieces = sorted(void.decompose(), key=lambda piece: piece.volume())
+    if len(pieces) > 1:
+        from ..integrals.mesh import triangle_soup_moments
+
+        kept = list(pieces)
+        first = [triangle_soup_moments(manifold_triangles(p)) for p in pieces]
+        moments = [(m.m0, m.m1 + m.m0 * m.origin) for m in first]
+        volume = sum(m[0] for m in moments)
+        moment = sum(m[1] for m in moments)
+        for i in range(len(pieces) - 1):  # never the largest
+            v, m1 = volume - moments[i][0], moment - moments[i][1]
+            left = carver.mass - carver.density * v
+            centre = (carver.moment - carver.density * m1) / left
+            if float(np.min(target.slack(centre))) >= safety:
+                kept.remove(pieces[i])
+                volume, moment = v, m1
+        void = manifold3d.Manifold.batch_boolean(kept, manifold3d.OpType.Add)
+        pieces = kept
+    return void, len(pieces)
 
 
 def hollow(body: Body, *, wall: float, target, lightest: bool = False,
-           cell_size: float | None = None, step: float | None = None) -> HollowResult:
-    """Empty cells of ``body``'s interior, keeping walls ``wall`` m thick, so that it
-    meets ``target``.
+           cell_size: float | None = None, step: float | None = None,
+           best_effort: bool = False) -> HollowResult:
+    """Empty part of ``body``'s interior, keeping walls ``wall`` m thick, so that it meets
+    ``target``.
 
     Parameters
     ----------
@@ -153,14 +289,19 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
         m, positive: the least wall thickness kept everywhere.
     target : Target
         What to meet (:func:`plumbob.balance.targets.target_for`): anything with a
-        ``slack(points) -> (k, n)`` whose rows must stay ≥ 0.
+        ``slack(points) -> (k, n)`` linear in the points, whose rows must stay ≥ 0.
     lightest : bool
         Empty as much as the target allows (a light print), not as little.
     cell_size : float, optional
-        m, the grid the interior is cut by; default its longest extent / 16.
+        m, the cells of the relaxation (its bound at that size, and the cut's first
+        direction); default the interior's longest extent / 16.
     step : float, optional
-        m, the level-set step of the inward offset when it has no closed form; the
-        offset is then taken one step deeper so its own error never thins a wall.
+        m, the level-set step of the inward offset when it has no closed form (default
+        the smaller of wall / 4 and the body's size / 64); the offset is then taken one
+        step deeper so its own error never thins a wall.
+    best_effort : bool
+        When no carve meets the target, return the best carve (``target_met`` False)
+        instead of raising — for ballast to make up the rest.
 
     Returns
     -------
@@ -169,7 +310,7 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     Raises
     ------
     StabilityError
-        When no choice of cells meets the target.
+        When no carve meets the target: the message states the best any carve reaches.
     GeometryError
         When nothing lies ``wall`` inside the body, or the body is not one solid.
 
@@ -186,54 +327,93 @@ def hollow(body: Body, *, wall: float, target, lightest: bool = False,
     >>> plan.target_met, plan.offset.exact, bool(plan.after.center_of_mass[2] <= 0.45)
     (True, True, True)
 
-    Taking m kg from at most 0.8 m up lowers the centre to (500 − 0.8 m)/(1000 − m): at
-    least 50/0.35 kg must go, and whole cells of 8 kg take a little more:
+    The least mass goes from the interior's top: a slab from height ``z`` to 0.9 m takes
+    ``640 (0.9 − z)`` kg and lowers the centre to 0.45 m when
+    ``500 − 320 (0.81 − z²) = 0.45 (1000 − 640 (0.9 − z))``, ``320 z² − 288 z + 50 = 0``:
 
-    >>> bool(50 / 0.35 <= plan.removed_mass < 50 / 0.35 + 4 * 8)
+    >>> z = (288 + np.sqrt(288**2 - 4 * 320 * 50)) / (2 * 320)
+    >>> bool(np.isclose(plan.removed_mass, 640 * (0.9 - z), rtol=1e-3))  # aimed a hair inside
     True
     """
-    wall = float(wall)
-    if not (np.isfinite(wall) and wall > 0):
-        raise GeometryError(f"a wall thickness must be a positive length, not {wall!r}")
-    if cell_size is not None and not (np.isfinite(cell_size) and cell_size > 0):
-        raise GeometryError(f"a cell size must be a positive length, not {cell_size!r}")
-    density = _density(body)
-    triangles, own = body.surface(256)
-    # the plan starts from the mesh that is carved and written (a curved body's faceting),
-    # not from the exact body: the written file is what must meet the target
-    outer_mesh = MeshSolid(triangles, density)
-    before = outer_mesh.mass_properties()
-    rho = before.mass / before.measure
-    size = size_of(triangles.reshape(-1, 3))
-    h = float(step) if step is not None else min(wall / 2, size / 64)
-    # float32 files move vertices by ~1e-7 of the size: keep the exact walls that much thicker
-    offset = inward_offset(body, wall * (1 + 1e-6) + 1e-6 * size, step=h, extra=h)
-    if offset.body is None:
-        raise GeometryError(f"nothing lies {wall:g} m inside the body: give a thinner --wall")
-    interior = offset.body.to_geometry(256)
-    lo, hi = np.asarray(interior.bounding_box()[:3]), np.asarray(interior.bounding_box()[3:])
-    cell = float(cell_size) if cell_size is not None else float(np.max(hi - lo)) / CELLS_ALONG
-    cells = grid_cells(interior, cell)
-    safety = 1e-6 * before.mass * size  # round-off of the written file, as a moment
-    emptied = _choose(cells, rho, before.mass, before.center_of_mass, target, lightest, safety)
-    if not emptied.any():
-        return HollowResult(outer_mesh, None, wall, offset, cells, emptied, before,
-                            outer_mesh.mass_properties(), bool(np.all(target.slack(
-                                before.center_of_mass) >= 0)), lightest)
-    import manifold3d
+    return Hollowing.prepare(body, wall, cell_size=cell_size, step=step).plan(
+        target, lightest=lightest, best_effort=best_effort)
 
-    # the void is the interior within the chosen cells' boxes: one boolean, not a union of
-    # cells meeting face to face (which leaves coincident slivers behind)
-    void_manifold = interior ^ box_union(cells, emptied)
-    outer = outer_mesh.to_geometry() if own else body.to_geometry(256)
-    carved_manifold = outer - void_manifold
-    if carved_manifold.status() != manifold3d.Error.NoError or carved_manifold.is_empty():
-        raise GeometryError(f"the carved body could not be built ({carved_manifold.status()})")
-    carved = MeshSolid(manifold_triangles(carved_manifold), density)
-    void = MeshSolid(manifold_triangles(void_manifold), density)
-    after = carved.mass_properties()
-    met = bool(np.all(np.asarray(target.slack(after.center_of_mass)) >= -safety / after.mass))
-    return HollowResult(carved, void, wall, offset, cells, emptied, before, after, met, lightest)
+
+class Hollowing:
+    """A body's interior made ready to carve (the offset, its cells, its mesh to cut), for
+    one target or several (the same body in several poses): :meth:`prepare`, then
+    :meth:`plan` — :func:`hollow` does both."""
+
+    def __init__(self, body: Body, wall: float, density, outer_mesh: MeshSolid, own: bool,
+                 offset: InwardOffset, interior, problem: _Problem, seconds: float):
+        self.body, self.wall, self.density, self.own = body, wall, density, own
+        self.outer_mesh, self.before = outer_mesh, outer_mesh.mass_properties()
+        self.offset, self.interior, self.problem, self.seconds = (offset, interior, problem,
+                                                                  seconds)
+        self.size = size_of(outer_mesh.triangles.reshape(-1, 3))
+
+    @classmethod
+    def prepare(cls, body: Body, wall: float, *, cell_size: float | None = None,
+                step: float | None = None) -> Hollowing:
+        """The interior of ``body`` behind walls ``wall`` m thick (see :func:`hollow`)."""
+        import time
+
+        clock = time.perf_counter()
+        wall = float(wall)
+        if not (np.isfinite(wall) and wall > 0):
+            raise GeometryError(f"a wall thickness must be a positive length, not {wall!r}")
+        if cell_size is not None and not (np.isfinite(cell_size) and cell_size > 0):
+            raise GeometryError(f"a cell size must be a positive length, not {cell_size!r}")
+        density = _density(body)
+        triangles, own = body.surface(256)
+        # the plan starts from the mesh that is carved and written (a curved body's
+        # faceting), not from the exact body: the written file is what must meet the target
+        outer_mesh = MeshSolid(triangles, density)
+        before = outer_mesh.mass_properties()
+        rho = before.mass / before.measure
+        offset, interior, rough = carving_interior(body, wall, step,
+                                                   size_of(triangles.reshape(-1, 3)))
+        lo, hi = (np.asarray(interior.bounding_box()[:3]),
+                  np.asarray(interior.bounding_box()[3:]))
+        cell = float(cell_size) if cell_size is not None else float(np.max(hi - lo)) / CELLS_ALONG
+        problem = _Problem(interior, rough, rho, before, cell)
+        return cls(body, wall, density, outer_mesh, own, offset, interior, problem,
+                   time.perf_counter() - clock)
+
+    def plan(self, target, *, lightest: bool = False, best_effort: bool = False) -> HollowResult:
+        """The carve that meets ``target`` (see :func:`hollow`)."""
+        import time
+
+        clock = time.perf_counter()
+        before, wall = self.before, self.wall
+        safety = 2e-6 * self.size  # m of slack: the file's round-off, and the check's contact
+        bound, best = hollow_bound(self.problem, target, wall)
+        if float(np.min(target.slack(before.center_of_mass))) >= 0:
+            return HollowResult(self.outer_mesh, None, wall, self.offset, bound, None, before,
+                                before, True, lightest, 0,
+                                self.seconds + time.perf_counter() - clock)
+        cut = self.problem.least(target, safety, lightest, best) if best.slack >= safety else None
+        if cut is None:
+            if not best_effort:
+                raise StabilityError(
+                    f"hollowing cannot meet the target: {bound.sentence()}; ask for less, give "
+                    "thinner walls (--wall), or add ballast (--wall with --ballast-material "
+                    "carves the best and ballasts the rest)")
+            cut = best
+        void_manifold, pieces = _void(self.interior, cut, self.problem.carver, target,
+                                      safety if best.slack >= safety else -np.inf)
+        import manifold3d
+
+        outer = self.outer_mesh.to_geometry() if self.own else self.body.to_geometry(256)
+        carved_manifold = outer - void_manifold
+        if carved_manifold.status() != manifold3d.Error.NoError or carved_manifold.is_empty():
+            raise GeometryError(f"the carved body could not be built ({carved_manifold.status()})")
+        carved = MeshSolid(manifold_triangles(carved_manifold), self.density)
+        void = MeshSolid(manifold_triangles(void_manifold), self.density)
+        after = carved.mass_properties()
+        met = bool(np.all(np.asarray(target.slack(after.center_of_mass)) >= -safety / 2))
+        return HollowResult(carved, void, wall, self.offset, bound, cut, before, after, met,
+                            lightest, pieces, self.seconds + time.perf_counter() - clock)
 
 
 @dataclass(frozen=True, eq=False, repr=False)

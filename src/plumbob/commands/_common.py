@@ -308,16 +308,16 @@ def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--pose",
                               tilt_help: str = "also check it on a plane tilted by DEG "
-                                               "degrees") -> None:
+                                               "degrees", pose_type=int,
+                              pose_help: str = "rest it in its K-th most probable resting pose "
+                                               "(see 'plumbob poses')") -> None:
     """--down X,Y,Z or ``pose`` K (the K-th resting pose), and --tilt DEG --toward DEG: how
     the body rests, for check and balance alike."""
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--down", type=direction, metavar="X,Y,Z",
                        help="direction of gravity in the body's frame (default -z; -y for a "
                             "lamina)")
-    where.add_argument(pose, type=int, metavar="K",
-                       help="rest it in its K-th most probable resting pose (see 'plumbob "
-                            "poses')")
+    where.add_argument(pose, type=pose_type, metavar="K", help=pose_help)
     parser.add_argument("--tilt", type=non_negative, metavar="DEG", help=tilt_help)
     parser.add_argument("--toward", type=number, metavar="DEG",
                         help="the tilted plane descends toward this direction, degrees from "

@@ -38,6 +38,20 @@ the body with the ballast added, not the plan's."""
 
 
 
+#: how many of the most probable resting poses --target-pose auto tries
+AUTO_POSES = 4
+
+
+def _pose_or_auto(text: str):
+    """``--target-pose``: a whole number K, or ``auto``."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a pose number or 'auto', not {text!r}") from None
+
+
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "balance", help="make it stand: the least ballast that meets a margin or tilt",
@@ -45,7 +59,12 @@ def register(subparsers) -> None:
     add_stability_arguments(parser)
     add_orientation_arguments(parser, "--target-pose",
                               tilt_help="it must stand on a plane tilted DEG degrees (toward "
-                                        "--toward, else in every direction)")
+                                        "--toward, else in every direction)",
+                              pose_type=_pose_or_auto,
+                              pose_help="rest it in its K-th most probable resting pose (see "
+                                        "'plumbob poses'), or 'auto': try the most probable "
+                                        "poses and take the one that needs the least carving "
+                                        "(with --wall) or ballast")
     parser.add_argument("--margin", type=length, metavar="M",
                         help="static stability margin to reach, m (or with a unit: 3mm)")
     parser.add_argument("--require-tilt", type=tilt_limit, metavar="DEG",
@@ -75,15 +94,16 @@ def register(subparsers) -> None:
     hollowing.add_argument("--lightest", action="store_true",
                            help="with --wall: empty as much as the target allows, not as little")
     hollowing.add_argument("--cell", type=length, metavar="L",
-                           help="with --wall: the cells' size (default: the interior's longest "
-                                "extent / 16)")
+                           help="with --wall: the cells of the linear-programming relaxation that "
+                                "starts the search (default: the interior's longest extent / 16)")
     parser.set_defaults(func=run)
 
 
-def _target(args, body, props, down=None):
+def _target(args, body, props, down=None, chosen=None):
     """(down, margin, tilt in degrees, toward vector or None) from the options, checked
     once as a :class:`~plumbob.stability.requirement.Requirement`; ``down``: gravity's
-    direction unless a target pose is asked for (None: the default)."""
+    direction unless a target pose is asked for (None: the default);
+    ``chosen``: the pose already chosen (``--target-pose auto``)."""
     from ..errors import StabilityError
 
     if args.tilt is not None and args.require_tilt is not None:
@@ -92,7 +112,9 @@ def _target(args, body, props, down=None):
         raise StabilityError("--toward needs --tilt DEG")
     if args.margin is None and args.tilt is None and args.require_tilt is None:
         raise StabilityError("give a target: --margin M, --require-tilt DEG or --tilt DEG")
-    if args.target_pose is not None:
+    if chosen is not None:
+        down = chosen
+    elif args.target_pose is not None:
         down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
     req = requirement(args, down)
     dim = getattr(body, "dim", 3)
@@ -100,9 +122,10 @@ def _target(args, body, props, down=None):
     return req.gravity_down(dim), req.margin, tilt, req.toward_direction(dim)
 
 
-def _hollow(args, reading, props):
+def _hollow(args, reading, props, down=None, hollowing=None):
     """With --wall: carve the body (plumbob.balance.hollow), write --out (and --void), and
-    go on with the body read back from --out. Returns (body, props, written or None)."""
+    go on with the body read back from --out. Returns (body, props, written or None).
+    ``down``: the pose already chosen; ``hollowing``: the interior already prepared."""
     from ..errors import StabilityError
 
     if args.wall is None:
@@ -114,19 +137,134 @@ def _hollow(args, reading, props):
     if getattr(args, "shell", None) is not None or getattr(args, "infill", None) is not None:
         raise StabilityError("--wall carves a solid body: give it without --shell/--infill")
 
-    from ..balance.hollow import hollow, write_hollow
+    from ..balance.hollow import Hollowing, write_hollow
     from ..balance.targets import target_for
 
-    down, margin, tilt, toward = _target(args, reading.body, props, default_down(args, reading))
+    down, margin, tilt, toward = _target(args, reading.body, props,
+                                         default_down(args, reading), down)
     if toward is not None:
         raise StabilityError("hollowing meets a margin, or a tilt in every direction: "
                              "--toward is for ballast alone")
     target = target_for(reading.body, down=down, margin=margin,
                         require_tilt_deg=tilt)
-    plan = hollow(reading.body, wall=args.wall, target=target, lightest=args.lightest,
-                  cell_size=args.cell)
+    if hollowing is None:
+        hollowing = Hollowing.prepare(reading.body, args.wall, cell_size=args.cell)
+    # with ballast to make up the rest, the best carve is taken when no carve alone meets it
+    plan = hollowing.plan(target, lightest=args.lightest,
+                          best_effort=bool(args.ballast_material or args.ballast_region))
     written = write_hollow(plan, args.out, void=args.void, units=args.units, down=down)
     return written.body, written.mass_properties, written
+
+
+def _auto_pose(args, reading, props):
+    """``--target-pose auto``: the most probable resting poses, each with what it needs —
+    nothing, the least mass emptied (with --wall), or the least ballast — and the pose
+    that needs the least. Returns (its down, rows of (pose, probability, down, what it
+    needs, kg), its number, the prepared hollowing or None)."""
+    import numpy as np
+
+    from ..balance.result import balance
+    from ..balance.targets import target_for
+    from ..errors import StabilityError
+    from ..stability.poses import resting_poses
+
+    body = reading.body
+    poses = resting_poses(body, g=args.g, props=props)[:AUTO_POSES]
+    hollowing = None
+    if args.wall is not None:
+        from ..balance.hollow import Hollowing
+
+        hollowing = Hollowing.prepare(body, args.wall, cell_size=args.cell)
+    rows = []
+    for k, pose in enumerate(poses, start=1):
+        down, margin, tilt, toward = _target(args, body, props, chosen=pose.down)
+        if hollowing is not None:
+            target = target_for(body, down=down, margin=margin,
+                                require_tilt_deg=tilt)
+            try:
+                plan = hollowing.plan(target, lightest=args.lightest)
+                cost, what = plan.removed_mass, (
+                    "meets it as it is" if plan.cut is None else
+                    f"{plan.removed_mass:.6g} kg emptied")
+            except StabilityError:
+                bound = hollowing.plan(target, best_effort=True).bound
+                cost, what = float("inf"), f"no carve does: {bound.sentence()}"
+        else:
+            try:
+                r = balance(body, down, margin=margin, require_tilt_deg=tilt, toward=toward,
+                            g=args.g, props=props)
+                cost = r.ballast_mass if r.passes else float("inf")
+                what = ("meets it as it is" if r.ballast_mass == 0 else
+                        f"{r.ballast_mass:.6g} kg of ballast")
+            except StabilityError as error:
+                cost, what = float("inf"), f"no ballast does: {error}"
+        rows.append((k, pose.probability, down, what, cost))
+    best = min(rows, key=lambda row: (row[4], row[0]))
+    if not np.isfinite(best[4]):
+        raise StabilityError(f"--target-pose auto: none of the {len(rows)} most probable poses "
+                             "can meet the target; " + "; ".join(f"pose {r[0]}: {r[3]}"
+                                                               for r in rows))
+    return best[2], rows, best[0], hollowing
+
+
+def _auto_text(rows, chosen: int) -> str:
+    from ..report import format_vector, table
+
+    lines = [(f"pose {k} ({100 * p:.3g} %)", f"down {format_vector(down, 4)}: {what}"
+              + ("  <- chosen" if k == chosen else ""))
+             for k, p, down, what, _ in rows]
+    return table(lines, title="--target-pose auto: the most probable poses tried")
+
+
+def _text(r, path: str, kind: str, notes: list[str], scale: float) -> str:
+    from ..report import clean, format_number, format_vector, table
+
+    def num(value: float, digits: int = 6) -> str:
+        return format_number(float(clean(value, scale)), digits)
+
+    def vec(values, digits: int = 6) -> str:
+        return format_vector(clean(values, scale), digits)
+
+    wanted = []
+    if r.margin_target is not None:
+        wanted.append(f"margin ≥ {num(r.margin_target)} m")
+    if r.require_tilt_deg is not None:
+        way = "in every direction" if r.toward is None else f"toward {vec(r.toward, 4)}"
+        wanted.append(f"no toppling at {num(r.require_tilt_deg, 4)}° {way}")
+
+    def state(v) -> str:
+        way = ("" if r.toward is None or v.verdict != "stands" else
+               f", tips at {num(v.tipping_angle_deg(r.toward), 4)}° that way")
+        return (f"{v.verdict}, margin {num(v.margin)} m, critical tilt "
+                f"{num(v.critical_tilt_deg, 4)}°{way}, centre of mass "
+                f"{vec(v.center_of_mass)} m")
+
+    rows = [("target", ", ".join(wanted)), ("down", vec(r.down)), ("before", state(r.before))]
+    if r.ballast_mass == 0:
+        rows.append(("ballast", "none needed: it meets the target as it is"))
+    else:
+        rows.append(("ballast", f"{num(r.ballast_mass)} kg centred at {vec(r.ballast_point)} m"))
+        if r.ballast_density is not None:
+            dims = r.ballast_dimensions
+            if r.ballast_shape == "cylinder":
+                shape = f"a cylinder of radius {num(dims[0], 4)} m and height {num(dims[1], 4)} m"
+            elif r.ballast_shape == "square":
+                shape = (f"a square of side {num(dims[0], 4)} m through the lamina's "
+                         f"{num(r.ballast_depth, 4)} m")
+            else:
+                shape = f"a cube of side {num(dims[0], 4)} m"
+            rows.append(("ballast shape", f"{r.ballast_material} ({num(r.ballast_density)} "
+                                          f"kg/m³), {num(r.ballast_volume, 4)} m³: {shape}, "
+                                          "fits inside"))
+            if r.pocket:
+                rows.append(("pocket", f"it fills a pocket cut for it: the body gains "
+                                       f"{num(r.added_mass)} kg"))
+        rows.append(("after", state(r.after) + f", mass {num(r.after.mass)} kg"))
+    rows.append(("result", "meets the target (checked with the ballast added)" if r.passes
+                 else "does NOT meet the target"))
+    lines = [table(rows, title=f"plumbob balance {path} ({kind})")]
+    lines += [f"note: {note}" for note in notes]
+    return "\n".join(lines)
 
 
 def run(args) -> int:
@@ -137,8 +275,11 @@ def run(args) -> int:
     loads = option_loads(args, reading)
     if loads or args.standard is not None:
         return _run_loaded(args, reading, props, notes, loads)
-    body, props, carved = _hollow(args, reading, props)
-    down, margin, tilt, toward = _target(args, body, props, default_down(args, reading))
+    chosen = hollowing = tried = number = None
+    if args.target_pose == "auto":
+        chosen, tried, number, hollowing = _auto_pose(args, reading, props)
+    body, props, carved = _hollow(args, reading, props, chosen, hollowing)
+    down, margin, tilt, toward = _target(args, body, props, default_down(args, reading), chosen)
     region = None
     if args.ballast_region:
         region = load_body(args, path=args.ballast_region).body
@@ -155,12 +296,19 @@ def run(args) -> int:
         out = {**header(reading, kind), **result.as_dict()}
         if carved is not None:
             out["hollow"] = carved.as_dict()
+        if tried is not None:
+            out["poses_tried"] = [{"pose": k, "probability": p, "down": d, "needs": what,
+                                   "cost": cost if cost != float("inf") else None}
+                                  for k, p, d, what, cost in tried]
+            out["pose"] = number
         print_json(out, reading, notes)
     else:
         from ..report.balance import balance_text, hollow_text
         from ..stability.support import body_size
 
         scale = body_size(body)
+        if tried is not None:
+            print(_auto_text(tried, number))
         if carved is not None:
             print(hollow_text(carved, scale))
         print(balance_text(result, args.path, kind, notes, scale))
@@ -179,6 +327,9 @@ def _run_loaded(args, reading, props, notes, loads) -> int:
                              "alone: leave out --wall, --margin and --require-tilt")
     if loads and args.standard is not None:
         raise StabilityError("give loads or --standard, not both (a standard sets its own)")
+    if args.target_pose == "auto":
+        raise StabilityError("--target-pose auto goes with --margin or --require-tilt; with "
+                             "loads or --standard give the pose's number")
     body = reading.body
     down = args.down
     if args.target_pose is not None:

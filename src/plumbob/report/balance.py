@@ -17,8 +17,16 @@ def hollow_text(w, scale: float) -> str:
         return format_number(float(clean(value, scale)), digits)
 
     p = w.plan
-    rows = [("hollowed", f"walls {num(p.wall)} m: {int(p.emptied.sum())} of {len(p.cells)} cells "
-                         f"of {num(p.cells.size, 4)} m emptied, {num(p.removed_mass)} kg removed"),
+    if p.cut is None:
+        carved = "nothing emptied: it meets the target as it is"
+    else:
+        carved = (f"the interior beyond the plane n·p = {num(p.cut.offset)} m, n = "
+                  f"{format_vector(p.cut.normal, 4)}, emptied ({p.pieces} piece"
+                  f"{'s' if p.pieces != 1 else ''}), {num(p.removed_mass)} kg removed")
+    short = "" if p.target_met else "; carving alone falls short: ballast makes up the rest"
+    rows = [("hollowed", f"walls {num(p.wall)} m: {carved}{short}"),
+            ("bound", f"{p.bound.sentence()} (the relaxation over {num(p.bound.cell_size, 4)} m "
+                      f"cells: {num(p.bound.relaxed, 4)}); planned in {p.seconds:.1f} s"),
             ("before", f"mass {num(p.before.mass)} kg, centre of mass "
                        f"{format_vector(clean(p.before.center_of_mass, scale))} m"),
             ("after (written)", f"mass {num(w.mass_properties.mass)} kg, centre of mass "
