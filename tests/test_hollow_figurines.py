@@ -1,17 +1,17 @@
 """Issue 23: hollowing leaning figurines, against a bound computed independently.
 
 The family (tests/_figurines.py; the suite runs two, bench/hollow.py more): a capsule
-leaning out of a cylinder plinth it is sunk into, an upright body with a bent arm held out, an off-centre head — several seeds and
-sizes, each toppling as a solid. For each, the best margin any carve with 2 mm walls
-reaches is computed here without plumbob (tests/_voxel_bound.py: shapely sections into
-0.5 mm voxels, scipy's distance transform for the walls, every plane carve tried), and
+leaning out of a cylinder plinth it is sunk into, an upright body with a bent arm held
+out, an off-centre head — several seeds and sizes, each toppling as a solid. For each,
+the best margin any carve with 2 mm walls reaches is computed here without plumbob
+(tests/_voxel_bound.py: shapely sections into 0.5 mm voxels, scipy's distance transform
+for the walls, every plane carve tried), and
 
 * a target of 95 % of that bound is met, checked on the written file by plumbob's check
   and by trimesh (closed, the wall kept at sampled points, the same mass properties);
 * a target beyond it is refused, and the message states a bound within 5 % of it.
 
-Small, coarse meshes keep it fast; bench/hollow.py runs the 10k–200k-triangle claim.
-"""
+Small, coarse meshes keep it fast; bench/hollow.py runs the 10k–200k-triangle claim."""
 
 from __future__ import annotations
 
