@@ -16,7 +16,8 @@ What counts, in fenced ``sh``/``console``/``shell``/``bash`` blocks:
 A block after ``<!-- docs: run only -->`` runs but its output is not compared (for
 output that depends on a physics engine's version). Blocks of usage synopses are
 ``text`` blocks and not run. Commands run in a folder holding the repository's
-``shapes/`` and the files ``docs/examples/make_examples.py`` writes, as the docs say.
+``shapes/``, ``docs/models/`` and the files ``docs/examples/make_examples.py`` writes,
+as the docs say.
 ``python`` blocks without ``>>>`` (the doctests run in ``test_docs_examples.py``) are
 executed there too.
 """
@@ -118,6 +119,7 @@ def folder(tmp_path_factory):
         sys.path.pop(0)
     path = tmp_path_factory.mktemp("docs")
     shutil.copytree(os.path.join(ROOT, "shapes"), path / "shapes")
+    shutil.copytree(os.path.join(ROOT, "docs", "models"), path / "docs" / "models")
     make_examples(str(path))
     return path
 
