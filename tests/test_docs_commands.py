@@ -120,6 +120,8 @@ def folder(tmp_path_factory):
     path = tmp_path_factory.mktemp("docs")
     shutil.copytree(os.path.join(ROOT, "shapes"), path / "shapes")
     shutil.copytree(os.path.join(ROOT, "docs", "models"), path / "docs" / "models")
+    # docs/printing.md works in the folder docs/hollow_figurine.py writes its figurine to
+    shutil.copy(os.path.join(ROOT, "docs", "models", "leaning_figurine.stl"), path)
     make_examples(str(path))
     return path
 
