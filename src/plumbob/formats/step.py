@@ -50,7 +50,12 @@ _ENTITY = re.compile(rb"#\d+\s*=")
 _EXTERNAL = re.compile(rb"\b(DOCUMENT_FILE|EXTERNAL_SOURCE|EXTERNALLY_DEFINED_\w+)\s*\(")
 _NAUO = re.compile(rb"NEXT_ASSEMBLY_USAGE_OCCURRENCE\s*\(\s*'[^']*'\s*,\s*'[^']*'\s*,\s*"
                    rb"(?:'[^']*'|\$)\s*,\s*#(\d+)\s*,\s*#(\d+)")
-_LENGTH_UNIT = re.compile(rb"=\s*\(([^;]*?LENGTH_UNIT\s*\(\s*\)[^;]*?)\)\s*;")
+_LENGTH_UNIT = re.compile(rb"#(\d+)\s*=\s*\(([^;]*?LENGTH_UNIT\s*\(\s*\)[^;]*?)\)\s*;")
+#: the units a representation context declares for its coordinates (other length units
+#: may stand in the file only as the base of a conversion: SolidWorks' inch is 0.0254 of
+#: a metre unit of its own)
+_GLOBAL_UNITS = re.compile(rb"GLOBAL_UNIT_ASSIGNED_CONTEXT\s*\(\s*\(([^)]*)\)")
+_REFERENCE = re.compile(rb"#(\d+)")
 _SI = re.compile(rb"SI_UNIT\s*\(\s*(\$|\.\w+\.)\s*,\s*\.METRE\.\s*\)")
 _CONVERSION = re.compile(rb"CONVERSION_BASED_UNIT\s*\(\s*'([^']*)'")
 _SI_PREFIX = {b"$": "m", b".MILLI.": "mm", b".CENTI.": "cm", b".KILO.": "km",
@@ -83,7 +88,7 @@ def _scan(path: str) -> dict:
     if size > limits.MAX_STEP_BYTES:
         raise LimitError(f"is {size} bytes, over plumbob's limit of {limits.MAX_STEP_BYTES} for "
                          "a STEP file (plumbob.limits.MAX_STEP_BYTES)", path=path)
-    found: dict = {"entities": 0, "external": None, "units": set(), "links": []}
+    found: dict = {"entities": 0, "external": None, "units": {}, "global": set(), "links": []}
     tail = b""
     with open(path, "rb") as f:
         head = f.read(4096)
@@ -114,7 +119,9 @@ def _scan_block(block: bytes, found: dict, path: str) -> None:
     if external and found["external"] is None:
         found["external"] = external.group(1).decode()
     for match in _LENGTH_UNIT.finditer(block):
-        found["units"].add(_unit_of(match.group(1), path))
+        found["units"][int(match.group(1))] = _unit_of(match.group(2))
+    for match in _GLOBAL_UNITS.finditer(block):
+        found["global"].update(int(n) for n in _REFERENCE.findall(match.group(1)))
     links = _NAUO.findall(block)
     found["links"] += links
     if len(found["links"]) > limits.MAX_PARTS:
@@ -122,19 +129,17 @@ def _scan_block(block: bytes, found: dict, path: str) -> None:
                          "(plumbob.limits.MAX_PARTS)", path=path)
 
 
-def _unit_of(entity: bytes, path: str) -> str:
+def _unit_of(entity: bytes) -> str:
+    """The unit a length-unit entity names (``"mm"``, ``"in"``, …), or a sentence saying
+    what is odd about it (refused if the file's coordinates are in it)."""
     si = _SI.search(entity)
     if si is not None:
         if si.group(1) not in _SI_PREFIX:
-            raise FormatError(f"declares an odd length unit ({si.group(1).decode().strip('.')}METRE)"
-                              ": save it in mm, m or inches", path=path)
+            return f"an odd length unit ({si.group(1).decode().strip('.')}METRE)"
         return _SI_PREFIX[si.group(1)]
     conversion = _CONVERSION.search(entity)
     name = conversion.group(1).decode("latin-1").strip().upper() if conversion else "?"
-    if name not in _CONVERTED:
-        raise FormatError(f"declares an odd length unit ({name!r}): save it in mm, m or inches",
-                          path=path)
-    return _CONVERTED[name]
+    return _CONVERTED.get(name, f"an odd length unit ({name!r})")
 
 
 def _nesting(links: list[tuple[bytes, bytes]], path: str) -> int:
@@ -173,13 +178,20 @@ def step_unit(path: str) -> str:
                           "self-contained STEP file; export the assembly with its parts in it",
                           path=path)
     _nesting(found["links"], path)
-    if not found["units"]:
+    # the units the coordinates are in: those of the representation contexts (else every
+    # length unit the file names)
+    units = {found["units"][n] for n in found["global"] if n in found["units"]} or \
+        set(found["units"].values())
+    if not units:
         raise FormatError("declares no length unit: save it again from the CAD program "
                           "(every STEP export states one)", path=path)
-    if len(found["units"]) > 1:
-        raise FormatError(f"mixes length units ({', '.join(sorted(found['units']))}): save it "
+    odd = sorted(u for u in units if u not in _METRES)
+    if odd:
+        raise FormatError(f"declares {odd[0]}: save it in mm, m or inches", path=path)
+    if len(units) > 1:
+        raise FormatError(f"mixes length units ({', '.join(sorted(units))}): save it "
                           "in one unit", path=path)
-    return next(iter(found["units"]))
+    return next(iter(units))
 
 
 def _run_worker(path: str) -> dict:
