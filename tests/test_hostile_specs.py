@@ -164,6 +164,30 @@ def test_spec_units_apply_to_a_mesh_file(tmp_path):
     assert "mesh cube.stl: units: mm (the spec's)" in out["notices"]
 
 
+def _obj_cube(path, side: float) -> None:
+    corners = [(x, y, z) for x in (0, side) for y in (0, side) for z in (0, side)]
+    faces = [(1, 2, 4, 3), (5, 7, 8, 6), (1, 5, 6, 2), (3, 4, 8, 7), (1, 3, 7, 5), (2, 6, 8, 4)]
+    path.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in corners)
+                    + "".join("f " + " ".join(map(str, f)) + "\n" for f in faces))
+
+
+def test_spec_units_apply_to_a_mesh_format_that_could_state_one(tmp_path):
+    """An OBJ may carry a unit and this one does not (``Reading.units_assumed``): it is read
+    in the spec's unit, as an STL is, with the same notice."""
+    from plumbob.formats import read as read_file
+
+    _obj_cube(tmp_path / "cube.obj", side=10.0)
+    _stl(tmp_path / "cube.stl", side=10.0)
+    assert read_file(str(tmp_path / "cube.stl")).units_assumed
+    assert not read_file(str(tmp_path / "cube.stl"), units="mm").units_assumed
+    path = _spec(tmp_path, '[shape]\nunits = "mm"\n[[part]]\ntype = "mesh"\nfile = "cube.obj"\n'
+                           'material = "steel"\n')
+    out = _mass_json(run_limited("mass", path, "--json", cwd=tmp_path))
+    assert out["volume"] == pytest.approx(1e-6, rel=1e-14)
+    assert "mesh cube.obj: units: mm (the spec's)" in out["notices"]
+    assert not any("metres assumed" in n for n in out["notices"])
+
+
 def test_a_part_unit_beats_the_spec_unit(tmp_path):
     _stl(tmp_path / "cube.stl", side=10.0)
     path = _spec(tmp_path, '[shape]\nunits = "mm"\n[[part]]\ntype = "mesh"\nfile = "cube.stl"\n'

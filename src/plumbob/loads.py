@@ -12,6 +12,7 @@ safety) is :mod:`plumbob.stability.loaded`; a body read from a spec carries its
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -92,7 +93,32 @@ class Hang:
 
 
 @dataclass(frozen=True)
-class Push:
+class _Searched:
+    """A force of ``force`` N whose point the check searches for, no higher than
+    ``max_height`` m above the floor (:class:`Push`, :class:`Press`)."""
+
+    force: float
+    max_height: float | None = None
+    name: str | None = None
+
+    #: what the report calls it
+    _what: ClassVar[str] = "load"
+    dim = None  # any body
+
+    def __post_init__(self) -> None:
+        label = f"the {self._what} {self.name!r}" if self.name else f"a {self._what}"
+        object.__setattr__(self, "force", non_negative(self.force, f"{label} (N)",
+                                                       error=StabilityError))
+        if self.max_height is not None:
+            object.__setattr__(self, "max_height", positive(
+                self.max_height, f"{label}'s highest point (m)", error=StabilityError))
+
+    def describe(self) -> str:
+        return self.name or self._what
+
+
+@dataclass(frozen=True)
+class Push(_Searched):
     """A horizontal force of ``force`` N in every direction, anywhere on the body no
     higher than ``max_height`` m above the floor: the check finds the point and the
     direction that overturn it most (the highest point it may reach, pushed straight
@@ -101,26 +127,11 @@ class Push:
     force: N (≥ 0). max_height: m (> 0), or None for no limit. name: for the report.
     """
 
-    force: float
-    max_height: float | None = None
-    name: str | None = None
-
-    def __post_init__(self) -> None:
-        label = f"the push {self.name!r}" if self.name else "a push"
-        object.__setattr__(self, "force", non_negative(self.force, f"{label} (N)",
-                                                       error=StabilityError))
-        if self.max_height is not None:
-            object.__setattr__(self, "max_height", positive(
-                self.max_height, f"{label}'s highest point (m)", error=StabilityError))
-
-    dim = None  # any body
-
-    def describe(self) -> str:
-        return self.name or "push"
+    _what: ClassVar[str] = "push"
 
 
 @dataclass(frozen=True)
-class Press:
+class Press(_Searched):
     """A downward force of ``force`` N anywhere on the body's top, no higher than
     ``max_height`` m: the check finds the point that overturns it most (the highest of
     the body's points that reach furthest out over the weakest edge).
@@ -128,22 +139,7 @@ class Press:
     force: N (≥ 0). max_height: m (> 0), or None for no limit. name: for the report.
     """
 
-    force: float
-    max_height: float | None = None
-    name: str | None = None
-
-    def __post_init__(self) -> None:
-        label = f"the press {self.name!r}" if self.name else "a press"
-        object.__setattr__(self, "force", non_negative(self.force, f"{label} (N)",
-                                                       error=StabilityError))
-        if self.max_height is not None:
-            object.__setattr__(self, "max_height", positive(
-                self.max_height, f"{label}'s highest point (m)", error=StabilityError))
-
-    dim = None  # any body
-
-    def describe(self) -> str:
-        return self.name or "press"
+    _what: ClassVar[str] = "press"
 
 
 Load = Force | Hang | Push | Press

@@ -33,6 +33,9 @@ class Reading:
     materials: (part name, material) for the parts given a material by name
     (``--part-material``, a spec's ``materials``, a 3MF's base materials), for the
     reports' part tables.
+    units_assumed: True when neither the caller nor the file gave a length unit and the
+    reader assumed metres (its notices say so); a spec applies its own unit to such a
+    file (:func:`plumbob.units.unit_assumed`).
     """
 
     body: Body
@@ -43,6 +46,7 @@ class Reading:
     extendables: tuple = ()
     up: tuple[float, ...] | None = None
     materials: tuple[tuple[str, str], ...] = ()
+    units_assumed: bool = False
 
     def default_down(self) -> list[float] | None:
         """Gravity's direction when the user gives none: against the file's up axis, or

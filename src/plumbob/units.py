@@ -22,6 +22,7 @@ __all__ = [
     "LENGTH_UNITS",
     "UNIT_SPELLINGS",
     "UNITS_ASSUMED",
+    "unit_assumed",
     "SEED_GRAVITY",
     "STANDARD_GRAVITY",
     "length_scale",
@@ -206,9 +207,20 @@ def units_scale(units: str | None, file_units: str | None = None,
             return scale, (f"units: the file says {file_units}; {units} used as --units-override "
                            "asks",)
         return scale, ()
-    if file_units is not None and file_scale is not None:
+    if not unit_assumed(units, file_units, file_scale):
         return file_scale, (f"units: {file_units} (from the file)",)
     return 1.0, (UNITS_ASSUMED,)
+
+
+def unit_assumed(units: str | None, file_units: str | None = None,
+                 file_scale: float | None = None) -> bool:
+    """Whether :func:`units_scale` assumes metres for these arguments: neither the user
+    nor the file gave a unit (a reader records it in ``Reading.units_assumed``).
+
+    >>> unit_assumed(None), unit_assumed("mm"), unit_assumed(None, "millimeter", 1e-3)
+    (True, False, False)
+    """
+    return units is None and (file_units is None or file_scale is None)
 
 
 #: a number with an optional length unit: ``3mm``, ``0.5 in``, ``-2.5e-3``, ``30 cm``

@@ -34,7 +34,7 @@ from ..errors import InputFileError, PlumbobError
 from ..files import require_regular_file
 from ..reading import Reading
 
-__all__ = ["read", "read_checked", "file_family", "SUFFIXES", "FOREIGN"]
+__all__ = ["read", "read_checked", "file_family", "SUFFIXES", "UNITLESS", "FOREIGN"]
 
 
 _Read = TypeVar("_Read")
@@ -54,6 +54,9 @@ SUFFIXES = {
 #: read as a watertight volume here (trimesh's COLLADA, 3DXML and XAML loaders split
 #: every face group into an open sheet; OpenCTM, Gmsh and binvox need libraries
 #: plumbob does not use), so each is refused, saying what to convert it to.
+#: the extensions of formats that cannot state a length unit: their unit is the caller's
+UNITLESS = frozenset({".stl", ".csv", ".geojson", ".json", ".wkt", ".wkb"})
+
 FOREIGN = {
     ".dae": "COLLADA", ".zae": "zipped COLLADA", ".3dxml": "3DXML", ".xaml": "XAML",
     ".ctm": "OpenCTM", ".msh": "Gmsh mesh", ".binvox": "binvox voxels",

@@ -32,7 +32,7 @@ from ..limits import MAX_NESTING, MAX_OUTLINES, MAX_PARTS, MAX_SIDES, check_coun
 from ..mesh.topology import connected_components
 from ..reading import Reading
 from ..tolerances import size_of
-from ..units import reading_unit, units_scale
+from ..units import reading_unit, unit_assumed, units_scale
 from .checks import ABSURD_COORDINATE
 from .curves import arc_bulges, clamped_bspline, elliptic_arc_cubics
 from .laminas import Outline, body_from_outlines
@@ -127,7 +127,8 @@ def read_dxf(path: str, units: str | None = None, units_override: bool = False) 
                        f"{fmt_point(leftovers[0].points[-1])})")
     outlines = [p.outline(scale) for p in closed]
     body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=scale)
-    return Reading(body, tuple(notices) + more, path, reading_unit(units, file_units))
+    return Reading(body, tuple(notices) + more, path, reading_unit(units, file_units),
+                   units_assumed=unit_assumed(units, file_units, file_scale))
 
 
 def _open(path: str):

@@ -34,7 +34,7 @@ from ..errors import FormatError, InputFileError, LimitError, PlumbobError
 from ..files import read_bytes
 from ..limits import check_count
 from ..reading import Reading
-from ..units import file_unit_scale, reading_unit, units_scale
+from ..units import file_unit_scale, reading_unit, unit_assumed, units_scale
 from .checks import check_extent, finite_bounds
 from .parts import assemble, stem
 from .solids import mesh_solid
@@ -169,7 +169,8 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
     if up is not None:
         notices.append(GLTF_UP_NOTICE)
     return Reading(assemble(parts, stem(path)), tuple(notices), path,
-                   reading_unit(units, file_units), up=up)
+                   reading_unit(units, file_units), up=up,
+                   units_assumed=unit_assumed(units, file_units, file_unit_scale(file_units)))
 
 
 def _load(path: str, file_type: str) -> tuple[list[tuple[str, np.ndarray]], int]:

@@ -24,7 +24,7 @@ from ..errors import FormatError, GeometryError
 from ..files import read_bytes
 from ..limits import MAX_NESTING, MAX_OUTLINES, check_count
 from ..reading import Reading
-from ..units import reading_unit, units_scale
+from ..units import reading_unit, unit_assumed, units_scale
 from .laminas import Outline, body_from_outlines, body_from_polygons
 from .nesting import check_wkb_nesting, check_wkt_nesting
 from .parts import stem
@@ -51,7 +51,8 @@ def read_outline(path: str, units: str | None = None, units_override: bool = Fal
     if suffix == ".csv":
         outlines = _csv_outlines(data, path, scale)
         body, more = body_from_outlines(outlines, path=path, name=stem(path), scale=scale)
-        return Reading(body, notices + more, path, reading_unit(units))
+        return Reading(body, notices + more, path, reading_unit(units),
+                       units_assumed=unit_assumed(units))
     if suffix in (".geojson", ".json"):
         named, more = _geojson_geometries(data, path)
         notices += more
@@ -65,7 +66,8 @@ def read_outline(path: str, units: str | None = None, units_override: bool = Fal
     body, more = body_from_polygons(named, path=path, scale=scale)
     if suffix in (".geojson", ".json"):
         more = _lonlat_notice(body) + more
-    return Reading(body, notices + more, path, reading_unit(units))
+    return Reading(body, notices + more, path, reading_unit(units),
+                   units_assumed=unit_assumed(units))
 
 
 def _text(data: bytes, path: str, what: str) -> str:

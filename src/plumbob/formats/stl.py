@@ -28,7 +28,7 @@ from ..errors import FormatError, InputFileError
 from ..files import require_regular_file
 from ..limits import check_count
 from ..reading import Reading
-from ..units import reading_unit, units_scale
+from ..units import reading_unit, unit_assumed, units_scale
 from .checks import check_extent, check_reach, raise_nonfinite
 from .parts import assemble, stem, unique_names
 
@@ -334,4 +334,5 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
                                 label=f"solid {name!r}" if several else None, scale=scale)
         parts.append(body)
         notices.extend(more)
-    return Reading(assemble(parts, stem(path)), tuple(notices), path, reading_unit(units))
+    return Reading(assemble(parts, stem(path)), tuple(notices), path, reading_unit(units),
+                   units_assumed=unit_assumed(units))

@@ -21,6 +21,7 @@ from ..bodies.region import Region, Ring
 from ..bodies.validity import check_region
 from ..errors import GeometryError
 from ..expr import Expression, parse
+from ..formats import UNITLESS
 from ..formats import read as read_file
 from ..massprops import rotation_matrix
 from ..materials import check_density
@@ -161,13 +162,16 @@ def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
         reading = read_file(path, units=spec.unit_name(t["units"], f"{where}.units"),
                             repair=repair, units_override=True)
     else:
-        reading = read_file(path, repair=repair)
-        if UNITS_ASSUMED in reading.notices and spec.unit is not None:
-            # the file declares no unit: the spec's unit applies to it as to every length
-            reading = read_file(path, units=spec.unit, repair=repair)
-            reading = replace(reading, notices=(f"units: {spec.unit} (the spec's)",)
-                              + reading.notices)
-        elif UNITS_ASSUMED in reading.notices:
+        # a file that states no unit is in the spec's unit, as every length of the spec: a
+        # format that cannot state one is read in it at once, another read again if it did not
+        units = spec.unit if os.path.splitext(path)[1].lower() in UNITLESS else None
+        reading = read_file(path, units=units, repair=repair)
+        if reading.units_assumed and spec.unit is not None:
+            units = spec.unit
+            reading = read_file(path, units=units, repair=repair)
+        if units is not None:
+            reading = replace(reading, notices=(f"units: {units} (the spec's)",) + reading.notices)
+        elif reading.units_assumed:
             reading = replace(reading, notices=tuple(
                 "units: none in the file or the spec; metres assumed (give units in [shape] "
                 "or on the part)" if n == UNITS_ASSUMED else n for n in reading.notices))
