@@ -12,23 +12,44 @@ from conftest import ROOT
 
 from plumbob.batch.columns import _MASS
 from plumbob.commands.mass_report import MassReport
+from plumbob.commands.schema import DOCUMENTED, regenerate, result_class
+from plumbob.energy import PoseChange, PotentialEnergy
 from plumbob.loading import read
-from plumbob.results import Key, key_table, undeclared_keys
+from plumbob.results import TYPES, Key, Result, key_table, undeclared_keys
 from plumbob.stability.verdict import Verdict
 
 #: the results whose keys docs/cli.md shows as generated tables, by the name in its marker
-DECLARED = {"MassReport": MassReport, "Verdict": Verdict}
+DECLARED = {name: result_class(name) for name in DOCUMENTED}
 DOCS = Path(ROOT) / "docs" / "cli.md"
 _BLOCK = re.compile(r"<!-- keys: (\w+) -->\n(.*?)\n<!-- /keys -->", re.S)
 
 
 def test_the_docs_tables_are_the_declared_keys():
-    blocks = dict(_BLOCK.findall(DOCS.read_text(encoding="utf-8")))
+    text = DOCS.read_text(encoding="utf-8")
+    blocks = dict(_BLOCK.findall(text))
     assert set(blocks) == set(DECLARED), "a key table in docs/cli.md without its result"
     for name, table in blocks.items():
         assert table == key_table(DECLARED[name].KEYS), (
-            f"docs/cli.md's table of {name} differs from {name}.KEYS: regenerate it with "
-            f"plumbob.results.key_table({name}.KEYS)")
+            f"docs/cli.md's table of {name} differs from {name}.KEYS: regenerate the tables "
+            "with python -m plumbob.commands.schema docs/cli.md")
+    assert regenerate(text) == text
+
+
+def test_the_generator_fills_an_empty_table_and_stops_at_its_end():
+    text = "a\n<!-- keys: CrewTime -->\n<!-- /keys -->\nb\n<!-- keys: Pose -->\nold\n<!-- /keys -->\n"
+    new = regenerate(text)
+    assert new.startswith("a\n<!-- keys: CrewTime -->\n| key |") and "\nb\n<!-- keys: Pose -->" in new
+    assert "old" not in new and regenerate(new) == new
+
+
+def test_the_json_of_every_documented_result_is_generated_from_its_keys():
+    """No hand-written dictionary beside the declaration: ``as_dict`` is
+    :meth:`Result.as_dict`, which reads ``KEYS`` (the mass report merges the mass
+    properties' keys, which take the body's kind, and keeps to its declared order)."""
+    handwritten = [name for name, cls in DECLARED.items()
+                   if cls.as_dict is not Result.as_dict and name != "MassReport"]
+    assert not handwritten
+    assert all(DECLARED[name].KEYS for name in DECLARED)
 
 
 @pytest.mark.parametrize("shape", ["block", "l_shape", "mace_assembly", "graded_plate"])
@@ -44,11 +65,26 @@ def test_the_mass_json_keeps_to_its_declared_keys(shape, about):
 
 
 def test_every_declared_key_has_a_meaning_and_a_unique_name():
-    for result in DECLARED.values():
+    for result in [*DECLARED.values(), PotentialEnergy, PoseChange]:
         names = [k.name for k in result.KEYS]
         assert len(names) == len(set(names))
-        assert all(isinstance(k, Key) and k.doc and re.fullmatch(r"[a-z_]+", k.name)
-                   for k in result.KEYS)
+        assert all(isinstance(k, Key) and k.doc and re.fullmatch(r"[a-z_0-9]+", k.name)
+                   and k.type in (*TYPES, "") for k in result.KEYS)
+
+
+def test_the_library_results_give_their_declared_keys():
+    from plumbob.bodies.primitives import box
+    from plumbob.dynamics.collisions import collide
+    from plumbob.energy import lift_energy, pose_energy_change, potential_energy
+    from plumbob.stability import resting_poses
+
+    block = box(1, 1, 2, density=10.0)
+    for result in (lift_energy(block), potential_energy(block), resting_poses(block),
+                   resting_poses(block)[0], pose_energy_change(block, [1, 0, 0], [0, 0, -1]),
+                   collide(1.0, [1.0, 0.0], 2.0, [0.0, 0.0])):
+        out = result.as_dict()
+        assert not undeclared_keys(out, type(result).KEYS), type(result).__name__
+        assert list(out) == [k.name for k in type(result).KEYS if k.name in out]
 
 
 def test_the_batch_mass_columns_are_declared_keys():

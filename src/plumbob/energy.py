@@ -21,14 +21,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from .arguments import answering, count, finite_result, instance, number, positive, unit_vector, vector
 from .errors import ArgumentError
 from .massprops import MassProperties
-from .results import Result
+from .results import Key, Result
 from .tolerances import contact_tolerance
 from .units import SEED_GRAVITY
 
@@ -99,6 +98,14 @@ class PotentialEnergy(Result):
     datum: float
     g: float
 
+    KEYS = (
+        Key("energy", "J", "the potential energy, mass · g · height", type="float"),
+        Key("mass", "kg", "the mass", type="float"),
+        Key("height", "m", "the centre of mass's height above the datum", type="float"),
+        Key("datum", "m", "the height of the zero of potential energy", type="float"),
+        Key("g", "m/s²", "gravitational acceleration", type="float"),
+    )
+
 
 def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVITY,
                      down=None, up=None) -> PotentialEnergy:
@@ -156,6 +163,19 @@ class PoseChange(Result):
     energy: float
     mass: float
     g: float
+
+    KEYS = (
+        Key("down_from", "", "the direction of gravity resting before, body frame (unit vector)",
+            type="xyz"),
+        Key("down_to", "", "the direction of gravity resting after", type="xyz"),
+        Key("height_from", "m", "the centre of mass's height above the plane before",
+            type="float"),
+        Key("height_to", "m", "its height after", type="float"),
+        Key("energy", "J", "Mg(height_to − height_from): positive, work must be done",
+            type="float"),
+        Key("mass", "kg", "the mass", type="float"),
+        Key("g", "m/s²", "gravitational acceleration", type="float"),
+    )
 
 
 def _rest_height(body, props: MassProperties, down) -> tuple[float, np.ndarray]:
@@ -223,6 +243,18 @@ class LiftEnergy(Result):
     lift_energy: float
     g: float
 
+    #: the keys of ``plumbob lift --json`` after the file's (docs/cli.md's table)
+    KEYS = (
+        Key("mass", "kg", "the mass", type="float"),
+        Key("center_of_mass", "m", "the centre of mass, body frame", type="xyz"),
+        Key("datum", "m", "the ground's height against `down` (default: the body's lowest "
+                          "point)", type="float"),
+        Key("com_height", "m", "the centre of mass's height above the datum", type="float"),
+        Key("lift_energy", "J", "the work to raise the material from the datum, M g z_G",
+            type="float"),
+        Key("g", "m/s²", "gravitational acceleration", type="float"),
+    )
+
 
 def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, down=None,
                 up=None, props: MassProperties | None = None) -> LiftEnergy:
@@ -288,11 +320,14 @@ class CrewTime(Result):
     crew_days: float
     crew_years: float
 
-    def as_dict(self) -> dict[str, Any]:
-        """The crew keys of ``plumbob lift --json`` (the energy is the lift's ``lift_energy``)."""
-        out = super().as_dict()
-        del out["energy"]
-        return out
+    #: the crew keys of ``plumbob lift --json`` (the energy is the lift's ``lift_energy``)
+    KEYS = (
+        Key("work_per_day", "J", "the work one person does in a day", type="float"),
+        Key("crew", "", "people working at once", type="int"),
+        Key("person_days", "", "the work in days of one person", type="float"),
+        Key("crew_days", "", "the days the crew takes", type="float"),
+        Key("crew_years", "", "the same in years of 365.25 days", type="float"),
+    )
 
 
 def crew_time(energy: float, work_per_day: float, crew: int = 1) -> CrewTime:

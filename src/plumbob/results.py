@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Result", "Key", "key_table", "undeclared_keys", "jsonable", "short"]
+__all__ = ["Result", "Key", "TYPES", "keyed", "pick", "key_table", "undeclared_keys", "jsonable", "short"]
 
 #: arrays with more entries than this are summarised by their shape in a repr
 _INLINE = 4
@@ -82,15 +82,80 @@ def jsonable(value: Any) -> Any:
 @dataclass(frozen=True)
 class Key:
     """One key of a result's JSON, declared once beside the result: its ``name`` (the
-    snake_case JSON key), ``unit`` (SI, ``""`` for none), ``when`` it appears (``""``:
-    always) and ``doc``, what it means. ``as_dict()`` is checked against these
-    declarations, and ``docs/cli.md``'s key tables are generated from them
-    (:func:`key_table`)."""
+    snake_case JSON key), ``unit`` (SI, ``""`` for none), ``doc``, what it means, and
+    ``when`` it appears (``""``: always; otherwise the key is left out where its value is
+    None or empty). ``attr`` is where the value is read: a dotted attribute path from
+    the result (default: ``name``). ``type`` is the value's form for a table column
+    (:data:`TYPES`; ``""``: not a column). ``as_dict()`` is generated from these
+    declarations (:func:`keyed`), and so are ``docs/cli.md``'s key tables
+    (:func:`key_table`) and the batch table's columns."""
 
     name: str
     unit: str
     doc: str
     when: str = ""
+    attr: str | None = None
+    type: str = ""
+
+    def value(self, result: Any) -> Any:
+        """The key's value in ``result``, as read from ``attr``.
+
+        >>> from types import SimpleNamespace as S
+        >>> Key("support_kind", "", "its kind", attr="support.kind").value(S(support=S(kind="point")))
+        'point'
+        """
+        value = result
+        for name in (self.attr or self.name).split("."):
+            value = getattr(value, name)
+        return value
+
+
+#: the forms of a value a table column can hold (:attr:`Key.type`): text, numbers,
+#: counts, flags, a list of texts, vectors labelled x, y, z or 1, 2, 3, and 3×3 matrices
+#: labelled by x, y, z (or 1, 2, 3 rows of x, y, z)
+TYPES = ("str", "float", "int", "bool", "strings", "xyz", "123", "xyz×xyz", "123×xyz")
+
+
+def _plain(value: Any) -> Any:
+    """A nested result as its ``as_dict()``, a sequence as a list of such values."""
+    if isinstance(value, Result):
+        return value.as_dict()
+    if isinstance(value, (tuple, list)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def keyed(result: Any, keys: Iterable[Key]) -> dict[str, Any]:
+    """``result``'s values under the declared ``keys``, in their order: what
+    :meth:`Result.as_dict` returns for a result that declares its ``KEYS``. A key with a
+    ``when`` is left out where its value is None or empty; nested results become their
+    ``as_dict()``, sequences lists.
+
+    >>> from types import SimpleNamespace as S
+    >>> keys = (Key("mass", "kg", "the mass"), Key("notes", "", "remarks", "when any"))
+    >>> keyed(S(mass=2.0, notes=()), keys), keyed(S(mass=2.0, notes=("a",)), keys)
+    ({'mass': 2.0}, {'mass': 2.0, 'notes': ['a']})
+    """
+    out: dict[str, Any] = {}
+    for key in keys:
+        value = key.value(result)
+        if key.when and (value is None or (isinstance(value, (tuple, list)) and not value)):
+            continue
+        out[key.name] = _plain(value)
+    return out
+
+
+def pick(keys: Iterable[Key], names: Iterable[str], prefix: str = "") -> tuple[Key, ...]:
+    """The keys named ``names``, in that order (a result that shows part of another's
+    keys: a balance's verdicts, a batch row's columns), each renamed ``prefix + name``
+    and read from its old name.
+
+    >>> [k.name for k in pick([Key("a", "", "x"), Key("b", "", "y")], ["b", "a"], "s_")]
+    ['s_b', 's_a']
+    """
+    by_name = {k.name: k for k in keys}
+    return tuple(replace(by_name[n], name=prefix + n, attr=by_name[n].attr or n)
+                 for n in names)
 
 
 def key_table(keys: Iterable[Key]) -> str:
@@ -128,10 +193,9 @@ def undeclared_keys(out: Mapping[str, Any], keys: Iterable[Key]) -> list[str]:
 class Result:
     """Mixin for the frozen dataclasses that hold results (declare them ``repr=False``).
 
-    ``as_dict()`` defaults to every field, in order; a result whose JSON differs
-    (renamed, derived or flattened keys) overrides it. ``KEYS`` declares the JSON's
-    keys once (name, unit, when, meaning: :class:`Key`), for the docs' tables and the
-    tests that hold ``as_dict()`` to them. The repr shows
+    ``KEYS`` declares the JSON's keys once (name, unit, meaning, when, where the value
+    is read: :class:`Key`); ``as_dict()`` is generated from them, as are the docs'
+    tables and the batch columns (a result without ``KEYS`` gives every field). The repr shows
     ``_repr_items()``: the fields named in ``_repr_fields`` (default: all), leaving
     out those that are ``None``.
     """
@@ -141,7 +205,10 @@ class Result:
     KEYS: ClassVar[tuple[Key, ...]] = ()
 
     def as_dict(self) -> dict[str, Any]:
-        """The result's values keyed by the CLI's JSON keys, SI units."""
+        """The result's values keyed by the CLI's JSON keys, SI units: generated from
+        ``KEYS`` (:func:`keyed`) where the result declares them, else every field."""
+        if self.KEYS:
+            return keyed(self, self.KEYS)
         return {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
 
     def _repr_items(self) -> list[tuple[str, Any]]:

@@ -15,14 +15,14 @@ the loads — the check's own factor of safety, never the plan's.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from typing import Any
 
 import numpy as np
 
 from ..errors import StabilityError
 from ..loads import Hang
-from ..results import Result
+from ..results import Key, Result
 from ..stability.loaded import edge_moments
 from ..stability.requirement import Requirement
 from ..stability.support import support_polygon
@@ -66,15 +66,29 @@ class LoadedBalance(Result):
     passes: bool
     test: str | None = None
 
-    def as_dict(self) -> dict[str, Any]:
-        """The keys of ``plumbob balance --json`` with loads (N·m, kg, m)."""
-        out = self.ballast.as_dict()
-        out["before"]["under_loads"] = self.before.loaded.as_dict()
-        out["after"]["under_loads"] = self.after.loaded.as_dict()
-        out["passes"] = self.passes
-        if self.test is not None:
-            out["test"] = self.test
-        return out
+    @property
+    def before_dict(self) -> dict[str, Any]:
+        """The ``before`` object: the plan's (:data:`~plumbob.balance.result.STATE_KEYS`),
+        then ``under_loads``, the body alone under the loads."""
+        return {**self.ballast.before_dict, "under_loads": self.before.loaded.as_dict()}
+
+    @property
+    def after_dict(self) -> dict[str, Any]:
+        """The ``after`` object: the plan's, then ``under_loads`` with the ballast."""
+        return {**self.ballast.after_dict, "under_loads": self.after.loaded.as_dict()}
+
+    #: the keys of ``plumbob balance --json`` with loads (N·m, kg, m): a balance's, the
+    #: verdicts with ``under_loads``
+    KEYS = (
+        *(replace(k, attr=f"ballast.{k.attr}") for k in BalanceResult.KEYS[:2]),
+        Key("before", "", "as without loads, and `under_loads` (as `check`'s): the body alone",
+            attr="before_dict"),
+        Key("after", "", "the same with the ballast hung at its centre", attr="after_dict"),
+        Key("passes", "", "whether it stands under the loads with the ballast (factor of "
+                          "safety ≥ 1)", type="bool"),
+        Key("test", "", "the standard's test the ballast is for", "with `--standard`, a force "
+                                                                  "test", type="str"),
+    )
 
 
 def balance_under_loads(body, requirement: Requirement, *,

@@ -9,12 +9,39 @@ from typing import Any
 
 import numpy as np
 
-from ..results import Result
+from ..results import Key, Result, keyed, pick
+from ..stability.keys import VERDICT_KEYS
 from ..stability.verdict import Verdict, check
 from .ballast import ballast_body, plan_ballast
 from .targets import Target, target_for
 
 __all__ = ["BalanceResult", "balance"]
+
+
+#: the keys of ``plumbob balance --json``'s ``target``
+TARGET_KEYS = (
+    Key("margin", "m", "the static stability margin asked", attr="margin_target"),
+    Key("require_tilt_deg", "°", "the critical tilt asked"),
+    Key("toward", "", "the one direction the tilt is asked toward (`null`: every one)"),
+    Key("down", "", "gravity's direction, body frame (unit vector)"),
+)
+#: the keys of its ``ballast`` (those with a ``when`` come with a material)
+BALLAST_KEYS = (
+    Key("mass", "kg", "the ballast's own mass", attr="ballast_mass"),
+    Key("center_of_mass", "m", "where its centre goes, body frame", attr="ballast_point"),
+    Key("added_mass", "kg", "what the body gains (less the material a pocket removes)"),
+    Key("pocket", "", "whether it fills a pocket cut in the body"),
+    Key("material", "", "its material", "with a material", attr="ballast_material"),
+    Key("density", "kg/m³", "its density", "with a material", attr="ballast_density"),
+    Key("volume", "m³", "its volume", "with a material", attr="ballast_volume"),
+    Key("shape", "", "`box`, `cylinder` or `square`", "with a material", attr="ballast_shape"),
+    Key("dimensions", "m", "(side,) or (radius, height)", "with a material",
+        attr="ballast_dimensions"),
+    Key("depth", "m", "a lamina's thickness it fills", "a lamina's", attr="ballast_depth"),
+)
+#: the keys of its ``before`` and ``after``: of each verdict, in this order
+STATE_KEYS = pick(VERDICT_KEYS, ("verdict", "mass", "center_of_mass", "margin",
+                                 "critical_tilt_deg", "critical_direction", "com_height"))
 
 
 @dataclass(frozen=True, repr=False)
@@ -58,27 +85,40 @@ class BalanceResult(Result):
     _repr_fields = ("ballast_mass", "ballast_point", "ballast_volume", "ballast_shape",
                     "passes")
 
-    def as_dict(self) -> dict[str, Any]:
-        """The keys of ``plumbob balance --json`` (SI units, degrees)."""
-        def state(v: Verdict) -> dict[str, Any]:
-            return {"verdict": v.verdict, "mass": v.mass, "center_of_mass": v.center_of_mass,
-                    "margin": v.margin, "critical_tilt_deg": v.critical_tilt_deg,
-                    "critical_direction": v.critical_direction, "com_height": v.com_height}
+    @property
+    def target_dict(self) -> dict[str, Any]:
+        """The ``target`` object of ``plumbob balance --json``."""
+        return keyed(self, TARGET_KEYS)
 
-        out: dict[str, Any] = {
-            "target": {"margin": self.margin_target, "require_tilt_deg": self.require_tilt_deg,
-                       "toward": self.toward, "down": self.down},
-            "ballast": {"mass": self.ballast_mass, "center_of_mass": self.ballast_point,
-                        "added_mass": self.added_mass, "pocket": self.pocket},
-            "before": state(self.before), "after": state(self.after), "passes": self.passes,
-        }
-        if self.ballast_density is not None:
-            out["ballast"].update(material=self.ballast_material, density=self.ballast_density,
-                                  volume=self.ballast_volume, shape=self.ballast_shape,
-                                  dimensions=list(self.ballast_dimensions or ()))
-            if self.ballast_depth is not None:
-                out["ballast"]["depth"] = self.ballast_depth
-        return out
+    @property
+    def ballast_dict(self) -> dict[str, Any]:
+        """The ``ballast`` object of ``plumbob balance --json``."""
+        return keyed(self, BALLAST_KEYS)
+
+    @property
+    def before_dict(self) -> dict[str, Any]:
+        """The ``before`` object: the body alone (:data:`STATE_KEYS` of its verdict)."""
+        return keyed(self.before, STATE_KEYS)
+
+    @property
+    def after_dict(self) -> dict[str, Any]:
+        """The ``after`` object: the body with the ballast, by plumbob's check."""
+        return keyed(self.after, STATE_KEYS)
+
+    #: the keys of ``plumbob balance --json`` after the file's (docs/cli.md's table)
+    KEYS = (
+        Key("target", "m, °", "what was asked: `margin`, `require_tilt_deg`, `toward`, `down`",
+            attr="target_dict"),
+        Key("ballast", "kg, m, m³", "`mass`, `center_of_mass`, `added_mass`, `pocket`; with a "
+                                    "material `material`, `density`, `volume`, `shape`, "
+                                    "`dimensions`, and for a lamina `depth`", attr="ballast_dict"),
+        Key("before", "", "the body alone: `verdict`, `mass`, `center_of_mass`, `margin`, "
+                          "`critical_tilt_deg`, `critical_direction`, `com_height`",
+            attr="before_dict"),
+        Key("after", "", "the same for the body with the ballast, by plumbob's check",
+            attr="after_dict"),
+        Key("passes", "", "whether the body with the ballast meets the target", type="bool"),
+    )
 
 
 def meets(v: Verdict, margin: float | None, require_tilt_deg: float | None,

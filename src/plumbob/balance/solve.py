@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PlumbobError, StabilityError
-from ..results import Result
+from ..results import Key, Result
 
 __all__ = ["ParameterSolution", "solve_parameter"]
 
@@ -43,6 +43,17 @@ class ParameterSolution(Result):
     measure: str
     required: float
     achieved: float
+
+    #: the keys of ``solution`` in ``plumbob check --solve-for NAME --json``
+    KEYS = (
+        Key("name", "", "the spec parameter", type="str"),
+        Key("start", "", "its value in the spec", type="float"),
+        Key("value", "", "the value found", type="float"),
+        Key("change", "", "value − start", type="float"),
+        Key("measure", "", "`critical_tilt_deg` or `margin`", type="str"),
+        Key("required", "°, m", "the measure asked for", type="float"),
+        Key("achieved", "°, m", "the measure at `value`, by plumbob's check", type="float"),
+    )
 
 
 def solve_parameter(name: str, start: float, evaluate: Callable[[float], float],

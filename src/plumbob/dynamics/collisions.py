@@ -25,7 +25,7 @@ import numpy as np
 
 from ..arguments import finite_result, vector
 from ..errors import DynamicsError
-from ..results import Result
+from ..results import Key, Result
 
 __all__ = [
     "CollisionResult",
@@ -83,26 +83,29 @@ class CollisionResult(Result):
         """True when body 2 is a fixed surface (infinite mass)."""
         return math.isinf(self.m2)
 
-    def as_dict(self) -> dict:
-        """The JSON object of ``plumbob collide`` (SI units, snake_case keys; ``m2`` is
-        the string ``"inf"`` for a fixed surface, which JSON has no number for)."""
-        return {
-            "m1": self.m1,
-            "m2": "inf" if self.wall else self.m2,
-            "e": self.e,
-            "normal": self.normal,
-            "v1_before": self.v1_before,
-            "v2_before": self.v2_before,
-            "v1_after": self.v1_after,
-            "v2_after": self.v2_after,
-            "impulse": self.impulse,
-            "ke_before": self.ke_before,
-            "ke_after": self.ke_after,
-            "ke_loss": self.ke_loss,
-            "elastic": self.elastic,
-            "momentum_before": self.momentum_before,
-            "momentum_after": self.momentum_after,
-        }
+    @property
+    def m2_json(self) -> float | str:
+        """``m2``, or the string ``"inf"`` for a fixed surface (JSON has no such number)."""
+        return "inf" if self.wall else self.m2
+
+    #: the keys of ``plumbob collide --json`` (SI units)
+    KEYS = (
+        Key("m1", "kg", "body 1's mass"),
+        Key("m2", "kg", "body 2's mass (`\"inf\"`: a fixed surface)", attr="m2_json"),
+        Key("e", "", "the coefficient of restitution"),
+        Key("normal", "", "the unit common normal, from body 1 toward body 2"),
+        Key("v1_before", "m/s", "body 1's velocity before"),
+        Key("v2_before", "m/s", "body 2's velocity before"),
+        Key("v1_after", "m/s", "body 1's velocity after"),
+        Key("v2_after", "m/s", "body 2's velocity after"),
+        Key("impulse", "N·s", "on body 2 along the normal"),
+        Key("ke_before", "J", "kinetic energy before (a fixed surface: body 1's)"),
+        Key("ke_after", "J", "kinetic energy after"),
+        Key("ke_loss", "J", "what the collision takes"),
+        Key("elastic", "", "whether no kinetic energy is lost"),
+        Key("momentum_before", "kg·m/s", "total linear momentum before"),
+        Key("momentum_after", "kg·m/s", "total linear momentum after"),
+    )
 
 
 @dataclass(frozen=True, eq=False, repr=False)

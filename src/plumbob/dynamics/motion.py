@@ -41,7 +41,7 @@ from ..arguments import count, instance, positive, vector
 from ..bodies.particles import ParticleSystem
 from ..errors import DynamicsError
 from ..limits import MAX_SAMPLES
-from ..results import Result
+from ..results import Key, Result
 from .feasibility import check_feasible
 
 __all__ = [
@@ -241,35 +241,32 @@ class SimulationResult(Result):
                 ("max_constraint_error", self.max_constraint_error),
                 ("string_jerks", len(self.string_jerks))]
 
-    def as_dict(self) -> dict[str, Any]:
-        """The JSON object of ``plumbob simulate`` (SI units, snake_case keys): every
-        field, the total mass after the masses, each string jerk as ``{"time", "string"}``.
+    @property
+    def jerks(self) -> list[dict[str, Any]]:
+        """Each string jerk as ``{"time": s, "string": "A–B"}``."""
+        return [{"time": t, "string": s} for t, s in self.string_jerks]
 
-        >>> pair = ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]])
-        >>> run = simulate(MotionModel(pair), 1.0, samples=3)
-        >>> run
-        SimulationResult(names=('particle 1', 'particle 2'), total_mass=3, samples=3, until=1, \
-newton_residual=0, max_constraint_error=0, string_jerks=0)
-        >>> list(run.as_dict())[:4]
-        ['names', 'masses', 'total_mass', 'times']
-        """
-        return {
-            "names": list(self.names),
-            "masses": self.masses,
-            "total_mass": self.total_mass,
-            "times": self.times,
-            "positions": self.positions,
-            "velocities": self.velocities,
-            "center_of_mass": self.center_of_mass,
-            "center_of_mass_velocity": self.center_of_mass_velocity,
-            "momentum": self.momentum,
-            "kinetic_energy": self.kinetic_energy,
-            "external_force": self.external_force,
-            "center_of_mass_acceleration": self.center_of_mass_acceleration,
-            "newton_residual": self.newton_residual,
-            "max_constraint_error": self.max_constraint_error,
-            "string_jerks": [{"time": t, "string": s} for t, s in self.string_jerks],
-        }
+    #: the keys of ``plumbob simulate --json`` after the spec's (``spec``, ``title``,
+    #: ``until``): every field, the total mass after the masses
+    KEYS = (
+        Key("names", "", "one per particle"),
+        Key("masses", "kg", "each particle's"),
+        Key("total_mass", "kg", "their sum"),
+        Key("times", "s", "the sample times"),
+        Key("positions", "m", "(t, n, d): each particle's at each time"),
+        Key("velocities", "m/s", "(t, n, d)"),
+        Key("center_of_mass", "m", "(t, d)"),
+        Key("center_of_mass_velocity", "m/s", "(t, d)"),
+        Key("momentum", "kg·m/s", "(t, d): P = Σ mᵢ vᵢ = M v_G"),
+        Key("kinetic_energy", "J", "(t,)"),
+        Key("external_force", "N", "(t, d): the sum of the external forces"),
+        Key("center_of_mass_acceleration", "m/s²", "(t, d): Σ mᵢ aᵢ / M"),
+        Key("newton_residual", "", "max over t of |M a_G − F_ext|, relative: the check of "
+                                   "F = M a_G"),
+        Key("max_constraint_error", "", "max over t of a rod's or taut string's ||d| − L| / L"),
+        Key("string_jerks", "s", "each instant a slack string snapped taut: `time`, `string`",
+            attr="jerks"),
+    )
 
 
 # ------------------------------------------------------------------ dynamics

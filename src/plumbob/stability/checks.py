@@ -6,11 +6,10 @@ the body on a tilted plane (with friction: does it slide first?) and the design 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
-from ..results import Result
+from ..results import Key, Result
 from .requirement import Requirement
 from .rocking import Rocking
 from .support import Support
@@ -53,15 +52,22 @@ class SlopeCheck(Result):
             return "slides"
         return "stands"
 
-    def as_dict(self) -> dict[str, Any]:
-        """The ``slope`` object of ``plumbob check --json`` (degrees, unit vector); the
-        friction coefficient itself is the verdict's."""
-        out = {"tilt_deg": self.tilt_deg, "toward_deg": self.toward_deg,
-               "direction": self.direction, "tipping_angle_deg": self.tipping_angle_deg,
-               "topples": self.topples, "verdict": self.verdict}
-        if self.friction is not None:
-            out.update(slides=self.slides, slides_first=self.slides_first)
-        return out
+    #: the keys of the ``slope`` object of ``plumbob check --json`` (the friction
+    #: coefficient itself is the verdict's)
+    KEYS = (
+        Key("tilt_deg", "°", "the plane's tilt", type="float"),
+        Key("toward_deg", "°", "the direction it descends toward, from +x toward +y",
+            type="float"),
+        Key("direction", "", "that direction, body frame (unit vector)", type="xyz"),
+        Key("tipping_angle_deg", "°", "the tilt at which it goes over that way",
+            type="float"),
+        Key("topples", "", "whether it goes over at `tilt_deg`", type="bool"),
+        Key("verdict", "", "`topples`, `slides` or `stands` at `tilt_deg`", type="str"),
+        Key("slides", "", "whether it slides at `tilt_deg`", "with `--friction MU`",
+            type="bool"),
+        Key("slides_first", "", "whether, tilting further, it slides before it topples",
+            "with `--friction MU`", type="bool"),
+    )
 
 
 @dataclass(frozen=True, repr=False)

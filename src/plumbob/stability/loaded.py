@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import StabilityError
 from ..loads import Force, Hang, Press, Push
-from ..results import Result
+from ..results import Key, Result
 from .reach import corners_below, surface_facets
 from .requirement import Requirement
 from .support import Support
@@ -61,6 +61,18 @@ class LoadMoment(Result):
     force: np.ndarray
     moment: float
     outside: bool = False
+
+    #: the keys of each of ``under_loads``' ``loads``
+    KEYS = (
+        Key("name", "", "the load's name (`weight` for the body's own)", type="str"),
+        Key("kind", "", "`weight`, `force`, `hang`, `push` or `press`", type="str"),
+        Key("at", "m", "where it acts, body frame (a push's or press's worst point)",
+            type="xyz"),
+        Key("force", "N", "the force, body frame", type="xyz"),
+        Key("moment", "N·m", "its moment about the critical edge, positive when it "
+                             "overturns", type="float"),
+        Key("outside", "", "whether its point lies outside the body", type="bool"),
+    )
 
 
 @dataclass(frozen=True, repr=False)
@@ -116,26 +128,38 @@ class LoadVerdict(Result):
         """Whether the verdict under the loads is ``"stands"``."""
         return self.verdict == "stands"
 
-    def as_dict(self) -> dict[str, Any]:
-        """The ``under_loads`` object of ``plumbob check --json`` (N, N·m, m, degrees)."""
-        out: dict[str, Any] = {
-            "verdict": self.verdict, "stands": self.stands,
-            "critical_edge": {"start": self.edge_start, "end": self.edge_end,
-                              "normal": self.edge_normal},
-            "resisting_moment": self.resisting_moment,
-            "overturning_moment": self.overturning_moment,
-            "overturning_safety_factor": self.overturning_safety_factor,
-            "load_factor": self.load_factor,
-            "normal_force": self.normal_force, "tangential_force": self.tangential_force,
-            "loads": [m.as_dict() for m in self.moments],
-        }
-        if self.friction is not None:
-            out.update(friction=self.friction, slides=self.slides, slides_first=self.slides_first)
-        if self.tilt_deg is not None:
-            out.update(tilt_deg=self.tilt_deg, tilt_direction=self.tilt_direction)
-        if self.notes:
-            out["notes"] = list(self.notes)
-        return out
+    @property
+    def critical_edge(self) -> dict[str, np.ndarray]:
+        """The critical edge's ``start``, ``end`` and ``normal`` (m, body frame)."""
+        return {"start": self.edge_start, "end": self.edge_end, "normal": self.edge_normal}
+
+    #: the keys of the ``under_loads`` object of ``plumbob check --json``
+    KEYS = (
+        Key("verdict", "", "`stands`, `topples`, `slides`, `lifts` or `neutral`", type="str"),
+        Key("stands", "", "whether it stands under the loads", type="bool"),
+        Key("critical_edge", "m", "`start`, `end`, `normal` of the edge it tips over"),
+        Key("resisting_moment", "N·m", "about the critical edge", type="float"),
+        Key("overturning_moment", "N·m", "about the critical edge", type="float"),
+        Key("overturning_safety_factor", "", "resisting / overturning (`null` when nothing "
+                                             "overturns)", type="float"),
+        Key("load_factor", "", "how many times the applied loads may grow before it tips "
+                               "(`null`: never)", type="float"),
+        Key("normal_force", "N", "the force pressing it onto the plane", type="float"),
+        Key("tangential_force", "N", "the force along the plane friction must hold",
+            type="float"),
+        Key("loads", "", "per load: `name`, `kind`, `at`, `force`, `moment`, `outside`",
+            attr="moments"),
+        Key("friction", "", "the friction coefficient", "with `--friction MU`", type="float"),
+        Key("slides", "", "whether it slides under the loads", "with `--friction MU`",
+            type="bool"),
+        Key("slides_first", "", "whether, the loads growing, it slides before it tips",
+            "with `--friction MU`", type="bool"),
+        Key("tilt_deg", "°", "the plane's tilt", "with `--tilt DEG`", type="float"),
+        Key("tilt_direction", "", "the horizontal unit vector the plane descends toward",
+            "with `--tilt DEG`", type="xyz"),
+        Key("notes", "", "points outside the body, faceted surfaces", "when there are any",
+            type="strings"),
+    )
 
 
 def _moments(points: np.ndarray, forces: np.ndarray, starts: np.ndarray, normals: np.ndarray,

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import StabilityError
 from ..loads import Extendable, Hang, Press, Push
-from ..results import Result
+from ..results import Key, Result
 from .requirement import Requirement
 
 __all__ = ["PRESETS", "Preset", "TiltTest", "ForceTest", "OpenedTest", "StandardTest",
@@ -153,6 +153,24 @@ class StandardTest(Result):
     overturning_safety_factor: float | None = None
     case: str | None = None
 
+    #: the keys of each of ``standard``'s ``tests``
+    KEYS = (
+        Key("name", "", "the test", type="str"),
+        Key("clause", "", "the clause it models", type="str"),
+        Key("description", "", "what it does", type="str"),
+        Key("passes", "", "whether it passes", type="bool"),
+        Key("margin", "°, factor", "how far it passes (negative: fails)", type="float"),
+        Key("margin_unit", "", "`deg` or `factor`", type="str"),
+        Key("verdict", "", "the verdict under the test", type="str"),
+        Key("direction", "", "the horizontal direction it tips toward", type="xyz"),
+        Key("point", "m", "where the deciding force acts (`null` for a tilt test)",
+            type="xyz"),
+        Key("overturning_safety_factor", "", "resisting / overturning moment (force tests)",
+            type="float"),
+        Key("case", "", "which case of the test (an extendable's name), or `null`",
+            type="str"),
+    )
+
 
 @dataclass(frozen=True, repr=False)
 class StandardResult(Result):
@@ -175,13 +193,19 @@ class StandardResult(Result):
 
     _repr_fields = ("standard", "edition", "passes")
 
-    def as_dict(self) -> dict[str, Any]:
-        """The ``standard`` object of ``plumbob check --standard NAME --json``."""
-        return {"standard": self.standard, "title": self.title, "edition": self.edition,
-                "clause": self.clause, "passes": self.passes,
-                "groups": [list(g) for g in self.groups],
-                "tests": [t.as_dict() for t in self.tests], "disclaimer": self.disclaimer,
-                **({"notes": list(self.notes)} if self.notes else {})}
+    #: the keys of the ``standard`` object of ``plumbob check --standard NAME --json``
+    KEYS = (
+        Key("standard", "", "the standard's name, as `--standard` takes it", type="str"),
+        Key("title", "", "its title", type="str"),
+        Key("edition", "", "the edition modelled", type="str"),
+        Key("clause", "", "the clause modelled", type="str"),
+        Key("passes", "", "whether the bundle passes", type="bool"),
+        Key("groups", "", "the alternatives: every group needs one passing test"),
+        Key("tests", "", "each test and case (the keys below)"),
+        Key("disclaimer", "", "what this is and is not", type="str"),
+        Key("notes", "", "what to know about the answer", "when there are any",
+            type="strings"),
+    )
 
 
 def _force_loads(test: ForceTest, weight: float) -> tuple:

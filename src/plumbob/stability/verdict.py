@@ -30,14 +30,14 @@ depends on its curvature, which this verdict does not judge).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..arguments import answering, finite_result, instance
 from ..errors import StabilityError
 from ..massprops import MassProperties
-from ..results import Result
+from ..results import Key, Result
 from ..tolerances import sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
@@ -80,6 +80,18 @@ class TippingEdge(Result):
     distance: float
     tipping_angle_deg: float
     energy: float
+
+    #: the keys of each of ``plumbob check --json``'s ``edges``
+    KEYS = (
+        Key("start", "m", "the edge's first end, body frame", type="xyz"),
+        Key("end", "m", "its other end", type="xyz"),
+        Key("normal", "", "its outward horizontal unit normal", type="xyz"),
+        Key("distance", "m", "from the foot of the centre of mass to the edge's line, signed",
+            type="float"),
+        Key("tipping_angle_deg", "°", "atan(distance / h): the tilt that tips it over the edge",
+            type="float"),
+        Key("energy", "J", "Mg(√(d² + h²) − h), the energy to tip it over", type="float"),
+    )
 
 
 #: an edge shorter than this share of the support's perimeter may be part of an arc
@@ -286,52 +298,6 @@ class Verdict(Result):
     #: the keys of :meth:`as_dict`, in order, declared in :mod:`.keys` (docs/cli.md's
     #: check table is made from them)
     KEYS = VERDICT_KEYS
-
-    def as_dict(self) -> dict[str, Any]:
-        """The verdict keyed as ``plumbob check --json`` prints it (SI units, degrees).
-
-        Returns
-        -------
-        dict
-            ``verdict``, ``stands``, ``margin``, ``critical_tilt_deg``,
-            ``critical_direction``, ``energy_to_topple``, ``com_height``,
-            ``center_of_mass``, ``mass``, ``g``, ``down``, ``support_kind``,
-            ``support_polygon``, ``tolerance``, ``edges`` (each ``start``, ``end``,
-            ``normal``, ``distance``, ``tipping_angle_deg``, ``energy``); with a tilted
-            plane ``slope``; with friction ``friction`` and ``slides_first``; with a
-            design check ``required_tilt_deg`` and ``passes`` (and ``shortfall_deg`` when
-            it fails), with a margin check ``required_margin`` and ``margin_passes``;
-            for a body that topples ``overhang`` (m) and ``over_by_deg``; for a solid set
-            down on a point, a line or a sliver ``settles`` (see
-            :meth:`Settling.as_dict <plumbob.stability.poses.settling.Settling.as_dict>`).
-        """
-        out = {
-            "verdict": self.verdict, "stands": self.stands, "margin": self.margin,
-            "critical_tilt_deg": self.critical_tilt_deg,
-            "critical_direction": self.critical_direction,
-            "energy_to_topple": self.energy_to_topple, "com_height": self.com_height,
-            "center_of_mass": self.center_of_mass, "mass": self.mass, "g": self.g,
-            "down": self.down, "support_kind": self.support.kind,
-            "support_polygon": self.support.polygon, "tolerance": self.support.tolerance,
-            "edges": [e.as_dict() for e in self.edges],
-        }
-        if self.slope is not None:
-            out["slope"] = self.slope.as_dict()
-        if self.friction is not None:
-            out.update(friction=self.friction, slides_first=self.slides_first)
-        if self.verdict == "topples":
-            out.update(overhang=self.overhang, over_by_deg=self.over_by_deg)
-        if self.required_tilt_deg is not None:
-            out.update(required_tilt_deg=self.required_tilt_deg, passes=self.passes)
-            if self.passes is False:
-                out["shortfall_deg"] = self.shortfall_deg
-        if self.required_margin is not None:
-            out.update(required_margin=self.required_margin, margin_passes=self.margin_passes)
-        if self.settling is not None:
-            out["settles"] = self.settling.as_dict()
-        if self.loaded is not None:
-            out["under_loads"] = self.loaded.as_dict()
-        return out
 
     @property
     def summary(self) -> str:

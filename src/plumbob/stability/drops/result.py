@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...results import Result
+from ...results import Key, Result
 
 __all__ = ["DropPose", "Drops", "wilson_interval", "CONFIDENCE"]
 
@@ -71,12 +71,19 @@ class DropPose(Result):
     quasi_static: float
     neutral: bool = False
 
-    def as_dict(self) -> dict:
-        """Keys ``down``, ``probability``, ``drops``, ``interval`` ([low, high]),
-        ``standard_error``, ``quasi_static``, ``neutral``."""
-        return {"down": self.down, "probability": self.probability, "drops": self.drops,
-                "interval": list(self.interval), "standard_error": self.standard_error,
-                "quasi_static": self.quasi_static, "neutral": self.neutral}
+    #: the keys of each of ``plumbob poses --dynamic --json``'s ``poses``
+    KEYS = (
+        Key("down", "", "the pose's direction of gravity, body frame (unit vector)",
+            type="xyz"),
+        Key("probability", "", "of the drops that landed in a pose, the share that landed "
+                               "here", type="float"),
+        Key("drops", "", "how many drops landed here", type="int"),
+        Key("interval", "", "Wilson's 95 % interval of the probability, [low, high]"),
+        Key("standard_error", "", "sqrt(p (1 − p) / n)", type="float"),
+        Key("quasi_static", "", "the quasi-static probability of the same pose",
+            type="float"),
+        Key("neutral", "", "whether the pose is a rolling family", type="bool"),
+    )
 
     def __repr__(self) -> str:
         low, high = self.interval
@@ -150,17 +157,30 @@ class Drops(Result):
         """(len,) the poses' landing probabilities, in the order of :attr:`poses`."""
         return np.array([p.probability for p in self.poses])
 
-    def as_dict(self) -> dict:
-        """The JSON object of ``plumbob poses --dynamic --json`` without the file's keys:
-        ``method`` ("dynamic"), the settings, the counts, ``poses`` (each
-        :meth:`DropPose.as_dict`), ``confidence`` (0.95) and ``notes`` when any."""
-        out = {"method": "dynamic", "engine": self.engine, "mass": self.mass,
-               "center_of_mass": self.center_of_mass, "drops": self.drops,
-               "landed": self.landed, "unsettled": self.unsettled, "seed": self.seed,
-               "drop_height": self.drop_height, "restitution": self.restitution,
-               "friction": self.friction, "overdamped": self.overdamped,
-               "timestep": self.timestep, "confidence": CONFIDENCE,
-               "poses": [p.as_dict() for p in self.poses]}
-        if self.notes:
-            out["notes"] = list(self.notes)
-        return out
+    #: the method, always ``"dynamic"`` (the quasi-static :class:`Poses` say ``exact``)
+    method = "dynamic"
+    #: the confidence of the intervals
+    confidence = CONFIDENCE
+
+    #: the keys of ``plumbob poses --dynamic --json`` after the file's
+    KEYS = (
+        Key("method", "", "`dynamic`", type="str"),
+        Key("engine", "", "the physics engine and its version", type="str"),
+        Key("mass", "kg", "the mass", type="float"),
+        Key("center_of_mass", "m", "the centre of mass, body frame", type="xyz"),
+        Key("drops", "", "drops simulated", type="int"),
+        Key("landed", "", "drops that came to rest in a pose", type="int"),
+        Key("unsettled", "", "drops still moving at the time limit, or at rest in no pose",
+            type="int"),
+        Key("seed", "", "the seed of the random orientations", type="int"),
+        Key("drop_height", "m", "the lowest point's height above the ground at release",
+            type="float"),
+        Key("restitution", "", "the contact's coefficient of restitution", type="float"),
+        Key("friction", "", "the contact's coefficient of friction", type="float"),
+        Key("overdamped", "", "whether rotation was heavily damped and the contact without "
+                              "bounce", type="bool"),
+        Key("timestep", "s", "the engine's time step", type="float"),
+        Key("confidence", "", "the confidence of the intervals (0.95)", type="float"),
+        Key("poses", "", "every pose, most probable first (the keys below)"),
+        Key("notes", "", "what a reader should know", "when there are any", type="strings"),
+    )

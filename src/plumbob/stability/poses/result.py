@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...results import Key, Result
+
 __all__ = ["Pose", "Poses"]
 
 _SHOWN = 6  # probabilities shown in the repr of Poses
@@ -29,7 +31,7 @@ def _vector(values: np.ndarray) -> str:
 
 
 @dataclass(frozen=True, repr=False)
-class Pose:
+class Pose(Result):
     """One stable resting pose.
 
     Attributes
@@ -82,18 +84,26 @@ class Pose:
         """True for a rolling pose (it rolls: neutral, critical tilt 0)."""
         return self.kind == "rolling"
 
-    def as_dict(self) -> dict:
-        """The pose's JSON object in ``plumbob poses --json`` (SI units).
-
-        Keys: ``down``, ``com_height`` (m), ``probability``, ``critical_tilt_deg``,
-        ``energy_barrier`` (J or None), ``kind``, ``neutral``, ``members``, ``axis``
-        (or None), ``face`` (m), ``transform`` (4 rows of 4).
-        """
-        return {"down": self.down, "com_height": self.com_height,
-                "probability": self.probability, "critical_tilt_deg": self.critical_tilt_deg,
-                "energy_barrier": self.energy_barrier, "kind": self.kind,
-                "neutral": self.neutral, "members": self.members, "axis": self.axis,
-                "face": self.face, "transform": self.transform}
+    #: the keys of each of ``plumbob poses --json``'s ``poses`` (docs/cli.md's table)
+    KEYS = (
+        Key("down", "", "the direction of gravity resting so, body frame (unit vector)",
+            type="xyz"),
+        Key("com_height", "m", "the centre of mass's height above the ground", type="float"),
+        Key("probability", "", "of landing so from a random drop (they sum to 1)",
+            type="float"),
+        Key("critical_tilt_deg", "°", "the least tilt of the ground that topples it out of "
+                                      "the pose", type="float"),
+        Key("energy_barrier", "J", "to leave it over the lowest neighbouring saddle (`null` "
+                                   "for the only pose)", type="float"),
+        Key("kind", "", "`face`, `rolling` (a family of faces it rolls between) or "
+                        "`rocking` (a bowl's bottom)", type="str"),
+        Key("neutral", "", "whether it rolls (a rolling pose)", type="bool"),
+        Key("members", "", "how many physical faces the pose stands for", type="int"),
+        Key("axis", "", "the axis a rolling pose rolls about, body frame (`null` otherwise)"),
+        Key("face", "m", "the corners of the face it rests on, body frame"),
+        Key("transform", "", "4×4, row-major: rests the body on z = 0, centre of mass above "
+                             "the origin"),
+    )
 
     def __repr__(self) -> str:
         barrier = "None" if self.energy_barrier is None else f"{_short(self.energy_barrier)} J"
@@ -110,7 +120,7 @@ class Pose:
 
 
 @dataclass(frozen=True, repr=False)
-class Poses:
+class Poses(Result):
     """All stable resting poses of a body, most probable first.
 
     Indexing and ``len`` go through :attr:`poses`.
@@ -219,20 +229,19 @@ class Poses:
                 "<th>probability</th><th>down</th><th>com_height, m</th>"
                 f"<th>critical_tilt_deg</th></tr>{rows}</table>")
 
-    def as_dict(self) -> dict:
-        """The JSON object of ``plumbob poses --json`` without the keys naming the file
-        (SI units).
-
-        Keys: ``mass`` (kg), ``center_of_mass`` (m), ``g`` (m/s²), ``method``,
-        ``hull_faces``, ``poses`` (each :meth:`Pose.as_dict`), and ``notes`` when there
-        are any.
-        """
-        out = {"mass": self.mass, "center_of_mass": self.center_of_mass, "g": self.g,
-               "method": self.method, "hull_faces": self.hull_faces,
-               "poses": [p.as_dict() for p in self.poses]}
-        if self.notes:
-            out["notes"] = list(self.notes)
-        return out
+    #: the keys of ``plumbob poses --json`` after the file's (docs/cli.md's table)
+    KEYS = (
+        Key("mass", "kg", "the mass", type="float"),
+        Key("center_of_mass", "m", "the centre of mass, body frame", type="xyz"),
+        Key("g", "m/s²", "gravitational acceleration, for the energy barriers", type="float"),
+        Key("method", "", "`exact` (basins traced exactly) or `sampled` (the fallback)",
+            type="str"),
+        Key("hull_faces", "", "faces of the exact hull, coplanar triangles merged",
+            type="int"),
+        Key("poses", "", "the poses, most probable first (the keys below)"),
+        Key("notes", "", "what a reader should know (merged families, fallbacks)",
+            "when there are any", type="strings"),
+    )
 
     def __repr__(self) -> str:
         shown = ", ".join(_short(p.probability) for p in self.poses[:_SHOWN])

@@ -26,14 +26,13 @@ Where it comes to rest:
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from ...arrays import unit
 from ...errors import StabilityError
 from ...massprops import MassProperties
-from ...results import Result
+from ...results import Key, Result
 from ...tolerances import CONTACT, HULL_ROUND_OFF, size_of
 from ...units import SEED_GRAVITY
 from ..support import body_size, is_polytope, support_points
@@ -101,13 +100,27 @@ class Settling(Result):
 
     _repr_fields = ("contact", "angle_deg", "pose", "pose_kind", "verdict", "stays")
 
-    def as_dict(self) -> dict[str, Any]:
-        """The ``settles`` object of ``plumbob check --json`` (SI units, degrees)."""
-        return {"contact": self.contact, "down_from": self.down_from, "down": self.down,
-                "angle_deg": self.angle_deg, "pose": self.pose, "pose_kind": self.pose_kind,
-                "verdict": self.verdict, "critical_tilt_deg": self.critical_tilt_deg,
-                "com_height": self.com_height, "drop": self.drop, "stays": self.stays,
-                "exact": self.exact, "own_face": self.own_face}
+    #: the keys of the ``settles`` object of ``plumbob check --json``
+    KEYS = (
+        Key("contact", "", "what it touches the ground with as set down: `point`, `line` or "
+                           "`sliver`", type="str"),
+        Key("down_from", "", "the down it was set down with, body frame (unit vector)",
+            type="xyz"),
+        Key("down", "", "the down it rests with", type="xyz"),
+        Key("angle_deg", "°", "how far it turns", type="float"),
+        Key("pose", "", "the rank of the pose it rests in (`plumbob poses`, `--pose K`)",
+            type="int"),
+        Key("pose_kind", "", "`face`, `rocking` or `rolling`", type="str"),
+        Key("verdict", "", "its verdict where it rests", type="str"),
+        Key("critical_tilt_deg", "°", "the critical tilt where it rests", type="float"),
+        Key("com_height", "m", "the centre of mass's height at rest", type="float"),
+        Key("drop", "m", "how far its centre of mass falls", type="float"),
+        Key("stays", "", "whether it rests within 15° of where it was set down (it stands as "
+                         "placed, settling)", type="bool"),
+        Key("exact", "", "false where it lands on a sampled rolling surface", type="bool"),
+        Key("own_face", "", "false where it rests on another face of the pose's family",
+            type="bool"),
+    )
 
     @property
     def phrase(self) -> str:
