@@ -332,3 +332,42 @@ def test_every_mass_properties_method_refuses_garbage_with_a_plumbob_error(block
     """``MassProperties.scaled(None)`` gave a TypeError, ``mirrored('x')`` a ValueError."""
     with pytest.raises(PlumbobError):
         getattr(block.mass_properties(), method)(bad)
+
+
+def _questions():
+    """Every checked question of the Body contract with a good value for each argument
+    (the bad ones replace one argument at a time): enumerated from bodies/checked.py's
+    table, so a question added there is probed too."""
+    from plumbob.bodies.checked import CHECKS
+    from plumbob.bodies.graded import with_density_field
+
+    good = {"down": lambda b: [0.0] * (b.dim - 1) + [-1.0], "tolerance": lambda b: 1e-6,
+            "points": lambda b: [[0.0] * b.dim], "segments": lambda b: 16,
+            "density": lambda b: 1000.0, "thickness": lambda b: None,
+            "grader": lambda b: with_density_field(b, "1000")}
+    return [(method, list(arguments)) for method, arguments in CHECKS.items()], good
+
+
+@pytest.mark.parametrize("bad", ["x", NAN, INF, [[1.0, 2.0, 3.0], [1.0]], 10**400, None],
+                         ids=["text", "nan", "inf", "ragged", "10**400", "None"])
+@pytest.mark.parametrize("kind", list(_bodies()))
+def test_every_body_question_refuses_garbage_with_a_plumbob_error(kind, bad):
+    """``support_points("x", …)``, ``contains("abc")``, ``graded(None)``,
+    ``hull_points(-1)`` gave numpy's ValueError or a NaN-to-integer error. Each argument of
+    each question of every kind is given each bad value in turn; the answer is a
+    PlumbobError naming the argument, or (None where None is allowed: an optional
+    tolerance, no density) a normal answer or a PlumbobError saying the kind cannot answer."""
+    body = _bodies()[kind]
+    questions, good = _questions()
+    for method, names in questions:
+        for name in names:
+            arguments = {n: good[n](body) if n != "grader" else None for n in names}
+            if "grader" in names and name != "grader":
+                continue  # the grader's own arguments are with_density_field's to check
+            arguments[name] = bad
+            try:
+                getattr(body, method)(**arguments)
+            except PlumbobError as error:
+                assert name in str(error) or bad is None, (method, name, str(error))
+            else:
+                assert bad is None, f"{kind}.{method}({name}={bad!r}) was accepted"

@@ -101,7 +101,10 @@ def check_count(what: str, value: float, limit: float, *, hint: str = "",
     ...
     plumbob.errors.LimitError: sides 100000000 is over plumbob's limit of 1000000
     """
-    number = float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an int beyond 1.8e308
+        number = math.inf
     if not math.isfinite(number) or number < 0 or number != int(number):
         raise LimitError(f"{what} must be a whole number from 0 to {limit:g}, not {value!r}",
                          path=path)

@@ -234,8 +234,12 @@ def check_density(density: float | None, what: str = "density") -> float | None:
     """
     if density is None:
         return None
+    if isinstance(density, (bool, bytes)):
+        raise DensityError(f"{what} must be a number, not {density!r}")
     try:
         value = float(density)
+    except OverflowError:  # an int beyond 1.8e308
+        raise DensityError(f"{what} must be a positive finite number, not a {len(str(density))}-digit number") from None
     except (TypeError, ValueError):
         raise DensityError(f"{what} must be a number, not {density!r}") from None
     if not math.isfinite(value) or value <= 0:

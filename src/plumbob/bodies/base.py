@@ -19,6 +19,7 @@ from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
 from ..materials import check_density
 from ..tolerances import contact_tolerance, size_of
+from .checked import check_questions
 
 __all__ = ["Body", "DensityCells", "Grader", "Surface", "Transformed", "check_density",
            "DEFAULT_DENSITY_NOTE", "lowest", "contact_sampling", "manifold_surface"]
@@ -137,6 +138,11 @@ class Body(ABC):
     kind: str
     dim: int
     name: str | None = None
+
+    def __init_subclass__(cls, **options) -> None:
+        # every kind's questions check their arguments the same way (see bodies/checked.py)
+        super().__init_subclass__(**options)
+        check_questions(cls)
 
     @abstractmethod
     def mass_properties(self) -> MassProperties:
@@ -385,6 +391,9 @@ def density_words(density: float | None, unit: str = "kg/m³") -> str:
     (', density 2700 kg/m³', '')
     """
     return "" if density is None else f", density {density:.4g} {unit}"
+
+
+check_questions(Body)  # the defaults Body itself gives, as its subclasses' own are
 
 
 @dataclass(frozen=True, eq=False)
