@@ -382,3 +382,19 @@ def test_without_the_cad_extra_the_error_names_it(files, monkeypatch):
                         lambda name, *a: None if name == "OCP" else real(name, *a))
     with pytest.raises(PlumbobError, match=r"install plumbob\[cad\]"):
         read(files["cylinder"])
+
+
+def test_one_child_serves_every_read_and_a_crash_costs_only_its_own(files, monkeypatch):
+    """OpenCASCADE's child is started once (about a second) and serves the reads that
+    follow; a child that crashes takes only the read it was on with it."""
+    from plumbob.formats import cad_child
+
+    first = read(files["cylinder"]).body.mass_properties().measure
+    pid = cad_child._child.process.pid
+    assert read(files["cylinder"]).body.mass_properties().measure == first
+    assert cad_child._child.process.pid == pid  # the same child answered
+    with monkeypatch.context() as patched:
+        patched.setattr(S, "_WORKER", ["-c", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)"])
+        _refused(files["cylinder"], "signal 11")
+    assert read(files["cylinder"]).body.mass_properties().measure == first  # a fresh child
+    assert cad_child._child.process.pid != pid

@@ -239,7 +239,8 @@ def check_density(density: float | None, what: str = "density") -> float | None:
     try:
         value = float(density)
     except OverflowError:  # an int beyond 1.8e308
-        raise DensityError(f"{what} must be a positive finite number, not a {len(str(density))}-digit number") from None
+        raise DensityError(f"{what} must be a positive finite number, not a "
+                           f"{len(str(density))}-digit number") from None
     except (TypeError, ValueError):
         raise DensityError(f"{what} must be a number, not {density!r}") from None
     if not math.isfinite(value) or value <= 0:

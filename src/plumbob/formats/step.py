@@ -23,7 +23,6 @@ from __future__ import annotations
 import os
 import pickle
 import re
-import subprocess
 import sys
 import tempfile
 
@@ -34,6 +33,7 @@ from ..errors import FormatError, InputFileError, LimitError, PlumbobError
 from ..files import require_regular_file
 from ..reading import Reading
 from ..units import units_scale
+from .cad_child import ChildFailed, ChildTimedOut, read_in_child
 
 __all__ = ["STEP_SUFFIXES", "read_step", "step_unit", "require_ocp", "DEVIATION"]
 
@@ -67,7 +67,7 @@ _METRES = {"m": 1.0, "dm": 0.1, "cm": 0.01, "mm": 1e-3, "um": 1e-6, "km": 1e3, "
 #: seconds the child may take (``PLUMBOB_STEP_SECONDS``), bytes of memory it may map
 STEP_SECONDS = float(os.environ.get("PLUMBOB_STEP_SECONDS", "600"))
 STEP_MEMORY = 8 * 2**30
-#: how the child is started: ``python -m plumbob.formats.step_worker FILE OUT DEVIATION``
+#: how the child is started (it then serves reads: :mod:`.cad_child`)
 _WORKER = ["-m", "plumbob.formats.step_worker"]
 
 
@@ -201,34 +201,29 @@ def _run_worker(path: str) -> dict:
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [root] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])}
 
-    def bounded() -> None:  # in the child, before it runs: its memory and CPU time
+    def bounded() -> None:  # in the child, before it runs: its memory
         import resource
 
         resource.setrlimit(resource.RLIMIT_AS, (STEP_MEMORY, STEP_MEMORY))
-        seconds = int(STEP_SECONDS) + 1
-        resource.setrlimit(resource.RLIMIT_CPU, (seconds, seconds))
 
     with tempfile.TemporaryDirectory(prefix="plumbob-step-") as folder:
         out = os.path.join(folder, "parts.pickle")
         try:
-            done = subprocess.run(
-                [sys.executable, *_WORKER, os.path.abspath(path), out, repr(DEVIATION)],
-                env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                stderr=subprocess.PIPE, timeout=STEP_SECONDS,
-                preexec_fn=bounded if os.name == "posix" else None)
-        except subprocess.TimeoutExpired:
+            read_in_child([sys.executable, *_WORKER], env,
+                          [os.path.abspath(path), out, repr(DEVIATION)], timeout=STEP_SECONDS,
+                          limit=bounded if os.name == "posix" else None)
+        except ChildTimedOut:
             raise LimitError(f"took OpenCASCADE over {STEP_SECONDS:g} s to read: refused "
                              "(PLUMBOB_STEP_SECONDS sets the limit)", path=path) from None
-        if done.returncode != 0 or not os.path.exists(out):
-            how = (f"signal {-done.returncode}" if done.returncode < 0
-                   else f"exit status {done.returncode}")
-            last = done.stderr.decode("utf-8", "replace").strip().splitlines()[-1:] or [""]
-            if "MemoryError" in last[0] or "bad_alloc" in last[0]:
+        except ChildFailed as failed:
+            if "MemoryError" in failed.last_line or "bad_alloc" in failed.last_line:
                 raise LimitError(f"needed over {STEP_MEMORY // 2**30} GiB for OpenCASCADE to read",
-                                 path=path)
-            raise FormatError(f"made OpenCASCADE fail ({how}) while reading it: the file is "
-                              f"malformed or beyond what it reads{': ' + last[0] if last[0] else ''}",
-                              path=path)
+                                 path=path) from None
+            last = f": {failed.last_line}" if failed.last_line else ""
+            raise FormatError(f"made OpenCASCADE fail ({failed.how}) while reading it: the file is "
+                              f"malformed or beyond what it reads{last}", path=path) from None
+        if not os.path.exists(out):
+            raise FormatError("gave no answer from OpenCASCADE while reading it", path=path)
         with open(out, "rb") as f:
             return pickle.load(f)  # noqa: S301 - our own child's output, in our own folder
 

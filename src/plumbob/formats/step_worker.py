@@ -1,6 +1,8 @@
 """The OpenCASCADE side of reading a STEP file, run in a child process.
 
-``python -m plumbob.formats.step_worker FILE OUT DEVIATION`` reads ``FILE`` with
+``python -m plumbob.formats.step_worker FILE OUT DEVIATION`` reads ``FILE``
+(``--serve``: one such read per line of its standard input, see
+:mod:`plumbob.formats.cad_child`) with
 OpenCASCADE's XCAF reader (``STEPCAFControl_Reader``: the product structure, names
 and placements), and writes to ``OUT`` a pickle of a dict: ``parts``, one entry per
 instance of a part (``name``, ``volume`` mm³, ``centre`` (3,) mm, ``inertia`` (3, 3)
@@ -18,6 +20,7 @@ memory and time can be bounded. It imports nothing of plumbob.
 
 from __future__ import annotations
 
+import json
 import os
 import pickle
 import sys
@@ -195,16 +198,31 @@ def _parts(found: list, deviation: float) -> dict:
     return {"parts": parts}
 
 
-def main() -> None:
-    path, out, deviation = sys.argv[1], sys.argv[2], float(sys.argv[3])
-    # OpenCASCADE prints its statistics on the C stdout: keep them off the parent's pipe
-    os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
+def _answer(path: str, out: str, deviation: float) -> None:
+    """Read ``path`` and write its result (or its defect) to ``out``."""
     try:
         result = read(path, deviation)
     except ValueError as error:
         result = {"defect": str(error)}
     with open(out, "wb") as f:
         pickle.dump(result, f)
+
+
+def main() -> None:
+    """``FILE OUT DEVIATION``: one read; ``--serve``: one read per line of standard input
+    (``[FILE, OUT, DEVIATION]`` as JSON), answered ``done`` on standard output."""
+    serving = sys.argv[1:] == ["--serve"]
+    replies = os.fdopen(os.dup(1), "w") if serving else None
+    # OpenCASCADE prints its statistics on the C stdout: keep them off the parent's pipe
+    os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
+    if not serving:
+        _answer(sys.argv[1], sys.argv[2], float(sys.argv[3]))
+        return
+    for line in sys.stdin:
+        path, out, deviation = json.loads(line)
+        _answer(path, out, float(deviation))
+        replies.write("done\n")
+        replies.flush()
 
 
 if __name__ == "__main__":
