@@ -127,3 +127,30 @@ def test_the_batch_check_columns_are_declared_keys():
 
     names = {k.name for k in Verdict.KEYS}
     assert {f.key for f in _CHECK + _REQUIRE} <= names
+
+
+def test_the_batch_columns_are_made_from_the_declared_keys():
+    """Every column of a results row but the table's own (the file, its status, the unit,
+    the pose count) is a declared key of the result it comes from, of the declared form;
+    a slope's, a load verdict's and the first pose's carry a prefix."""
+    from plumbob.batch.columns import _FORMS, Field, pose_fields, result_fields
+    from plumbob.batch.options import Options
+    from plumbob.stability.checks import SlopeCheck
+    from plumbob.stability.loaded import LoadVerdict
+    from plumbob.stability.poses.result import Pose, Poses
+
+    own = {"path", "name", "status", "error", "reason", "units", "poses", "pose", "notes",
+           "notices", "file_size", "file_mtime_ns", "file_sha256"}
+    declared = {k.name: k for k in (*MassReport.KEYS, *Verdict.KEYS)}
+    declared |= {f"slope_{k.name}": k for k in SlopeCheck.KEYS}
+    declared |= {f"load_{k.name}": k for k in LoadVerdict.KEYS}
+    declared |= {k.name: k for k in LoadVerdict.KEYS if k.name.startswith(("over", "resist"))}
+    declared |= {f"pose_{k.name}": k for k in Pose.KEYS} | {k.name: k for k in Pose.KEYS}
+    declared |= {f"poses_{k.name}": k for k in Poses.KEYS}
+    options = Options(check=True, poses=True, tilt=5.0, require_tilt=10.0,
+                      load_options=(("force", [10.0, 0.0, 0.0], [0.0, 0.0, 0.5]),))
+    for f in result_fields(options) + pose_fields():
+        if f.key in own or f.key.startswith("std_") or f.key == "standard_passes":
+            continue
+        key = declared[f.key]
+        assert f == Field(f.key, *_FORMS.get(key.type, (key.type, ()))), f

@@ -145,16 +145,19 @@ def keyed(result: Any, keys: Iterable[Key]) -> dict[str, Any]:
     return out
 
 
-def pick(keys: Iterable[Key], names: Iterable[str], prefix: str = "") -> tuple[Key, ...]:
+def pick(keys: Iterable[Key], names: Iterable[str], prefix: str = "",
+         via: str | None = None) -> tuple[Key, ...]:
     """The keys named ``names``, in that order (a result that shows part of another's
     keys: a balance's verdicts, a batch row's columns), each renamed ``prefix + name``
-    and read from its old name.
+    and read from its old place (``via``: the attribute that holds that result).
 
-    >>> [k.name for k in pick([Key("a", "", "x"), Key("b", "", "y")], ["b", "a"], "s_")]
-    ['s_b', 's_a']
+    >>> keys = pick([Key("a", "", "x"), Key("b", "", "y")], ["b", "a"], "s_", via="slope")
+    >>> [(k.name, k.attr) for k in keys]
+    [('s_b', 'slope.b'), ('s_a', 'slope.a')]
     """
     by_name = {k.name: k for k in keys}
-    return tuple(replace(by_name[n], name=prefix + n, attr=by_name[n].attr or n)
+    return tuple(replace(by_name[n], name=prefix + n,
+                         attr=".".join(filter(None, (via, by_name[n].attr or n))))
                  for n in names)
 
 

@@ -16,6 +16,12 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
+from ..bodies import measures as _mass
+from ..results import pick
+from ..stability.checks import SlopeCheck
+from ..stability.keys import VERDICT_KEYS
+from ..stability.loaded import LoadVerdict
+from ..stability.poses.result import Pose, Poses
 from .options import Options
 
 __all__ = ["Field", "result_fields", "pose_fields", "flatten", "unflatten", "flat_names",
@@ -48,23 +54,46 @@ def _vec(key: str, labels=XYZ) -> Field:
     return Field(key, "float", (labels,))
 
 
+_ROWS = ("1", "2", "3")
+#: a declared key's table form (``results.Key.type``) as a field's type and labels
+_FORMS = {"xyz": ("float", (XYZ,)), "123": ("float", (_ROWS,)),
+          "xyz×xyz": ("float", (XYZ, XYZ)), "123×xyz": ("float", (_ROWS, XYZ))}
+
+
+def key_fields(keys) -> list[Field]:
+    """The fields of declared keys (:class:`plumbob.results.Key`), by their ``type``."""
+    return [Field(k.name, *_FORMS.get(k.type, (k.type, ()))) for k in keys]
+
+
+# The columns are the single-file commands' JSON keys, as the results declare them
+# (``KEYS``): a row is built from them (:mod:`.rows`), and the batch table's own keys
+# (the file, its status, the unit it was read in, counts) are the only others.
+MASS_KEYS = pick(_mass.MASS_KEYS, ("mass", "volume", "area", "center_of_mass", "inertia",
+                                   "principal_moments", "principal_axes", "exact",
+                                   "relative_error", "parts"))
+SIZE_KEYS = pick(_mass.MASS_KEYS, ("radii_of_gyration",))
+CHECK_KEYS = pick(VERDICT_KEYS, ("verdict", "stands", "margin", "critical_tilt_deg",
+                                 "critical_direction", "energy_to_topple", "com_height", "down",
+                                 "support_kind"))
+SLOPE_KEYS = pick(SlopeCheck.KEYS, ("verdict", "topples", "tipping_angle_deg"), "slope_",
+                  via="slope")
+REQUIRE_KEYS = pick(VERDICT_KEYS, ("required_tilt_deg", "passes"))
+LOAD_KEYS = (pick(LoadVerdict.KEYS, ("verdict",), "load_", via="loaded")
+             + pick(LoadVerdict.KEYS, ("overturning_safety_factor", "resisting_moment",
+                                       "overturning_moment"), via="loaded"))
+POSE_KEYS = pick(Pose.KEYS, ("probability", "down", "com_height", "critical_tilt_deg",
+                             "energy_barrier"), "pose_")
+POSE_TABLE_KEYS = pick(Pose.KEYS, ("down", "com_height", "probability", "critical_tilt_deg",
+                                   "energy_barrier", "neutral"))
+
 _HEAD = [Field("path", "str"), Field("name", "str"), Field("status", "str"),
          Field("error", "str"), Field("reason", "str")]
-_MASS = [Field("kind", "str"), Field("units", "str"), Field("mass", "float"),
-         Field("volume", "float"), Field("area", "float"), _vec("center_of_mass"),
-         Field("inertia", "float", (XYZ, XYZ)), _vec("principal_moments", ("1", "2", "3")),
-         Field("principal_axes", "float", (("1", "2", "3"), XYZ)), Field("exact", "bool"),
-         Field("relative_error", "float"), Field("parts", "int"),
-         _vec("radii_of_gyration", ("1", "2", "3"))]
-_CHECK = [Field("verdict", "str"), Field("stands", "bool"), Field("margin", "float"),
-          Field("critical_tilt_deg", "float"), _vec("critical_direction"),
-          Field("energy_to_topple", "float"), Field("com_height", "float"), _vec("down"),
-          Field("support_kind", "str")]
-_SLOPE = [Field("slope_verdict", "str"), Field("slope_topples", "bool"),
-          Field("slope_tipping_angle_deg", "float")]
-_REQUIRE = [Field("required_tilt_deg", "float"), Field("passes", "bool")]
-_LOADS = [Field("load_verdict", "str"), Field("overturning_safety_factor", "float"),
-          Field("resisting_moment", "float"), Field("overturning_moment", "float")]
+_MASS = key_fields(pick(_mass.MASS_KEYS, ("kind",))) + [Field("units", "str")] + \
+    key_fields(MASS_KEYS + SIZE_KEYS)
+_CHECK = key_fields(CHECK_KEYS)
+_SLOPE = key_fields(SLOPE_KEYS)
+_REQUIRE = key_fields(REQUIRE_KEYS)
+_LOADS = key_fields(LOAD_KEYS)
 
 
 def _standard_fields(name: str) -> list[Field]:
@@ -77,15 +106,12 @@ def _standard_fields(name: str) -> list[Field]:
         out += [Field(f"std_{test.name}_passes", "bool"),
                 Field(f"std_{test.name}_margin", "float")]
     return out
-_POSES = [Field("poses", "int"), Field("poses_method", "str"), Field("pose_probability", "float"),
-          _vec("pose_down"), Field("pose_com_height", "float"),
-          Field("pose_critical_tilt_deg", "float"), Field("pose_energy_barrier", "float")]
+_POSES = ([Field("poses", "int")] + key_fields(pick(Poses.KEYS, ("method",), "poses_"))
+          + key_fields(POSE_KEYS))
 _TAIL = [Field("notes", "strings"), Field("notices", "strings"), Field("file_size", "int"),
          Field("file_mtime_ns", "int"), Field("file_sha256", "str")]
-_POSE_TABLE = [Field("path", "str"), Field("name", "str"), Field("pose", "int"), _vec("down"),
-               Field("com_height", "float"), Field("probability", "float"),
-               Field("critical_tilt_deg", "float"), Field("energy_barrier", "float"),
-               Field("neutral", "bool")]
+_POSE_TABLE = ([Field("path", "str"), Field("name", "str"), Field("pose", "int")]
+               + key_fields(POSE_TABLE_KEYS))
 
 
 def result_fields(options: Options) -> list[Field]:

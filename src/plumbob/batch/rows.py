@@ -52,10 +52,10 @@ def _plain(values: dict[str, Any]) -> dict[str, Any]:
 
 def mass_row(reading, props) -> dict[str, Any]:
     """The mass columns, equal to the keys of ``plumbob mass FILE --json``."""
+    from .columns import MASS_KEYS
+
     out = props.as_dict(reading.body.kind)
-    keys = ("kind", "mass", "volume", "area", "center_of_mass", "inertia", "principal_moments",
-            "principal_axes", "exact", "relative_error", "parts", "notes")
-    row = {k: out.get(k) for k in keys}
+    row = {k: out.get(k) for k in ("kind", *(k.name for k in MASS_KEYS), "notes")}
     from ..bodies.measures import size_keys  # the body's sizes, as plumbob mass gives them
 
     row.update(size_keys(reading.body, props))
@@ -67,24 +67,18 @@ def mass_row(reading, props) -> dict[str, Any]:
 def check_row(reading, props, options: Options) -> dict[str, Any]:
     """The verdict columns, equal to the keys of ``plumbob check FILE --json`` (``slope``'s
     keys with a ``slope_`` prefix)."""
+    from ..results import keyed
     from ..stability import check
+    from .columns import CHECK_KEYS, LOAD_KEYS, REQUIRE_KEYS, SLOPE_KEYS
 
     v = check(reading.body, requirement=options.requirement(reading), props=props)
-    row = {"verdict": v.verdict, "stands": v.stands, "margin": v.margin,
-           "critical_tilt_deg": v.critical_tilt_deg, "critical_direction": v.critical_direction,
-           "energy_to_topple": v.energy_to_topple, "com_height": v.com_height, "down": v.down,
-           "support_kind": v.support.kind}
+    row = keyed(v, CHECK_KEYS)
     if v.slope is not None:
-        row.update(slope_verdict=v.slope.verdict, slope_topples=v.slope.topples,
-                   slope_tipping_angle_deg=v.slope.tipping_angle_deg)
+        row.update(keyed(v, SLOPE_KEYS))
     if v.required_tilt_deg is not None:
-        row.update(required_tilt_deg=v.required_tilt_deg, passes=v.passes)
+        row.update(keyed(v, REQUIRE_KEYS))
     if v.loaded is not None:
-        lv = v.loaded
-        row.update(load_verdict=lv.verdict,
-                   overturning_safety_factor=lv.overturning_safety_factor,
-                   resisting_moment=lv.resisting_moment,
-                   overturning_moment=lv.overturning_moment)
+        row.update(keyed(v, LOAD_KEYS))
     if options.standard is not None:
         from ..stability.standards import run_standard
 
@@ -107,21 +101,20 @@ def _resting_poses(reading, props, options: Options):
 def poses_row(result) -> dict[str, Any]:
     """The pose summary columns: how many stable poses, and the most probable one (the
     first of ``poses`` in ``plumbob poses FILE --json``)."""
-    first = result.poses[0]
+    from ..results import keyed
+    from .columns import POSE_KEYS
+
     return _plain({"poses": len(result), "poses_method": result.method,
-                   "pose_probability": first.probability, "pose_down": first.down,
-                   "pose_com_height": first.com_height,
-                   "pose_critical_tilt_deg": first.critical_tilt_deg,
-                   "pose_energy_barrier": first.energy_barrier})
+                   **keyed(result.poses[0], POSE_KEYS)})
 
 
 def pose_table_rows(path: str, name: str | None, result) -> list[dict[str, Any]]:
     """Every pose of one file, most probable first (``pose`` counts from 1, as
     ``plumbob check --pose K``)."""
-    return [_plain({"path": path, "name": name, "pose": k, "down": p.down,
-                    "com_height": p.com_height, "probability": p.probability,
-                    "critical_tilt_deg": p.critical_tilt_deg,
-                    "energy_barrier": p.energy_barrier, "neutral": p.neutral})
+    from ..results import keyed
+    from .columns import POSE_TABLE_KEYS
+
+    return [_plain({"path": path, "name": name, "pose": k, **keyed(p, POSE_TABLE_KEYS)})
             for k, p in enumerate(result.poses, 1)]
 
 

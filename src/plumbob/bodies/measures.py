@@ -14,15 +14,58 @@ from typing import Any
 import numpy as np
 
 from ..errors import GeometryError
-from ..results import Result
+from ..results import Key, Result
 from ..tolerances import CONTACT
 from .base import Body
 
-__all__ = ["SurfaceArea", "BoundingBox", "surface_area", "bounding_box", "oriented_bounding_box",
+__all__ = ["MASS_KEYS", "SurfaceArea", "BoundingBox", "surface_area", "bounding_box", "oriented_bounding_box",
            "size_keys", "has_surface", "FACET_SEGMENTS"]
 
 #: chords a turn for curved faces when measuring their area (a relative error under 1.6e-4)
 FACET_SEGMENTS = 256
+
+
+#: the keys of ``plumbob mass --json``, in order (``MassReport.KEYS``; docs/cli.md's table
+#: and the batch table's mass columns are made from them)
+MASS_KEYS = (
+    Key("path", "", "the file read", "when read from a file", type="str"),
+    Key("name", "", "the body's name", "when it has one", type="str"),
+    Key("kind", "", "`lamina`, `solid`, `particles` or `assembly`", type="str"),
+    Key("mass", "kg", "the mass", type="float"),
+    Key("volume", "m³", "the volume", "solids and assemblies", type="float"),
+    Key("area", "m²", "the area", "laminas", type="float"),
+    Key("center_of_mass", "m", "the centre of mass (2 or 3 numbers)", type="xyz"),
+    Key("inertia", "kg·m²", "the inertia tensor about the centre of mass (3×3)",
+        type="xyz×xyz"),
+    Key("principal_moments", "kg·m²", "the principal moments, ascending", type="123"),
+    Key("principal_axes", "", "the principal axes: rows, unit vectors, right-handed",
+        type="123×xyz"),
+    Key("exact", "", "false when curves were faceted by a boolean or a density field was "
+                     "integrated numerically", type="bool"),
+    Key("relative_error", "", "when not exact, the error's estimate (a bound for "
+                              "booleans); when exact, a bound on the round-off of a boolean "
+                              "of polytopes, else 0", type="float"),
+    Key("parts", "", "how many parts", type="int"),
+    Key("notes", "", "what was assumed or approximated (e.g. the assumed density of 1)",
+        "when there are any", type="strings"),
+    Key("part_properties", "", "each part of an assembly: `name`, `kind`, `mass`, "
+                               "`volume`/`area`, `center_of_mass`, `exact`", "assemblies"),
+    Key("radii_of_gyration", "m", "about the principal axes, sqrt(moment / mass)", type="123"),
+    Key("inertia_about", "m, kg·m²", "`point` and `inertia`, the 3×3 tensor about it",
+        "with `--about X,Y,Z`"),
+    Key("bounding_box_lower", "m", "the bounding box's least corner: the farthest points "
+                                   "along −x, −y (, −z), exact for curved primitives too",
+        "with `--sizes`"),
+    Key("bounding_box_upper", "m", "its greatest corner, along +x, +y (, +z)",
+        "with `--sizes`"),
+    Key("surface_area", "m²", "the boundary's area (an assembly's: the sum of its parts')",
+        "solids, with `--sizes`"),
+    Key("surface_area_exact", "", "false where curved faces were faceted",
+        "solids, with `--sizes`"),
+    Key("surface_area_relative_error", "", "a bound for curved faces (faceted at 256 "
+                                           "chords a turn)", "solids, with `--sizes`"),
+    Key("notices", "", "what the reader assumed or repaired", "when there are any", type="strings"),
+)
 
 
 @dataclass(frozen=True, repr=False)

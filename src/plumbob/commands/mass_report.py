@@ -9,12 +9,12 @@ from typing import Any
 import numpy as np
 
 from ..arguments import vector
-from ..bodies.measures import size_keys
+from ..bodies.measures import MASS_KEYS, size_keys
 from ..errors import printable
 from ..massprops import MassProperties
 from ..reading import Reading
 from ..report import ReportUnits, format_number, format_vector, table
-from ..results import Key, Result
+from ..results import Result
 from ..tolerances import TEXT_ROUND_OFF
 from ._common import header
 
@@ -41,44 +41,9 @@ class MassReport(Result):
     sizes: dict = field(default_factory=dict)
     about: np.ndarray | None = None
 
-    #: the keys of ``plumbob mass --json``, in order (docs/cli.md's table is made from them)
-    KEYS = (
-        Key("path", "", "the file read", "when read from a file"),
-        Key("name", "", "the body's name", "when it has one"),
-        Key("kind", "", "`lamina`, `solid`, `particles` or `assembly`"),
-        Key("mass", "kg", "the mass"),
-        Key("volume", "m³", "the volume", "solids and assemblies"),
-        Key("area", "m²", "the area", "laminas"),
-        Key("center_of_mass", "m", "the centre of mass (2 or 3 numbers)"),
-        Key("inertia", "kg·m²", "the inertia tensor about the centre of mass (3×3)"),
-        Key("principal_moments", "kg·m²", "the principal moments, ascending"),
-        Key("principal_axes", "", "the principal axes: rows, unit vectors, right-handed"),
-        Key("exact", "", "false when curves were faceted by a boolean or a density field was "
-                         "integrated numerically"),
-        Key("relative_error", "", "when not exact, the error's estimate (a bound for "
-                                  "booleans); when exact, a bound on the round-off of a boolean "
-                                  "of polytopes, else 0"),
-        Key("parts", "", "how many parts"),
-        Key("notes", "", "what was assumed or approximated (e.g. the assumed density of 1)",
-            "when there are any"),
-        Key("part_properties", "", "each part of an assembly: `name`, `kind`, `mass`, "
-                                   "`volume`/`area`, `center_of_mass`, `exact`", "assemblies"),
-        Key("radii_of_gyration", "m", "about the principal axes, sqrt(moment / mass)"),
-        Key("inertia_about", "m, kg·m²", "`point` and `inertia`, the 3×3 tensor about it",
-            "with `--about X,Y,Z`"),
-        Key("bounding_box_lower", "m", "the bounding box's least corner: the farthest points "
-                                       "along −x, −y (, −z), exact for curved primitives too",
-            "with `--sizes`"),
-        Key("bounding_box_upper", "m", "its greatest corner, along +x, +y (, +z)",
-            "with `--sizes`"),
-        Key("surface_area", "m²", "the boundary's area (an assembly's: the sum of its parts')",
-            "solids, with `--sizes`"),
-        Key("surface_area_exact", "", "false where curved faces were faceted",
-            "solids, with `--sizes`"),
-        Key("surface_area_relative_error", "", "a bound for curved faces (faceted at 256 "
-                                               "chords a turn)", "solids, with `--sizes`"),
-        Key("notices", "", "what the reader assumed or repaired", "when there are any"),
-    )
+    #: the keys of ``plumbob mass --json``, in order (docs/cli.md's table is made from
+    #: them; declared beside the mass properties, whose keys they are, for the batch table)
+    KEYS = MASS_KEYS
 
     @classmethod
     def of(cls, reading: Reading, about=None, sizes: bool = False) -> MassReport:
