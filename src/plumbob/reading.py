@@ -36,6 +36,9 @@ class Reading:
     units_assumed: True when neither the caller nor the file gave a length unit and the
     reader assumed metres (its notices say so); a spec applies its own unit to such a
     file (:func:`plumbob.units.unit_assumed`).
+    densities_required: the file gives its parts different materials (a multi-material
+    3MF), so every part needs a density: one assumed for all would be wrong
+    (:func:`plumbob.formats.parts.require_part_densities`).
     """
 
     body: Body
@@ -47,6 +50,7 @@ class Reading:
     up: tuple[float, ...] | None = None
     materials: tuple[tuple[str, str], ...] = ()
     units_assumed: bool = False
+    densities_required: bool = False
 
     def default_down(self) -> list[float] | None:
         """Gravity's direction when the user gives none: against the file's up axis, or

@@ -4,7 +4,8 @@ trimesh parses (``process=False``: nothing merged or dropped); plumbob then
 checks every mesh as it checks an STL (:func:`~plumbob.mesh.check_solid`).
 A file with several meshes (a 3MF with several objects, a glTF scene) gives an
 :class:`~plumbob.bodies.csg.Assembly`, one named part per mesh instance, each
-placed by its scene transform.
+placed by its scene transform. A 3MF is read by plumbob's own reader
+(:mod:`plumbob.formats.threemf`), which keeps each object's name and material.
 
 3MF is a zip of XML. Before trimesh opens it, the archive's declared sizes and
 expansion ratios are checked against :mod:`plumbob.limits` (a zip bomb is
@@ -144,7 +145,16 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
     scale, notices = units_scale(units, file_units, file_unit_scale(file_units),
                                  override=units_override, path=path)
     notices = list(notices)
-    meshes, skipped = _load(path, file_type)
+    instances = None
+    if file_type == "3mf":  # plumbob's own reader: names and materials per object
+        from .parts import unique_names
+        from .threemf import load_3mf
+
+        instances = load_3mf(path)
+        meshes, skipped = list(zip(unique_names([i.name for i in instances]),
+                                   [i.triangles for i in instances])), 0
+    else:
+        meshes, skipped = _load(path, file_type)
     if skipped:
         notices.append(f"{file_type}: ignored {skipped} item(s) without triangles "
                        "(points or lines)")
@@ -168,8 +178,18 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
     up = GLTF_UP if file_type in ("glb", "gltf") else None
     if up is not None:
         notices.append(GLTF_UP_NOTICE)
+    materials, required = (), False
+    if instances:
+        from .threemf import material_notices
+
+        chosen, more, required = material_notices([n for n, _ in meshes], instances)
+        notices.extend(more)
+        parts = [p if m is None else p.with_default_density(m.density)
+                 for p, m in zip(parts, chosen)]
+        materials = tuple((n, m.name) for (n, _), m in zip(meshes, chosen) if m is not None)
     return Reading(assemble(parts, stem(path)), tuple(notices), path,
-                   reading_unit(units, file_units), up=up,
+                   reading_unit(units, file_units), up=up, materials=materials,
+                   densities_required=required,
                    units_assumed=unit_assumed(units, file_units, file_unit_scale(file_units)))
 
 

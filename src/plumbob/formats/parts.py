@@ -106,13 +106,14 @@ def with_part_materials(reading: Reading, materials: Mapping[str, str], option: 
 
 
 def require_part_densities(reading: Reading, how: str) -> Reading:
-    """``reading`` unchanged when it is not a CAD assembly or every part has a density;
-    else a :class:`DensityError` listing every part without one (``how``: the option
-    that gives them). A CAD file's parts are of different materials: one default
+    """``reading`` unchanged when it is not a CAD or multi-material assembly or every part
+    has a density; else a :class:`DensityError` listing every part without one (``how``:
+    the option that gives them). A CAD file's parts, or a multi-material 3MF's
+    (:attr:`Reading.densities_required`), are of different materials: one default
     density for all would be a wrong answer, not an assumption."""
     parts = reading.body.assembly_parts()
-    if (len(parts) < 2 or reading.path is None
-            or not reading.path.lower().endswith(CAD_SUFFIXES)):
+    cad = reading.path is not None and reading.path.lower().endswith(CAD_SUFFIXES)
+    if len(parts) < 2 or not (cad or reading.densities_required):
         return reading
     missing = [p.name or f"part {i + 1}" for i, p in enumerate(parts) if None in p.densities()]
     if missing:
