@@ -1,0 +1,233 @@
+"""The options several commands share, declared once (``add_*_arguments``), and what
+they mean as library values: the report units, the spec's parameters, the requirement,
+the loads, a resting pose's down. One option, one meaning (docs/cli.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Mapping
+from typing import Any
+
+from ..errors import ArgumentError, SpecError
+from ..reading import Reading
+from ..units import SEED_GRAVITY, length_scale
+from .types import (
+    assignment,
+    direction,
+    force_option,
+    hang_option,
+    length_unit,
+    material_name,
+    non_negative,
+    number,
+    positive,
+    search_option,
+)
+
+__all__ = [
+    "add_body_arguments",
+    "add_report_units_argument",
+    "report_units",
+    "parameter_overrides",
+    "add_stability_arguments",
+    "add_orientation_arguments",
+    "pose_down",
+    "add_load_arguments",
+    "option_loads",
+    "requirement",
+]
+
+
+def add_body_arguments(parser: argparse.ArgumentParser) -> None:
+    """PATH, --density/--material, --units, --repair, --set, --json, --shell/--infill."""
+    parser.add_argument("path", metavar="PATH", help="a shape spec (.toml), mesh or outline file")
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument(
+        "--density",
+        type=float,  # checked by check_density (finite, positive) when it applies
+        metavar="RHO",
+        help="density in kg/m³ (kg/m² for a lamina) for parts that give none",
+    )
+    group.add_argument(
+        "--material",
+        type=material_name,
+        metavar="NAME",
+        help="a material from 'plumbob materials' for parts that give no density",
+    )
+    parser.add_argument(
+        "--part-material",
+        action="append",
+        metavar="NAME=MATERIAL",
+        help="a material (or a density, kg/m³) for the assembly's parts named NAME, a glob "
+             "such as 'post*'; repeat for each part (a STEP assembly needs one for every part)",
+    )
+    parser.add_argument(
+        "--units",
+        type=length_unit,
+        metavar="UNIT",
+        help="length unit of the file's coordinates: m, cm, mm, km, in or ft, in any case or "
+        "spelled out (millimetre, inch); default: the unit the file declares, else metres. "
+        "One that contradicts the file's declared unit (3MF, glTF, DXF, a spec's units) is "
+        "refused unless --units-override",
+    )
+    parser.add_argument(
+        "--units-override",
+        action="store_true",
+        help="use --units even where the file declares another unit (said in a notice)",
+    )
+    parser.add_argument(
+        "--repair",
+        action="store_true",
+        help="repair small defects in meshes (holes, winding) and report them",
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        type=assignment,
+        dest="parameters",
+        metavar="NAME=VALUE",
+        help="override a spec's [parameters] entry (repeatable): a number, an expression, "
+        "or a number with a length unit such as 30cm",
+    )
+    parser.add_argument(
+        "--allow-outside-files",
+        action="store_true",
+        help="let a spec read mesh files outside its own folder (refused by default)",
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    printing = parser.add_argument_group("as printed (FDM/SLA; see docs/printing.md)")
+    printing.add_argument("--shell", metavar="T", help="walls T thick at full density, e.g. "
+                          "1.2mm (a bare number is in --units)")
+    printing.add_argument("--infill", metavar="F", help="the interior's fill, e.g. 20%% or 0.2")
+
+
+def add_report_units_argument(parser: argparse.ArgumentParser) -> None:
+    """--report-units: the text report in other length and mass units (JSON stays SI)."""
+    parser.add_argument("--report-units", type=_report_units, metavar="LENGTH,MASS",
+                        help="show the text report in these units, e.g. mm,g or in,lb "
+                             "(lengths: m, cm, mm, km, in, ft; masses: kg, g, t, lb); "
+                             "the JSON stays in SI units")
+
+
+def _report_units(text: str):
+    from ..report import ReportUnits
+
+    try:
+        return ReportUnits.parse(text)
+    except ArgumentError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def report_units(args: argparse.Namespace, reading: Reading | None = None):
+    """The units of the text report: ``--report-units``, else the part's own (a part
+    read in millimetres is shown in mm and g: :func:`~plumbob.report.natural_units`),
+    else SI. Asked for with ``--json`` it is an error (the JSON is always SI), never
+    silently ignored; with ``--json`` there is no text report: None."""
+    units = getattr(args, "report_units", None)
+    if getattr(args, "json", False):
+        if units is not None:
+            raise ArgumentError("--report-units changes the text report only; the JSON is "
+                                "always in SI units (leave out one of them)")
+        return None
+    from ..report import natural_units  # the text report's, loaded only for text
+
+    return units or natural_units(reading.length_unit if reading is not None else None)
+
+
+def parameter_overrides(pairs: list[tuple[str, str]] | Mapping[str, Any] | None
+                        ) -> dict[str, Any] | None:
+    """The ``--set`` pairs as a mapping; a name set twice is an error, not a silent choice
+    (a mapping, already checked, is taken as it is)."""
+    if not pairs:
+        return None
+    if isinstance(pairs, Mapping):
+        return dict(pairs)
+    out: dict[str, str] = {}
+    for name, value in pairs:
+        if name in out:
+            raise SpecError(f"--set {name} is given twice ({out[name]!r} and {value!r}); "
+                            "give it once")
+        out[name] = value
+    return out
+
+
+def add_stability_arguments(parser: argparse.ArgumentParser) -> None:
+    """The body arguments (PATH, --density/--material, --units, --repair, --json) and --g,
+    for the commands that put the body in a gravity field."""
+    add_body_arguments(parser)
+    parser.add_argument("--g", type=positive, default=SEED_GRAVITY, metavar="G",
+                        help=f"gravitational acceleration, m/s² (default {SEED_GRAVITY})")
+
+
+def add_orientation_arguments(parser: argparse.ArgumentParser, pose: str = "--pose",
+                              tilt_help: str = "also check it on a plane tilted by DEG "
+                                               "degrees", pose_type=int,
+                              pose_help: str = "rest it in its K-th most probable resting pose "
+                                               "(see 'plumbob poses')") -> None:
+    """--down X,Y,Z or ``pose`` K (the K-th resting pose), and --tilt DEG --toward DEG: how
+    the body rests, for check and balance alike."""
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--down", type=direction, metavar="X,Y,Z",
+                       help="direction of gravity in the body's frame (default -z; -y for a "
+                            "lamina)")
+    where.add_argument(pose, type=pose_type, metavar="K", help=pose_help)
+    parser.add_argument("--tilt", type=non_negative, metavar="DEG", help=tilt_help)
+    parser.add_argument("--toward", type=number, metavar="DEG",
+                        help="the tilted plane descends toward this direction, degrees from "
+                             "+x toward +y (default: the worst direction)")
+
+
+def pose_down(body, index: int, option: str, g: float, props):
+    """The down vector of the body's ``index``-th most probable resting pose (1-based);
+    ``option`` names the command-line option in the error for an index out of range.
+    The rank is by probability, so every pose is found and weighed: no cheaper call
+    answers it (``Poses.ranked`` holds the rule)."""
+    from ..stability.poses import resting_poses
+
+    return resting_poses(body, g=g, props=props).ranked(index, option).down
+
+
+def add_load_arguments(parser: argparse.ArgumentParser) -> None:
+    """--force, --hang, --push, --press: applied loads (repeatable), points in the body's
+    own length unit (like every coordinate of its file)."""
+    group = parser.add_argument_group("applied loads (see docs/loads.md)")
+    group.add_argument("--force", type=force_option, action="append", dest="load_options",
+                       metavar="FX,FY,FZ@X,Y,Z",
+                       help="a force in newtons at a point (in the body's own length unit); "
+                            "repeatable")
+    group.add_argument("--hang", type=hang_option, action="append", dest="load_options",
+                       metavar="M@X,Y,Z", help="a mass in kg hung at a point (pulls along "
+                                               "gravity); repeatable")
+    group.add_argument("--push", type=lambda t: search_option("push", t), action="append",
+                       dest="load_options", metavar="F[@H]",
+                       help="a horizontal force of F newtons at the worst point and direction, "
+                            "no higher than H (the body's unit)")
+    group.add_argument("--press", type=lambda t: search_option("press", t), action="append",
+                       dest="load_options", metavar="F[@H]",
+                       help="a downward force of F newtons at the worst point of its top, no "
+                            "higher than H")
+
+
+def option_loads(args: argparse.Namespace, reading: Reading) -> tuple:
+    """The loads of the options (``--force``, ``--hang``, ``--push``, ``--press``) with the
+    spec's ``[[load]]`` tables, points and heights scaled to metres by the body's unit."""
+    from ..loads import loads_from_options
+
+    made = loads_from_options(getattr(args, "load_options", None),
+                              length_scale(reading.length_unit))
+    return tuple(reading.loads) + tuple(made)
+
+
+def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
+    """The :class:`~plumbob.stability.requirement.Requirement` the options ask (``--g``,
+    ``--tilt``, ``--toward``, ``--friction``, ``--margin``, ``--require-tilt``), with
+    gravity along ``down`` (``--down``, or a resting pose's, resolved by the command) and
+    the ``loads`` of :func:`option_loads`."""
+    from ..stability.requirement import Requirement
+
+    return Requirement(
+        down, getattr(args, "g", SEED_GRAVITY), getattr(args, "tilt", None),
+        getattr(args, "toward", None), getattr(args, "friction", None),
+        getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
+

@@ -1,0 +1,101 @@
+"""What a command prints as JSON: the header of a report on a file, the check that every
+number is finite, and the one JSON writer (short lists on one line).
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+from ..errors import ArgumentError
+from ..reading import Reading
+from ..results import jsonable
+
+__all__ = [
+    "header",
+    "require_finite",
+    "dump_json",
+    "print_json",
+]
+
+
+def header(reading: Reading, kind: str) -> dict[str, Any]:
+    """The keys every report on a body read from a file starts with: path, name, kind."""
+    out: dict[str, Any] = {}
+    if reading.path:
+        out["path"] = reading.path
+    name = getattr(reading.body, "name", None)
+    if name:
+        out["name"] = name
+    out["kind"] = kind
+    return out
+
+
+def require_finite(out: Any, where: str = "") -> Any:
+    """``out`` (a report's ``as_dict()``) when every number in it is finite; else an
+    :class:`ArgumentError` naming the key: finite inputs whose answer overflows double
+    precision (``--g 1e308``, ``--density 1e308``) are bad input, never a ``nan``,
+    ``inf`` or JSON ``null`` with exit status 0."""
+    items = out.items() if isinstance(out, dict) else enumerate(out) \
+        if isinstance(out, (list, tuple)) else None
+    if items is not None:
+        for key, value in items:
+            require_finite(value, f"{where}.{key}" if where else str(key))
+        return out
+    import numpy as np
+
+    if isinstance(out, (float, np.floating, np.ndarray)) and not np.all(np.isfinite(out)):
+        raise ArgumentError(f"the result overflows double precision ({where} is not finite): "
+                            "an input (--g, --density, a coordinate) is too large")
+    return out
+
+
+def _json_text(obj: Any, indent: int = 0) -> str:
+    """JSON text, indented, with short lists of numbers kept on one line."""
+    import json  # here: only --json output needs it
+
+    pad = "  " * (indent + 1)
+    if isinstance(obj, dict):
+        if not obj:
+            return "{}"
+        items = [f"{pad}{json.dumps(k)}: {_json_text(v, indent + 1)}" for k, v in obj.items()]
+        return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
+    if isinstance(obj, list):
+        flat = all(not isinstance(v, (dict, list)) for v in obj)
+        if flat and len(obj) <= 16:
+            return (
+                "["
+                + ", ".join(json.dumps(v, allow_nan=False, ensure_ascii=False) for v in obj)
+                + "]"
+            )
+        small = all(
+            isinstance(v, list) and all(not isinstance(u, (dict, list)) for u in v) for v in obj
+        )
+        if small and obj and len(obj) <= 4:
+            return "[" + ", ".join(_json_text(v) for v in obj) + "]"
+        if not obj:
+            return "[]"
+        return (
+            "[\n"
+            + ",\n".join(pad + _json_text(v, indent + 1) for v in obj)
+            + "\n"
+            + "  " * indent
+            + "]"
+        )
+    return json.dumps(obj, allow_nan=False, ensure_ascii=False)
+
+
+def dump_json(obj: dict, stream=None) -> None:
+    """Write exactly one JSON object (an ``as_dict()``, arrays and all) and a newline."""
+    stream = stream or sys.stdout
+    stream.write(_json_text(jsonable(obj)) + "\n")
+
+
+def print_json(out: dict, reading: Reading, notes: list[str]) -> None:
+    """A body's report as JSON: ``notes`` and the reader's ``notices`` close it."""
+    if notes:
+        out["notes"] = notes
+    if reading.notices:
+        out["notices"] = list(reading.notices)
+    dump_json(out)
+

@@ -1,0 +1,227 @@
+"""The command line's value types: what ``argparse`` calls on the text of an option
+(numbers, lengths with a unit, vectors, loads, assignments), each a one-line
+:class:`argparse.ArgumentTypeError` or :class:`~plumbob.errors.ArgumentError` on bad
+text. Only the standard library and plumbob's checks load here.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from ..errors import ArgumentError, DynamicsError, PlumbobError
+
+__all__ = [
+    "number",
+    "positive",
+    "count",
+    "non_negative",
+    "length",
+    "parse_vector",
+    "direction",
+    "material_name",
+    "tilt_limit",
+    "number_option",
+    "length_unit",
+    "assignment",
+    "force_option",
+    "hang_option",
+    "part_materials",
+    "search_option",
+]
+
+
+def number(text: str) -> float:
+    """An argparse type: a finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
+
+
+def positive(text: str) -> float:
+    """An argparse type: a positive finite number."""
+    value = number(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be positive, not {text}")
+    return value
+
+
+def count(text: str) -> int:
+    """A whole number of at least 1 (people in a crew, worker processes)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
+    return value
+
+
+def non_negative(text: str) -> float:
+    """An argparse type: a finite number ≥ 0."""
+    value = number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
+    return value
+
+
+def length(text: str) -> float:
+    """An argparse type: a length ≥ 0 in metres, or with a unit (``3mm``, ``0.5 in``), read
+    by :func:`plumbob.units.parse_length`."""
+    from ..units import parse_length
+
+    try:
+        value = parse_length(text)
+    except PlumbobError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite length, not {text}")
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
+    return value
+
+
+def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
+    """'X,Y[,Z]' → floats (for argparse ``type=``)."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected numbers separated by commas, not {text!r}"
+        ) from None
+    if len(values) not in dims:
+        raise argparse.ArgumentTypeError(
+            f"expected {' or '.join(map(str, dims))} numbers, not {text!r}"
+        )
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
+    return values
+
+
+def direction(text: str) -> list[float]:
+    """An argparse type: 'X,Y[,Z]', a direction (``--down``): finite and not zero."""
+    values = parse_vector(text)
+    if not any(values):
+        raise argparse.ArgumentTypeError(f"a direction must not be the zero vector: {text!r}")
+    return values
+
+
+def material_name(text: str) -> str:
+    """An argparse type: a material name, not empty (``--material ''`` is a mistake,
+    never "no material")."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("a material name must not be empty; "
+                                         "'plumbob materials' lists them")
+    return text
+
+
+def tilt_limit(text: str) -> float:
+    """An argparse type: a tilt in degrees from 0 to 90 (``--require-tilt``)."""
+    value = number(text)
+    if not 0 <= value <= 90:
+        raise argparse.ArgumentTypeError(f"a tilt must be from 0 to 90 degrees, not {text}")
+    return value
+
+
+def number_option(text: str, label: str, *, infinite: bool = False) -> float:
+    """The number given as option ``label`` of the dynamics commands, or a
+    :class:`DynamicsError` naming it; ``infinite`` lets ``inf`` through (a wall's mass)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise DynamicsError(f"{label} must be a number (got {text!r})") from None
+    if math.isnan(value) or (math.isinf(value) and not infinite):
+        kind = "a number" if infinite else "a finite number"
+        raise DynamicsError(f"{label} must be {kind} (got {text!r})")
+    return value
+
+
+def length_unit(text: str) -> str:
+    """``--units``: a length unit in any spelling a person types, as its symbol."""
+    from ..units import unit_symbol
+
+    try:
+        return unit_symbol(text)
+    except PlumbobError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
+
+
+def assignment(text: str) -> tuple[str, str]:
+    """An argparse type: ``NAME=VALUE`` (``--set``) as (name, value)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip() or not value.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, not {text!r}")
+    return name.strip(), value.strip()
+
+
+def _numbers(text: str, what: str, dims: tuple[int, ...]) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{what}: expected numbers separated by commas, not "
+                                         f"{text!r}") from None
+    if len(values) not in dims:
+        raise argparse.ArgumentTypeError(f"{what}: expected {' or '.join(map(str, dims))} "
+                                         f"numbers, not {len(values)} ({text!r})")
+    if not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"{what}: expected finite numbers, not {text!r}")
+    return values
+
+
+def _at(text: str, option: str, example: str) -> tuple[str, str]:
+    head, sep, tail = text.partition("@")
+    if not sep or not head.strip() or not tail.strip():
+        raise argparse.ArgumentTypeError(f"expected {example} (an @ before the point), not "
+                                         f"{text!r}")
+    return head, tail
+
+
+def force_option(text: str) -> tuple:
+    """An argparse type: ``FX,FY,FZ@X,Y,Z`` (``--force``): N at a point (the body's unit)."""
+    head, tail = _at(text, "--force", "FX,FY,FZ@X,Y,Z")
+    force = _numbers(head, "the force", (2, 3))
+    at = _numbers(tail, "the point", (2, 3))
+    if len(force) != len(at):
+        raise argparse.ArgumentTypeError(f"the force has {len(force)} components but the point "
+                                         f"{len(at)} coordinates: {text!r}")
+    return ("force", force, at)
+
+
+def hang_option(text: str) -> tuple:
+    """An argparse type: ``M@X,Y,Z`` (``--hang``): kg hung at a point (the body's unit)."""
+    head, tail = _at(text, "--hang", "M@X,Y,Z")
+    mass = _numbers(head, "the mass", (1,))[0]
+    if mass < 0:
+        raise argparse.ArgumentTypeError(f"a hung mass must be ≥ 0 kg, not {mass:g}")
+    return ("hang", mass, _numbers(tail, "the point", (2, 3)))
+
+
+def search_option(kind: str, text: str) -> tuple:
+    head, sep, tail = text.partition("@")
+    force = _numbers(head, "the force", (1,))[0]
+    if force < 0:
+        raise argparse.ArgumentTypeError(f"a {kind}'s force must be ≥ 0 N, not {force:g}")
+    height = _numbers(tail, "the highest point", (1,))[0] if sep else None
+    if height is not None and height <= 0:
+        raise argparse.ArgumentTypeError(f"a {kind}'s highest point must be above the floor, "
+                                         f"not {height:g}")
+    return (kind, force, height)
+
+
+def part_materials(given: list[str] | None) -> dict[str, str] | None:
+    """``--part-material NAME=MATERIAL`` options as ``{name or glob: material}``, in order."""
+    if not given:
+        return None
+    out: dict[str, str] = {}
+    for item in given:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip() or not value.strip():
+            raise ArgumentError(f"--part-material {item!r}: write NAME=MATERIAL, e.g. "
+                                "--part-material 'post*=aluminium'")
+        out[name.strip()] = value.strip()
+    return out
+
