@@ -399,3 +399,29 @@ def test_svg_groups_nested_a_little_deeply_are_read(tmp_path):
     result = run_limited("mass", _svg(tmp_path, body), "--json", "--units", "mm")
     assert result.status == 0, result.stderr
     assert json.loads(result.stdout)["area"] == pytest.approx(20e-6, rel=1e-12)
+
+
+def test_the_vectorised_screen_misses_no_polygon_that_validity_refuses():
+    """A file of many polygons asks ``validity_error`` (one polygon at a time) only for
+    those ``suspects`` flags: so every polygon it would refuse must be flagged."""
+    import shapely
+
+    from plumbob.bodies.validity import suspects, validity_error
+
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    cases = [shapely.Polygon(square),
+             shapely.Polygon([(0, 0), (2, 2), (2, 0), (0, 2)]),  # a bow-tie
+             shapely.Polygon([(0, 0), (1, 1), (2, 2)]),  # on a line
+             shapely.Polygon(square, [[(2, 2), (3, 2), (3, 3)]]),  # a hole outside
+             shapely.Polygon([(0, 0), (4, 0), (4, 4), (0, 4)],
+                             [[(1, 1), (3, 1), (3, 3), (1, 3)], [(1.5, 1.5), (2, 1.5), (2, 2)]]),
+             shapely.Polygon([(0, 0), (4, 0), (4, 4), (0, 4)], [[(1, 1), (2, 2), (3, 3)]]),  # flat hole
+             shapely.MultiPolygon([shapely.box(0, 0, 2, 2), shapely.box(1, 1, 3, 3)]),  # overlap
+             shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(2, 0, 3, 1)]),
+             shapely.Polygon([(0, 0), (1e-9, 0), (1e-9, 1e-9), (0, 1e-9)]),  # tiny, but a square
+             shapely.Polygon([(0, 0), (1, 0), (1, 1e-16), (0, 1e-16)])]  # a sliver of no area
+    flagged = suspects(cases)
+    refused = [validity_error(g, "p") is not None for g in cases]
+    assert refused == [False, True, True, True, True, True, True, False, False, True]
+    assert all(flagged[refused]), (flagged, refused)
+    assert not flagged[0] and not flagged[7] and not flagged[8]  # the good ones cost nothing

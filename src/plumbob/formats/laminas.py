@@ -20,7 +20,7 @@ import numpy as np
 from ..bodies.base import Body
 from ..bodies.lamina import Lamina
 from ..bodies.region import Region, Ring
-from ..bodies.validity import CHECK_TOLERANCE, validity_error
+from ..bodies.validity import CHECK_TOLERANCE, suspects, validity_error
 from ..errors import FormatError, GeometryError, fmt_point
 from ..limits import MAX_FLAT_POINTS, MAX_OUTLINE_PAIRS, MAX_OUTLINES, check_count
 from .checks import check_extent
@@ -296,9 +296,10 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
     names = unique_names([n for n, _ in named])
     parts = []
     several = len(named) > 1
-    for part_name, geometry in zip(names, geometries):  # per polygon
+    doubtful = suspects(geometries)
+    for part_name, geometry, doubt in zip(names, geometries, doubtful):  # per polygon
         label = f"polygon {part_name!r}" if several else "the polygon"
-        error = validity_error(geometry, label, path, scale)
+        error = validity_error(geometry, label, path, scale) if doubt else None
         if error is not None:
             raise error
         if not geometry.area > 0:
