@@ -19,7 +19,7 @@ import numpy as np
 from ..errors import PlumbobError, StabilityError
 from ..results import Key, Result
 
-__all__ = ["ParameterSolution", "solve_parameter"]
+__all__ = ["ParameterSolution", "solve_parameter", "spec_parameters_of", "solve_spec_parameter"]
 
 _STEPS = 20  # doublings of the step on each side: up to ~1000 times the start
 _FIRST_STEP = 1e-2  # of the parameter's size (or of 1 when it is 0)
@@ -114,3 +114,58 @@ def solve_parameter(name: str, start: float, evaluate: Callable[[float], float],
         g = gap(value)
     return ParameterSolution(name, start, float(value), float(value - start), measure,
                              required, g + required)
+
+
+def spec_parameters_of(path: str) -> dict[str, float]:
+    """The ``[parameters]`` of the spec at ``path``, in order; a :class:`SpecError` when
+    ``path`` is not a spec (a mesh has no parameters to change)."""
+    import os
+
+    from ..errors import SpecError
+    from ..loading import SUFFIXES
+    from ..spec.loader import spec_parameters
+
+    if SUFFIXES.get(os.path.splitext(path)[1].lower()) != "spec":
+        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
+                        "[parameters]", path=path)
+    return spec_parameters(path)
+
+
+def solve_spec_parameter(path: str, name: str, verdict_for: Callable[[float], object], *,
+                         require_tilt_deg: float | None = None, margin: float | None = None,
+                         loaded: bool = False) -> ParameterSolution:
+    """The smallest change of the spec's parameter ``name`` that meets one requirement:
+    a critical tilt of ``require_tilt_deg``, a ``margin`` (m), or (``loaded``) standing
+    under the loads, a factor of safety of at least 1.
+
+    ``verdict_for(value)``: the :class:`~plumbob.stability.verdict.Verdict` of the body
+    the spec builds with ``name = value`` (the caller reads and checks it, with its own
+    orientation and loads)."""
+    from ..errors import SpecError
+
+    asked = (require_tilt_deg is not None) + (margin is not None) + loaded
+    if asked != 1:
+        raise StabilityError(f"--solve-for needs {'a' if asked == 0 else 'one'} requirement: "
+                             "--require-tilt DEG, --margin M, or loads (--force, --hang, "
+                             "--push, --press, [[load]])")
+    known = spec_parameters_of(path)
+    if name not in known:
+        listed = ", ".join(known) if known else "none (the spec has no [parameters])"
+        raise SpecError(f"--solve-for: unknown parameter {name!r}; the spec's parameters: "
+                        f"{listed}", path=path)
+    tilt = require_tilt_deg is not None
+
+    def evaluate(value: float) -> float:
+        v = verdict_for(value)
+        if loaded:
+            factor = v.loaded.overturning_safety_factor
+            return 1e9 if factor is None else factor
+        if v.verdict == "neutral":
+            return 0.0
+        return v.critical_tilt_deg if tilt else v.margin
+
+    if loaded:
+        return solve_parameter(name, known[name], evaluate, 1.0,
+                               measure="overturning_safety_factor")
+    return solve_parameter(name, known[name], evaluate, require_tilt_deg if tilt else margin,
+                           measure="critical_tilt_deg" if tilt else "margin")

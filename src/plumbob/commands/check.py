@@ -94,59 +94,24 @@ def _verdict(args, body, props, loads: tuple = (), down=None):
                  props=props)
 
 
-def _spec_parameters(path: str) -> dict:
-    """The parameters of the spec at ``path``, or a SpecError when it is not a spec."""
-    import os
-
-    from ..errors import SpecError
-    from ..loading import SUFFIXES
-    from ..spec.loader import spec_parameters
-
-    if SUFFIXES.get(os.path.splitext(path)[1].lower()) != "spec":
-        raise SpecError("--solve-for changes a spec's parameter: give a spec (.toml) with "
-                        "[parameters]", path=path)
-    return spec_parameters(path)
-
-
 def _solve(args, down=None, loaded: bool = False):
     """The smallest change of ``--solve-for``'s parameter that meets the requirement
-    (``loaded``: that it stands under its loads, a factor of safety of at least 1)."""
-    from ..balance.solve import solve_parameter
-    from ..errors import SpecError, StabilityError
+    (``loaded``: that it stands under its loads), by
+    :func:`plumbob.balance.solve.solve_spec_parameter`: each value's body read with the
+    command's options and checked as the command checks it."""
+    from ..balance.solve import solve_spec_parameter
     from ._common import load_body, parameter_overrides
 
-    asked = (args.require_tilt is not None) + (args.margin is not None) + loaded
-    if asked != 1:
-        raise StabilityError(f"--solve-for needs {'a' if asked == 0 else 'one'} requirement: "
-                             "--require-tilt DEG, --margin M, or loads (--force, --hang, "
-                             "--push, --press, [[load]])")
-    known = _spec_parameters(args.path)
-    name = args.solve_for
-    if name not in known:
-        listed = ", ".join(known) if known else "none (the spec has no [parameters])"
-        raise SpecError(f"--solve-for: unknown parameter {name!r}; the spec's parameters: "
-                        f"{listed}", path=args.path)
-    tilt = args.require_tilt is not None
-
-    def evaluate(value: float) -> float:
-        given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}), name: value}
+    def verdict_for(value: float):
+        given = {**(parameter_overrides(getattr(args, "parameters", None)) or {}),
+                 args.solve_for: value}
         reading = load_body(args, parameters=given)
-        body = reading.body
         loads = option_loads(args, reading) if loaded else ()
-        v = _verdict(args, body, body.mass_properties(), loads, down=down)
-        if loaded:
-            factor = v.loaded.overturning_safety_factor
-            return 1e9 if factor is None else factor
-        if v.verdict == "neutral":
-            return 0.0
-        return v.critical_tilt_deg if tilt else v.margin
+        return _verdict(args, reading.body, reading.body.mass_properties(), loads, down=down)
 
-    if loaded:
-        return solve_parameter(name, known[name], evaluate, 1.0,
-                               measure="overturning_safety_factor")
-    return solve_parameter(name, known[name], evaluate,
-                           args.require_tilt if tilt else args.margin,
-                           measure="critical_tilt_deg" if tilt else "margin")
+    return solve_spec_parameter(args.path, args.solve_for, verdict_for,
+                                require_tilt_deg=args.require_tilt, margin=args.margin,
+                                loaded=loaded)
 
 
 def run(args) -> int:
@@ -155,7 +120,9 @@ def run(args) -> int:
     if args.toward is not None and args.tilt is None:
         raise StabilityError("--toward needs --tilt DEG")
     if args.solve_for is not None:
-        _spec_parameters(args.path)  # a mesh has no parameters: say so before reading it
+        from ..balance.solve import spec_parameters_of
+
+        spec_parameters_of(args.path)  # a mesh has no parameters: say so before reading it
     explain = getattr(args, "explain", None)
     if explain is not None and explain != "-" and not explain.lower().endswith((".md", ".html")):
         raise StabilityError(f"--explain writes a .md or .html file, not {explain!r} (or give "

@@ -120,37 +120,9 @@ def run(args) -> int:
             out["notices"] = list(reading.notices)
         to_json(out)
         return 0
-    from ..report import clean, format_vector
-    from ..report import format_number as num  # the text report's formatting (not --json's)
+    from ..report.poses import poses_text
     from ..stability.support import body_size
 
-    size = body_size(body)
-
-    def vec(values, digits: int = 6) -> str:
-        return format_vector(clean(values, size), digits)
-
-    length = units.length_unit
-    centre = units.length(clean(result.center_of_mass, size))
-    print(f"plumbob poses {args.path}: {len(result)} stable pose(s), mass "
-          f"{num(units.mass(props.mass))} {units.mass_unit}, centre of mass "
-          f"{format_vector(centre)} {length}")
-    print(f"{'#':>3}  {'probability':>11}  {'down':<28}{'height ' + length:>11}{'tilt °':>9}"
-          f"{'barrier J':>13}")
-    for k, p in enumerate(shown, 1):
-        barrier = "—" if p.energy_barrier is None else num(p.energy_barrier, 5)
-        tag = ""
-        if p.kind == "rolling":
-            tag = "  rolls" + ("" if p.axis is None else f" about {vec(p.axis, 4)}")
-        elif p.kind == "rocking":
-            tag = "  rocks"
-        height = num(units.length(p.com_height), 5)
-        print(f"{k:>3}  {p.probability:>11.6f}  {vec(p.down, 4):<28}{height:>11}"
-              f"{num(p.critical_tilt_deg, 4):>9}{barrier:>13}{tag}")
-    if rest:
-        print(f"     {rest} more pose(s) with total probability {rest_p:.4g} not shown "
-              "(--top, --min-probability)")
-    for path in written:
-        print(f"wrote {path}")
-    for note in notes:
-        print(f"note: {note}")
+    print(poses_text(result, shown, args.path, body_size(body), units, left_out=(rest, rest_p),
+                     written=written, notes=notes))
     return 0
