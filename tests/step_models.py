@@ -141,3 +141,38 @@ def bow_tie_prism():
     polygon.Close()
     face = BRepBuilderAPI_MakeFace(polygon.Wire(), True).Face()
     return BRepPrimAPI_MakePrism(face, gp_Vec(0, 0, 5)).Shape()
+
+
+def pierced_cube():
+    """A 10 mm cube whose corner (10, 10, 10) is pushed down to (10, 10, -2), its faces
+    split into planar triangles: the top faces pass through the bottom face. Every face
+    is valid and the shell is closed (OpenCASCADE's BRepCheck passes it) and its volume
+    is positive (600 mm³): only the faces crossing one another make it not a solid."""
+    from OCP.BRepBuilderAPI import (
+        BRepBuilderAPI_MakeFace,
+        BRepBuilderAPI_MakePolygon,
+        BRepBuilderAPI_MakeSolid,
+        BRepBuilderAPI_Sewing,
+    )
+    from OCP.gp import gp_Pnt
+    from OCP.TopoDS import TopoDS
+
+    def at(corner):
+        return (10, 10, -2) if corner == (10, 10, 10) else corner
+
+    quads = [((0, 0, 0), (0, 10, 0), (10, 10, 0), (10, 0, 0)),
+             ((0, 0, 10), (10, 0, 10), (10, 10, 10), (0, 10, 10)),
+             ((0, 0, 0), (10, 0, 0), (10, 0, 10), (0, 0, 10)),
+             ((0, 10, 0), (0, 10, 10), (10, 10, 10), (10, 10, 0)),
+             ((0, 0, 0), (0, 0, 10), (0, 10, 10), (0, 10, 0)),
+             ((10, 0, 0), (10, 10, 0), (10, 10, 10), (10, 0, 10))]
+    sewing = BRepBuilderAPI_Sewing(1e-6)
+    for q in quads:  # outward, each quad as two triangles
+        for tri in ((q[0], q[1], q[2]), (q[0], q[2], q[3])):
+            polygon = BRepBuilderAPI_MakePolygon()
+            for corner in tri:
+                polygon.Add(gp_Pnt(*map(float, at(corner))))
+            polygon.Close()
+            sewing.Add(BRepBuilderAPI_MakeFace(polygon.Wire(), True).Face())
+    sewing.Perform()
+    return BRepBuilderAPI_MakeSolid(TopoDS.Shell(sewing.SewedShape())).Solid()

@@ -285,6 +285,15 @@ def _reading(path: str, parts: list[dict], mm: float, notices: tuple[str, ...],
     notices += (f"mass properties from the B-rep (relative error ≤ {GPROP_ERROR_FLOOR:g}); "
                 f"hulls, contact and pictures from a tessellation within {worst:.1g} of each "
                 f"part's size (tilts to about {np.degrees(worst):.1g}°)",)
+    unchecked = [n for n, p in zip(names, parts) if not p.get("self_checked", True)]
+    if unchecked:
+        from .step_worker import SELF_CHECK_FACES
+
+        notices += (f"{', '.join(repr(n) for n in unchecked[:5])}"
+                    f"{f' and {len(unchecked) - 5} more' if len(unchecked) > 5 else ''}: over "
+                    f"{SELF_CHECK_FACES} faces, not checked for faces crossing each other "
+                    "(OpenCASCADE's check would take minutes); a self-intersecting solid would "
+                    "give a wrong volume",)
     try:
         body = assemble(bodies, stem(path))
     except PlumbobError as error:
