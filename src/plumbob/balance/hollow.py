@@ -29,7 +29,7 @@ from the file, as ``plumbob check`` would.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -39,7 +39,7 @@ from ..bodies.offset import InwardOffset, manifold_triangles
 from ..bodies.solid import MeshSolid
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
-from ..results import Result
+from ..results import Key, Result
 from ..tolerances import size_of
 from .cells import grid_cells
 from .interior import carving_interior
@@ -77,12 +77,16 @@ class HollowBound(Result):
 
     _repr_fields = ("measure", "value", "relaxed")
 
-    def as_dict(self) -> dict[str, Any]:
-        """``measure``, ``value``, ``relaxed``, ``cell_size``, ``wall``, ``normal``,
-        ``offset`` (SI, degrees for a tilt)."""
-        return {"measure": self.measure, "value": self.value, "relaxed": self.relaxed,
-                "cell_size": self.cell_size, "wall": self.wall, "normal": self.normal,
-                "offset": self.offset}
+    #: the keys of ``bound`` in ``plumbob balance --wall --json``
+    KEYS = (
+        Key("measure", "", "`margin`, `critical_tilt_deg` or `slack`: what the values are"),
+        Key("value", "m, °", "the best of any carve, by exact plane cuts of the interior"),
+        Key("relaxed", "m, °", "the same from the relaxation at the cell size"),
+        Key("cell_size", "m", "the relaxation's cells"),
+        Key("wall", "m", "the wall thickness"),
+        Key("normal", "", "the best cut: the interior where normal · p ≥ offset emptied"),
+        Key("offset", "m", "the best cut's offset"),
+    )
 
     def sentence(self) -> str:
         """The bound in words: ``the best any carve with 2 mm walls reaches is …``."""
@@ -140,22 +144,30 @@ class HollowResult(Result):
         """kg taken out."""
         return self.before.mass - self.after.mass
 
-    def as_dict(self) -> dict[str, Any]:
-        """``wall``, ``mass_before``, ``mass_after``, ``removed_mass``,
-        ``center_of_mass_before``, ``center_of_mass_after``, ``target_met``, ``lightest``,
-        ``cut`` (``normal``, ``offset`` m, or None), ``void_pieces``, ``bound``,
-        ``offset``, ``seconds`` (SI)."""
-        cut = None if self.cut is None else {"normal": self.cut.normal,
-                                             "offset": self.cut.offset}
-        return {
-            "wall": self.wall, "mass_before": self.before.mass, "mass_after": self.after.mass,
-            "removed_mass": self.removed_mass,
-            "center_of_mass_before": self.before.center_of_mass,
-            "center_of_mass_after": self.after.center_of_mass,
-            "target_met": self.target_met, "lightest": self.lightest, "cut": cut,
-            "void_pieces": self.pieces, "bound": self.bound.as_dict(),
-            "offset": self.offset.as_dict(), "seconds": self.seconds,
-        }
+    @property
+    def cut_dict(self) -> dict[str, Any] | None:
+        """The cut emptied as ``normal`` and ``offset`` (m), or None."""
+        return None if self.cut is None else {"normal": self.cut.normal,
+                                              "offset": self.cut.offset}
+
+    #: the keys of ``hollow`` in ``plumbob balance --wall --json`` (SI)
+    KEYS = (
+        Key("wall", "m", "the wall thickness asked for"),
+        Key("mass_before", "kg", "the body's mass", attr="before.mass"),
+        Key("mass_after", "kg", "the carved body's", attr="after.mass"),
+        Key("removed_mass", "kg", "what was taken out"),
+        Key("center_of_mass_before", "m", "the body's centre of mass",
+            attr="before.center_of_mass"),
+        Key("center_of_mass_after", "m", "the carved body's", attr="after.center_of_mass"),
+        Key("target_met", "", "whether the carved body meets every row of the target"),
+        Key("lightest", "", "whether the most material was removed (else the least)"),
+        Key("cut", "", "the cut emptied: `normal`, `offset` (m); `null` when nothing is",
+            attr="cut_dict"),
+        Key("void_pieces", "", "how many separate pieces the void has", attr="pieces"),
+        Key("bound", "", "the best any carve reaches (`HollowBound`)"),
+        Key("offset", "", "the interior's inward offset: how it was made, its error"),
+        Key("seconds", "s", "the time the plan took"),
+    )
 
 
 def _density(body: Body) -> float | None:
@@ -438,17 +450,27 @@ class WrittenHollow(Result):
 
     _repr_fields = ("out", "void")
 
-    def as_dict(self) -> dict[str, Any]:
-        """The plan's keys, then ``out``, ``void``, ``mass_after`` and
-        ``center_of_mass_after`` (from the file), ``margin``, ``critical_tilt_deg``,
-        ``verdict``."""
-        out = self.plan.as_dict()
-        out.update(out=self.out, void=self.void, mass_after=self.mass_properties.mass,
-                   center_of_mass_after=self.mass_properties.center_of_mass,
-                   removed_mass=self.plan.before.mass - self.mass_properties.mass,
-                   verdict=self.verdict.verdict, margin=self.verdict.margin,
-                   critical_tilt_deg=self.verdict.critical_tilt_deg)
-        return out
+    @property
+    def removed_mass(self) -> float:
+        """kg taken out, by the body read back from ``out``."""
+        return self.plan.before.mass - self.mass_properties.mass
+
+    #: the plan's keys (those after the carving measured from the file), then the files
+    #: and the check of the body read back
+    KEYS = (
+        *(replace(k, attr=f"plan.{k.attr or k.name}") if k.name not in (
+            "mass_after", "center_of_mass_after", "removed_mass") else replace(
+            k, doc=k.doc + ", read back from the file",
+            attr={"mass_after": "mass_properties.mass",
+                  "center_of_mass_after": "mass_properties.center_of_mass",
+                  "removed_mass": "removed_mass"}[k.name])
+          for k in HollowResult.KEYS),
+        Key("out", "", "the carved body's file"),
+        Key("void", "", "the void's file (`null`: not asked for, or nothing emptied)"),
+        Key("verdict", "", "plumbob's check of the body read back", attr="verdict.verdict"),
+        Key("margin", "m", "its margin", attr="verdict.margin"),
+        Key("critical_tilt_deg", "°", "its critical tilt", attr="verdict.critical_tilt_deg"),
+    )
 
 
 def write_hollow(plan: HollowResult, out: str, *, void: str | None = None, units: str | None = None,

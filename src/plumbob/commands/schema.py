@@ -30,6 +30,8 @@ DOCUMENTED = {
     "ParameterSolution": "plumbob.balance.solve",
     "BalanceResult": "plumbob.balance.result",
     "LoadedBalance": "plumbob.balance.loaded",
+    "WrittenHollow": "plumbob.balance.hollow",
+    "HollowBound": "plumbob.balance.hollow",
     "Poses": "plumbob.stability.poses.result",
     "Pose": "plumbob.stability.poses.result",
     "Drops": "plumbob.stability.drops.result",
