@@ -398,7 +398,10 @@ class Hollowing:
 
         clock = time.perf_counter()
         before, wall = self.before, self.wall
-        safety = 2e-6 * self.size  # m of slack: the file's round-off, and the check's contact
+        # m of slack: the file's round-off, and the check's contact — more than the ballast
+        # plan's own (two contact tolerances, 1e-6 of the size each), so a carve that meets
+        # the target needs no ballast after it
+        safety = 4e-6 * self.size
         bound, best = hollow_bound(self.problem, target, wall)
         if float(np.min(target.slack(before.center_of_mass))) >= 0:
             return HollowResult(self.outer_mesh, None, wall, self.offset, bound, None, before,

@@ -1,148 +1,112 @@
 """The interior hollowing may empty: the inward offset by the wall, made true.
 
-A closed-form offset (:mod:`plumbob.bodies.offset`) is taken as it is. A level-set
-offset's surface lies within about its grid step of the true one, and a wall must never
-be thinner than asked: each corner of its surface is moved along its normal onto the
-exact offset (its exact distance to the body's surface), a little deeper where a flat
-face between corners could come nearer (:func:`carving_interior`).
+A closed-form offset (:mod:`plumbob.bodies.offset`) is taken as it is. Otherwise the
+offset is a level set of the distance to the surface (exact distances at the points of a
+grid, extracted by manifold3d), whose surface lies within about its grid step of the true
+one; and a wall must never be thinner than asked: each corner of its surface is then
+moved along its normal onto the exact offset (its exact distance to the body's surface,
+libigl's search), a little deeper where a flat face between corners could come nearer
+(:func:`carving_interior`).
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from ..bodies.base import Body
-from ..bodies.offset import inward_offset, manifold_triangles
+from ..bodies.offset import InwardOffset, closed_form_offset, level_set_manifold, manifold_triangles
 from ..bodies.solid import MeshSolid
 from ..errors import GeometryError
 
-__all__ = ["carving_interior", "WALL_STEPS", "PROJECTED_TRIANGLES"]
+__all__ = ["carving_interior", "WALL_STEPS"]
 
 #: a level-set offset's step is at most the wall over this
 WALL_STEPS = 2
-#: the exact projection's distance search grows with the surface's fineness against the
-#: wall (a 53k-triangle figurine with 2 mm walls ran for minutes): past this many surface
-#: triangles the level set is taken deeper by its own error bound instead (walls thicker
-#: than asked by at most h² / (2 wall), never thinner)
-PROJECTED_TRIANGLES = 20_000
 
 
 def carving_interior(body: Body, wall: float, step: float | None, size: float):
-    """The inward offset by ``wall``, its manifold3d geometry, and a rougher one to search on.
+    """The inward offset by ``wall`` (an :class:`InwardOffset`), its manifold3d geometry, and
+    a rougher one to search on (the level set as extracted, before its corners are moved).
 
-    A level-set offset's surface is then made true (:func:`_projected`): its corners put on
-    the exact offset, a little deeper where its flat faces could cut into a wall."""
+    A level-set offset's surface is made true (:func:`_projected`): its corners put on the
+    exact offset, a little deeper where its flat faces could cut into a wall. Should that
+    not settle, the level set is taken deeper by what its grid could hide instead (see
+    :func:`_deeper`): walls thicker than asked, never thinner."""
     h = float(step) if step is not None else min(wall / WALL_STEPS, size / 64)
+    if not (np.isfinite(h) and h > 0):
+        raise GeometryError(f"an offset step must be a positive number, not {step!r}")
     # float32 files move vertices by ~1e-7 of the size: keep the exact walls that much thicker
     depth = wall * (1 + 1e-6) + 1e-6 * size
-    offset = inward_offset(body, depth, step=h)
-    if offset.body is None:
-        raise GeometryError(f"nothing lies {wall:g} m inside the body: give a thinner --wall")
-    interior = rough = offset.body.to_geometry(256)
-    if not offset.exact:
-        surface = body.surface(256)[0]
-        projected = _projected(interior, surface, depth) \
-            if len(surface) <= PROJECTED_TRIANGLES else None
-        if projected is None:  # the level set taken deeper by its own error instead
-            offset = inward_offset(body, depth, step=h, extra=h * h / (2 * wall))
-            if offset.body is None:
-                raise GeometryError(f"nothing lies {wall:g} m inside the body: give a "
-                                    "thinner --wall")
-            interior = rough = offset.body.to_geometry(256)
-        else:
-            interior, deepest = projected
-            offset = replace(offset, body=MeshSolid(manifold_triangles(interior),
-                                                    offset.body.densities().pop(), exact=False),
-                             method=offset.method + ", corners on the exact offset",
-                             surface_error=deepest)
+    offset = closed_form_offset(body, depth)
+    if offset is not None:
+        if offset.body is None:
+            raise _too_thick(wall)
+        interior = offset.body.to_geometry(256)
+        return offset, interior, interior
+    from ..bodies.distance import SurfaceDistance
+
+    triangles = body.surface(256)[0]
+    surface = SurfaceDistance(triangles)
+    rough = level_set_manifold(triangles, depth, h, surface=surface)
+    if rough.is_empty() or rough.volume() <= 0:
+        raise _too_thick(wall)
+    density = body.densities().pop()
+    density = density if isinstance(density, float) else None
+    projected = _projected(rough, surface, depth)
+    if projected is not None:
+        interior, deepest = projected
+        method = "level set, corners on the exact offset"
+    else:
+        interior, deepest = _deeper(triangles, depth, h, surface), 2 * h
+        method = "level set taken deeper by its grid's reach"
+        if interior.is_empty() or interior.volume() <= 0:
+            raise _too_thick(wall)
+    # the interior's volume is that of the exact offset less at most its surface × the
+    # extra depth of its corners
+    error = interior.surface_area() * deepest / interior.volume()
+    inner = MeshSolid(manifold_triangles(interior), density, exact=False, relative_error=error,
+                      note=f"the inward offset is a level set on a {h:.3g} m grid, its "
+                           "corners on the exact offset")
+    offset = InwardOffset(inner, depth, False, method, h, deepest, error)
     return offset, interior, rough
 
 
-def _projected(interior, triangles: np.ndarray, depth: float):
+def _too_thick(wall: float) -> GeometryError:
+    return GeometryError(f"nothing lies {wall:g} m inside the body: give a thinner --wall")
+
+
+def _deeper(triangles: np.ndarray, depth: float, h: float, surface):
+    """The level set taken ``2 h`` deeper: manifold3d's marching tetrahedra (edges at most
+    ``h``) interpolate exact distances at the grid's corners (and their trilinear means at
+    the cells' centres, within ``√3 h / 2`` above the truth), so a point of its surface is
+    within ``h + √3 h / 2 < 2 h`` of depth of what the level asks."""
+    return level_set_manifold(triangles, depth + 2 * h, h, surface=surface)
+
+
+def _projected(interior, surface, depth: float):
     """The level-set interior with each corner moved along its normal onto the exact
-    offset: where the distance to the body's surface (exact, to the nearest of a few
-    candidate triangles) is ``depth + e² / (6 depth)``, ``e`` the longest edge of a face
-    about it. Then no point of a face is nearer than ``depth``: a point ``p`` of a face
-    is a weighted mean of its corners ``v_i``, so for any surface point ``q``,
-    ``|q − p|² = Σ w_i |q − v_i|² − Σ w_i |v_i − p|² ≥ (depth + δ)² − R²`` with ``R ≤ e/√3``
-    the face's enclosing radius, and ``2 depth δ ≥ e²/3`` makes it ≥ ``depth²``. The corners are
-    moved once, the edges then split to a third of the depth, and moved again. Returns
-    (the manifold, the largest extra depth, m), or None when they would not move cleanly."""
-    from scipy.spatial import cKDTree
-
-    from ..bodies.distance import point_triangle_distances
-
-    gap = depth / 2
-    samples, owner = _own_samples(triangles, gap)
-    if samples is None:  # too fine a mesh to sample: the level set taken deeper instead
-        return None
-    tree = cKDTree(samples, balanced_tree=False, compact_nodes=False)
-
-    def rough(points: np.ndarray) -> np.ndarray:
-        """Nearly: the nearest of the triangles of the 8 nearest samples."""
-        which = tree.query(points, k=min(8, len(samples)))[1].reshape(len(points), -1)
-        return point_triangle_distances(points[:, None, :], triangles[owner[which]]).min(axis=1)
-
-    def distance(points: np.ndarray) -> np.ndarray:
-        """Exact: the nearest triangle has a sample within ``gap`` of its nearest point, so
-        within the distance found + ``gap``: the triangles of the 48 nearest samples are
-        measured, and where a farther sample could still be that near, every triangle
-        owning a sample within it."""
-        k = min(48, len(samples))
-        near, which = tree.query(points, k=k)
-        near, which = near.reshape(len(points), -1), which.reshape(len(points), -1)
-        out = np.full(len(points), np.inf)
-        for j in range(0, k, 8):  # eight candidates at a time: small temporaries
-            cand = triangles[owner[which[:, j:j + 8]]]
-            out = np.minimum(out, point_triangle_distances(points[:, None, :], cand).min(axis=1))
-        unsure = np.flatnonzero(near[:, -1] < out + gap)
-        if len(unsure):
-            lists = tree.query_ball_point(points[unsure], out[unsure] + gap)
-            counts = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(unsure))
-            at = np.repeat(unsure, counts)
-            tris = owner[np.concatenate(lists).astype(np.int64)]
-            pairs = np.unique(at * len(triangles) + tris)
-            at, tris = pairs // len(triangles), pairs % len(triangles)
-            np.minimum.at(out, at, point_triangle_distances(points[at], triangles[tris]))
-        return out
-
-    first = _settled(interior, rough, depth, strict=False)
+    offset: where the exact distance to the body's surface is ``depth + e² / (6 depth)``,
+    ``e`` the longest edge of a face about it. Then no point of a face is nearer than
+    ``depth``: a point ``p`` of a face is a weighted mean of its corners ``v_i``, so for any
+    surface point ``q``, ``|q − p|² = Σ w_i |q − v_i|² − Σ w_i |v_i − p|² ≥ (depth + δ)² − R²``
+    with ``R ≤ e/√3`` the face's enclosing radius, and ``2 depth δ ≥ e²/3`` makes it
+    ≥ ``depth²``. The corners are moved once, the edges then split to a third of the depth,
+    and moved again. Returns (the manifold, the largest extra depth, m), or None when
+    they would not settle cleanly."""
+    first = _settled(interior, surface, depth, strict=False)
     if first is None:
         return None
-    return _settled(first[0].refine_to_length(depth / 3), distance, depth, strict=True)
+    return _settled(first[0].refine_to_length(depth / 3), surface, depth, strict=True)
 
 
-def _own_samples(triangles: np.ndarray, gap: float):
-    """Points inside each triangle, its own (none shared with a neighbour): the centroids
-    of its pieces when each side is cut into ``n`` steps, ``n`` its longest edge over
-    ``gap`` — every point of a triangle is within ``gap`` of one of them. Returns
-    (points, the triangle of each), or (None, None) past plumbob's sample limit."""
-    from ..limits import MAX_SAMPLES
-
-    edges = np.linalg.norm(triangles - np.roll(triangles, 1, axis=1), axis=2).max(axis=1)
-    steps = np.maximum(1, np.ceil(edges / gap)).astype(np.int64)
-    if float((steps * steps).sum()) > 2 * MAX_SAMPLES:
-        return None, None
-    points, owner = [], []
-    for n in np.unique(steps):
-        which = np.flatnonzero(steps == n)
-        i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-        up = i + j <= n - 1  # pieces pointing up, centroid at (i + 1/3, j + 1/3) / n
-        down = i + j <= n - 2  # and down, at (i + 2/3, j + 2/3) / n
-        a = np.concatenate((i[up] + 1 / 3, i[down] + 2 / 3))
-        b = np.concatenate((j[up] + 1 / 3, j[down] + 2 / 3))
-        w = np.stack((n - a - b, a, b), axis=1) / n  # (n², 3)
-        points.append(np.einsum("mk,tkd->tmd", w, triangles[which]).reshape(-1, 3))
-        owner.append(np.repeat(which, len(w)))
-    return np.concatenate(points), np.concatenate(owner)
-
-
-def _settled(interior, distance, depth: float, strict: bool):
+def _settled(interior, surface, depth: float, strict: bool):
     """``interior``'s corners moved along their normals to ``depth + e² / (6 depth)`` from
     the surface (``strict``: at least that, all but a thousandth of them within 1 % of the
-    depth; else within 2 % either way); (the manifold, the largest extra depth) or None."""
+    depth; else within 2 % either way); (the manifold, the largest extra depth) or None.
+
+    Each step is Newton's along the normal: the distance grows at the rate ``−n·g`` (``g``
+    the unit vector from the nearest surface point), and only the corners not yet
+    settled move and are measured again."""
     import manifold3d
 
     mesh = interior.to_mesh64()
@@ -164,17 +128,26 @@ def _settled(interior, distance, depth: float, strict: bool):
             np.maximum.at(longest, faces[:, j], edges)
         return depth + longest**2 / (6 * depth)
 
+    distance, nearest = surface.query(verts)
     for _ in range(12):
         floor = least()
         goal = floor + 1e-3 * depth  # aimed a hair deeper, so the corners end at least there
-        gap = distance(verts) - goal
+        gap = distance - goal
         # a corner left deeper is a thicker wall, not a thinner one: a few are let be
         # (where the distance has a crease and the steps would go back and forth)
-        if strict and np.all(gap >= floor - goal) and np.quantile(gap, 0.999) <= 1e-2 * depth:
-            break
-        if not strict and np.all(np.abs(gap) <= 2e-2 * depth):
-            break
-        verts += gap[:, None] * normal
+        if strict:
+            shallow = gap < floor - goal
+            if not shallow.any() and np.quantile(gap, 0.999) <= 1e-2 * depth:
+                break
+            move = shallow | (gap > 0.5e-2 * depth)
+        else:
+            if np.all(np.abs(gap) <= 2e-2 * depth):
+                break
+            move = np.abs(gap) > 1e-2 * depth
+        away = (verts[move] - nearest[move]) / np.maximum(distance[move], 1e-300)[:, None]
+        rate = np.clip(-np.einsum("ij,ij->i", normal[move], away), 0.5, 1.0)
+        verts[move] += (gap[move] / rate)[:, None] * normal[move]
+        distance[move], nearest[move] = surface.query(verts[move])
     else:
         return None
     # Mesh64: manifold3d's Mesh would round the corners to float32

@@ -8,11 +8,8 @@ distance to it, and a level set is extracted from values on a grid
   column (a vertical line), with a watertight tie rule: every edge function is
   evaluated with its two ends in one canonical order, so a column through a
   shared edge or vertex is claimed by exactly one of the faces meeting there;
-* **how far** — the exact distance to the nearest of a few candidate triangles,
-  the candidates found by a k-d tree over points sampled on the surface. The
-  distance to a real triangle is never below the true distance; it equals it
-  whenever the nearest triangle is a candidate, which the sampling makes the
-  rule (the report's error allows for the exception: see :func:`distance_grid`).
+* **how far** — the exact distance to the surface (:class:`SurfaceDistance`: libigl's
+  bounding-box tree over the triangles, every triangle that could be nearer measured).
 """
 
 from __future__ import annotations
@@ -22,12 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..limits import MAX_SAMPLES, check_count
-from ..mesh.weld import merge_vertices
 
-__all__ = ["DistanceGrid", "distance_grid", "point_triangle_distances", "surface_samples"]
+__all__ = ["DistanceGrid", "SurfaceDistance", "distance_grid", "point_triangle_distances"]
 
-#: candidate triangles per grid point (nearest surface samples)
-CANDIDATES = 8
 #: grid points per pass (candidate arrays of a few tens of MB)
 _BLOCK = 1 << 16
 #: the coarse pre-pass of a banded grid takes every this many-th point along each axis
@@ -39,54 +33,53 @@ class DistanceGrid:
     """Signed distances on a regular grid: positive inside the mesh.
 
     origin: (3,) m, the first grid point; step: m, the spacing; values: (nx, ny, nz), m.
-    sample_gap: m, no point of the surface is further than this from a sample, so a
-        distance is off by at most this much when the nearest triangle was missed.
+    The distances are exact (to round-off) within the band asked for.
     """
 
     origin: np.ndarray
     step: float
     values: np.ndarray
-    sample_gap: float
 
 
-def surface_samples(triangles: np.ndarray, gap: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points on the mesh (n, 3) and the triangle each lies on (n,): every surface point
-    lies within ``gap`` m of one.
+class SurfaceDistance:
+    """Exact distances from points to a triangle mesh's surface (the nearest point of any
+    of its filled triangles), at array speed: libigl's axis-aligned bounding-box tree over
+    the triangles, built once, searched in C++ for each point (every triangle whose box is
+    nearer than the nearest found so far is measured, so none is missed). The triangles
+    are shifted to a local origin first, so distances keep their digits far from the
+    file's origin.
 
-    Each triangle is halved across its longest edge until no edge is longer than
-    ``gap`` (a point of such a piece is within ``gap`` of its corners); the pieces'
-    corners are the samples. Halving the longest edge keeps long slivers (a
-    cylinder's facets) to a count in proportion to their length, not its square.
-
-    >>> tri = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
-    >>> pts, ids = surface_samples(tri, 0.5)
-    >>> len(pts), set(ids.tolist())
-    (9, {0})
+    >>> from plumbob.bodies.primitives import box
+    >>> surface = SurfaceDistance(box(2, 2, 2).triangles)
+    >>> distance, nearest = surface.query(np.array([[1.0, 1, 1], [1, 1, 3], [3, 3, 3]]))
+    >>> distance.round(12).tolist(), nearest[2].tolist()
+    ([1.0, 1.0, 1.732050807569], [2.0, 2.0, 2.0])
     """
-    tri = np.asarray(triangles, dtype=float)
-    ids = np.arange(len(tri))
-    done_tri, done_ids = [], []
-    while len(tri):
-        edges = np.linalg.norm(np.roll(tri, -1, axis=1) - tri, axis=2)  # edge k: corner k → k+1
-        longest = edges.argmax(axis=1)
-        done = edges.max(axis=1) <= gap
-        done_tri.append(tri[done])
-        done_ids.append(ids[done])
-        tri, ids, longest = tri[~done], ids[~done], longest[~done]
-        check_count("surface pieces sampled", 2.0 * len(tri) + sum(map(len, done_ids)),
-                    2 * MAX_SAMPLES, hint="use a coarser offset step (samples are a step apart)")
-        order = (longest[:, None] + np.arange(3)) % 3  # the longest edge first
-        t = tri[np.arange(len(tri))[:, None], order]
-        mid = (t[:, 0] + t[:, 1]) / 2
-        tri = np.concatenate((np.stack((t[:, 0], mid, t[:, 2]), axis=1),
-                              np.stack((mid, t[:, 1], t[:, 2]), axis=1)))
-        ids = np.concatenate((ids, ids))
-    # a corner shared by several pieces is one sample (of any of its triangles: the
-    # distance to a corner is the same from each)
-    points, index = merge_vertices(np.concatenate(done_tri).reshape(-1, 3))
-    owner = np.empty(len(points), dtype=np.int64)
-    owner[index] = np.repeat(np.concatenate(done_ids), 3)
-    return points, owner
+
+    def __init__(self, triangles: np.ndarray):
+        import igl
+
+        tri = np.asarray(triangles, dtype=float).reshape(-1, 3, 3)
+        if not len(tri):
+            raise ValueError("a surface needs triangles")
+        self.origin = tri.reshape(-1, 3).min(axis=0)
+        # a soup: the tree needs no shared corners
+        self.vertices = np.ascontiguousarray((tri - self.origin).reshape(-1, 3))
+        self.faces = np.arange(3 * len(tri), dtype=np.int64).reshape(-1, 3)
+        self.tree = igl.AABB()
+        self.tree.init(self.vertices, self.faces)
+
+    def query(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(the distance (n,) m, the nearest surface point (n, 3)) of each point (n, 3)."""
+        local = np.ascontiguousarray(np.asarray(points, dtype=float).reshape(-1, 3) - self.origin)
+        if not len(local):
+            return np.zeros(0), np.zeros((0, 3))
+        squared, _, nearest = self.tree.squared_distance(self.vertices, self.faces, local)
+        return np.sqrt(np.maximum(squared, 0.0)), nearest + self.origin
+
+    def distances(self, points: np.ndarray) -> np.ndarray:
+        """The distance (n,) m from each point (n, 3)."""
+        return self.query(points)[0]
 
 
 def point_triangle_distances(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -184,7 +177,7 @@ def _column_winding(triangles: np.ndarray, xs: np.ndarray, ys: np.ndarray,
 
 def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, step: float,
                   *, band: tuple[float, float] | None = None,
-                  cap: float | None = None) -> DistanceGrid:
+                  surface: SurfaceDistance | None = None) -> DistanceGrid:
     """Signed distances (positive inside) from a closed, outward mesh at the points of a
     regular grid covering the box ``lower``..``upper`` (each (3,), m) at ``step`` m.
 
@@ -200,8 +193,8 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
         Only distances between these bounds (m, unsigned) need be exact: a grid
         point that a coarser grid shows to lie outside the band keeps that coarse
         estimate (on the right side of the band), which saves most of the work.
-    cap : float, optional
-        m: distances beyond it are given as the cap itself (a lower bound).
+    surface : SurfaceDistance, optional
+        The mesh's distance search, when the caller has built it already.
 
     Returns
     -------
@@ -214,8 +207,6 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
     >>> g.values.shape, float(g.values[1, 1, 1]), float(g.values[0, 1, 1])
     ((3, 3, 3), 1.0, 0.5)
     """
-    from scipy.spatial import cKDTree
-
     tri = np.asarray(triangles, dtype=float)
     lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
     counts = np.floor((upper - lower) / step + 1e-9).astype(np.int64) + 1
@@ -223,40 +214,25 @@ def distance_grid(triangles: np.ndarray, lower: np.ndarray, upper: np.ndarray, s
                 hint="give a coarser offset step")
     xs, ys, zs = (lower[k] + step * np.arange(counts[k]) for k in range(3))
     winding = _column_winding(tri, xs, ys, zs)
-    gap = step
-    samples, ids = surface_samples(tri, gap)
-    # unbalanced, uncompacted: several times faster to query on samples that lie on
-    # lines and planes (the default tree degenerates there)
-    tree = cKDTree(samples, balanced_tree=False, compact_nodes=False)
     grid = np.stack(np.meshgrid(xs, ys, zs, indexing="ij"), axis=-1).reshape(-1, 3)
     distance = np.full(len(grid), np.nan)
-    if band is not None:
-        cap = band[1] + gap
-        if np.all(counts > 2 * _COARSE):
-            # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose
-            # nearest coarse point is far outside the band is outside it too, and keeps
-            # that estimate (on the right side of the band).
-            reach = _COARSE * step * np.sqrt(3) / 2
-            coarse = distance_grid(tri, lower, upper, _COARSE * step, cap=band[1] + 2 * reach)
-            index = np.minimum(np.rint(np.stack(np.meshgrid(
-                *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
-                np.array(coarse.values.shape) - 1).reshape(-1, 3)
-            estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
-            out = (estimate - reach > band[1]) | (estimate + reach < band[0])
-            distance[out] = estimate[out]
+    if band is not None and np.all(counts > 2 * _COARSE):
+        # A coarse pass first: the distance is 1-Lipschitz, so a fine point whose
+        # nearest coarse point is far outside the band is outside it too, and keeps
+        # that estimate (on the right side of the band).
+        reach = _COARSE * step * np.sqrt(3) / 2
+        coarse = distance_grid(tri, lower, upper, _COARSE * step, surface=surface)
+        index = np.minimum(np.rint(np.stack(np.meshgrid(
+            *(np.arange(n) / _COARSE for n in counts), indexing="ij"), axis=-1)).astype(np.int64),
+            np.array(coarse.values.shape) - 1).reshape(-1, 3)
+        estimate = np.abs(coarse.values[index[:, 0], index[:, 1], index[:, 2]])
+        out = (estimate - reach > band[1]) | (estimate + reach < band[0])
+        distance[out] = estimate[out]
     todo = np.flatnonzero(np.isnan(distance))
-    # Beyond the cap only "further than the cap" matters: a point with no sample within
-    # cap + gap is further than the cap (every surface point is within gap of a sample),
-    # and bounding the search spares the k-d tree points equidistant from a whole sphere.
-    bound = np.inf if cap is None else cap + gap
-    for start in range(0, len(todo), _BLOCK):
-        which_points = todo[start:start + _BLOCK]
-        pts = grid[which_points]
-        near, which = tree.query(pts, k=min(CANDIDATES, len(samples)), distance_upper_bound=bound)
-        near, which = near.reshape(len(pts), -1), which.reshape(len(pts), -1)
-        found = which < len(samples)
-        cand = tri[ids[np.where(found, which, 0)]]
-        exact = np.where(found, point_triangle_distances(pts[:, None, :], cand), np.inf).min(axis=1)
-        distance[which_points] = np.minimum(exact, np.inf if cap is None else cap)
+    if len(todo):
+        surface = surface or SurfaceDistance(tri)
+        for start in range(0, len(todo), _BLOCK):
+            which = todo[start:start + _BLOCK]
+            distance[which] = surface.distances(grid[which])
     sign = np.where(winding.reshape(-1) > 0.5, 1.0, -1.0)
-    return DistanceGrid(lower, float(step), (sign * distance).reshape(tuple(counts)), gap)
+    return DistanceGrid(lower, float(step), (sign * distance).reshape(tuple(counts)))

@@ -36,7 +36,7 @@ from .base import Body, Transformed
 from .region import Region, Ring
 from .solid import Extrusion, MeshSolid, Revolution
 
-__all__ = ["InwardOffset", "inward_offset", "DEFAULT_STEPS"]
+__all__ = ["InwardOffset", "inward_offset", "closed_form_offset", "DEFAULT_STEPS"]
 
 #: the default level-set step is the body's size over this (or half the distance, if finer)
 DEFAULT_STEPS = 64
@@ -137,6 +137,23 @@ def inward_offset(body: Body, distance: float, *, step: float | None = None,
 
 
 # ------------------------------------------------------------ closed forms
+def closed_form_offset(body: Body, distance: float) -> InwardOffset | None:
+    """The exact inward offset by ``distance`` m when ``body`` has a closed form (see the
+    module's doc), else None (without computing a level set).
+
+    >>> from plumbob.bodies.primitives import box
+    >>> closed_form_offset(box(4, 4, 2), 0.5).method
+    'convex polyhedron'
+    """
+    t = float(distance)
+    if not (np.isfinite(t) and t > 0):
+        raise GeometryError(f"an inward offset needs a positive distance, not {distance!r}")
+    if body.dim != 3 or body.kind not in ("solid",):
+        raise GeometryError(f"only a solid has an inward offset, not a {body.kind}")
+    closed = _closed_form(body, t)
+    return None if closed is None else InwardOffset(closed[0], t, True, closed[1])
+
+
 def _closed_form(body: Body, t: float) -> tuple[Body | None, str] | None:
     """(offset or None when empty, method) for bodies with a closed form, else None."""
     if isinstance(body, Transformed):
@@ -151,6 +168,28 @@ def _closed_form(body: Body, t: float) -> tuple[Body | None, str] | None:
     if isinstance(body, Extrusion):
         return _prism(body, t)
     return None
+
+
+def _dented(triangles: np.ndarray) -> bool:
+    """Whether a corner lies clearly beyond the plane of one of the mesh's 64 largest faces
+    (by 1e-7 of its size): a quick sign that it is not convex, before its hull is taken."""
+    corners = triangles.reshape(-1, 3)
+    origin = corners.min(axis=0)
+    normal = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    area = np.linalg.norm(normal, axis=1)
+    # the largest faces, then faces spread over the mesh, sixteen at a time
+    picks = np.concatenate((np.argsort(-area)[:64],
+                            np.linspace(0, len(area) - 1, min(len(area), 192)).astype(np.int64)))
+    picks = picks[area[picks] > 0]
+    tolerance = 1e-7 * float(np.linalg.norm(np.ptp(corners, axis=0)))
+    for start in range(0, len(picks), 16):
+        big = picks[start:start + 16]
+        unit = normal[big] / area[big, None]
+        height = ((corners - origin) @ unit.T
+                  - np.einsum("ij,ij->i", triangles[big, 0] - origin, unit))
+        if np.any(height > tolerance):
+            return True
+    return False
 
 
 def _halfspace_vertices(normals: np.ndarray, offsets: np.ndarray) -> np.ndarray | None:
@@ -178,6 +217,8 @@ def _convex_mesh(body: MeshSolid, t: float) -> tuple[Body | None, str] | None:
     from scipy.spatial import ConvexHull
 
     tri = body.triangles.astype(float)
+    if _dented(tri):
+        return None
     hull = ConvexHull(tri.reshape(-1, 3))
     volume = body.mass_properties().measure
     if abs(hull.volume - volume) > 1e-9 * volume:
@@ -291,9 +332,10 @@ def _prism(body: Extrusion, t: float) -> tuple[Body | None, str] | None:
 
 
 # ------------------------------------------------------------ level set
-def level_set_manifold(triangles: np.ndarray, t: float, step: float):
+def level_set_manifold(triangles: np.ndarray, t: float, step: float, *, surface=None):
     """The manifold3d ``Manifold`` of the points more than ``t`` m inside the mesh, a level
-    set of its signed distance on a ``step`` m grid (empty when nothing is)."""
+    set of its signed distance on a ``step`` m grid (empty when nothing is); ``surface``:
+    the mesh's :class:`plumbob.bodies.distance.SurfaceDistance`, when built already."""
     import manifold3d
 
     from .distance import distance_grid
@@ -303,7 +345,8 @@ def level_set_manifold(triangles: np.ndarray, t: float, step: float):
         return manifold3d.Manifold()
     # the offset lies inside [lo + t, hi − t]; two steps more keep the grid's rim outside it
     lower, upper = lo + t - 2 * step, hi - t + 2 * step
-    grid = distance_grid(triangles, lower, upper, step, band=(t - 2 * step, t + 2 * step))
+    grid = distance_grid(triangles, lower, upper, step, band=(t - 2 * step, t + 2 * step),
+                         surface=surface)
     values = (grid.values - t).reshape(-1).tolist()
     nx, ny, nz = grid.values.shape
     x0, y0, z0 = (float(v) for v in grid.origin)
@@ -352,10 +395,13 @@ def _level_set_offset(body: Body, t: float, step: float | None, extra: float) ->
     h = float(step) if step is not None else _default_step(triangles, t, size)
     if not (np.isfinite(h) and h > 0):
         raise GeometryError(f"an offset step must be a positive number, not {step!r}")
-    fine = level_set_manifold(triangles, t + extra, h)
+    from .distance import SurfaceDistance
+
+    surface = SurfaceDistance(triangles)
+    fine = level_set_manifold(triangles, t + extra, h, surface=surface)
     if fine.is_empty() or fine.volume() <= 0:
         return InwardOffset(None, t, False, "level set", h, h)
-    coarse = level_set_manifold(triangles, t + extra, 2 * h)
+    coarse = level_set_manifold(triangles, t + extra, 2 * h, surface=surface)
     error = abs(fine.volume() - coarse.volume()) / fine.volume()
     density = next(iter(body.densities()), None)
     inner = MeshSolid(manifold_triangles(fine), density if isinstance(density, float) else None,
