@@ -150,7 +150,8 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
         from .parts import unique_names
         from .threemf import load_3mf
 
-        instances = load_3mf(path)
+        instances, more = load_3mf(path)
+        notices.extend(more)
         meshes, skipped = list(zip(unique_names([i.name for i in instances]),
                                    [i.triangles for i in instances])), 0
     else:

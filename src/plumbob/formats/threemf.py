@@ -24,7 +24,7 @@ says so.
 from __future__ import annotations
 
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -41,12 +41,16 @@ _PRODUCTION = "{http://schemas.microsoft.com/3dmanufacturing/production/2015/06}
 class Instance:
     """One placed mesh object of a 3MF: name, triangles (n, 3, 3) in the file's unit,
     material (a base material's name, or None), and whether its triangles name other
-    materials (painted faces)."""
+    materials (painted faces); the ids of the build item's object and of the mesh
+    object, for a slicer's settings (:mod:`plumbob.formats.slicers`)."""
 
     name: str
     triangles: np.ndarray
     material: str | None
     painted: bool = False
+    source: str | None = None  # where the material was named, for the notices
+    top: str = ""  # the id of the object the build item places
+    object_id: str = ""  # the id of the mesh object
 
 
 @dataclass
@@ -179,8 +183,8 @@ class _Model:
     def instances(self) -> list[Instance]:
         """Every mesh object every build item places, placed, named and with its material."""
         out: list[Instance] = []
-        for member, object_id, matrix in self.items:  # per build item
-            stack = [(member, object_id, matrix, None, None, ())]
+        for member, top, matrix in self.items:  # per build item
+            stack = [(member, top, matrix, None, None, ())]
             while stack:
                 member, object_id, matrix, name, material, path = stack.pop()
                 key = (member, object_id)
@@ -199,8 +203,8 @@ class _Model:
                 name, material = found.name or name, found.material or material
                 if found.faces is not None and len(found.faces):
                     check_count("part instances", len(out) + 1, limits.MAX_PARTS, path=self.path)
-                    out.append(self._placed(found, matrix, name or f"object {object_id}",
-                                            material))
+                    out.append(replace(self._placed(found, matrix, name or f"object {object_id}",
+                                                    material), top=top, object_id=object_id))
                 for part, child, inner in reversed(found.components):  # in the file's order
                     stack.append((part, child, matrix @ inner, name, material, path + (key,)))
         return out
@@ -216,7 +220,8 @@ class _Model:
                 faces = faces[:, ::-1]  # a mirror turns the winding inside out
         if material is None and len(found.painted) == 1:
             material = next(iter(found.painted))  # every triangle names the same one
-        return Instance(name, vertices[faces], material, bool(found.painted - {material}))
+        return Instance(name, vertices[faces], material, bool(found.painted - {material}),
+                        None if material is None else f"base material {material!r}")
 
 
 def _base(bases: dict[str, list[str]], pid: str | None, pindex: str | None) -> str | None:
@@ -252,13 +257,17 @@ def _root_part(archive: zipfile.ZipFile, path: str) -> str:
     return found[0]
 
 
-def load_3mf(path: str) -> list[Instance]:
-    """The placed mesh objects of the 3MF ``path``, in the order its build gives them
-    (check the archive first: :func:`~plumbob.formats.meshes.check_3mf_archive`)."""
+def load_3mf(path: str) -> tuple[list[Instance], list[str]]:
+    """The placed mesh objects of the 3MF ``path``, in the order its build gives them,
+    as the slicer that wrote it has them (parts, names, extruders' filaments:
+    :func:`~plumbob.formats.slicers.with_slicer_settings`), and notices about what was
+    left out (check the archive first: :func:`~plumbob.formats.meshes.check_3mf_archive`)."""
+    from .slicers import with_slicer_settings
+
     with zipfile.ZipFile(path) as archive:
         model = _Model(archive, path)
         model.parse(_root_part(archive, path), root=True)
-        return model.instances()
+        return with_slicer_settings(model.instances(), archive, path)
 
 
 def material_notices(names: list[str], instances: list[Instance]):
@@ -270,13 +279,15 @@ def material_notices(names: list[str], instances: list[Instance]):
         if instance.material is not None and instance.material not in found:
             found[instance.material] = match_material(instance.material)
     notices = []
-    for base, (matched, how) in found.items():  # per base material
-        parts = ", ".join(repr(n) for n, i in zip(names, instances) if i.material == base)
+    sources = dict.fromkeys(i.source for i in instances if i.source is not None)
+    for source in sources:  # per base material or extruder
+        parts = ", ".join(repr(n) for n, i in zip(names, instances) if i.source == source)
+        matched, how = found[next(i.material for i in instances if i.source == source)]
         if matched is None:
-            notices.append(f"3mf: base material {base!r} ({parts}) names no plumbob material; "
+            notices.append(f"3mf: {source} ({parts}) names no plumbob material; "
                            "give it with --part-material NAME=MATERIAL")
         else:
-            notices.append(f"3mf: base material {base!r} is {matched.name} "
+            notices.append(f"3mf: {source} is {matched.name} "
                            f"({matched.density:g} kg/m³, by {how}): {parts}")
     painted = [repr(n) for n, i in zip(names, instances) if i.painted]
     if painted:
