@@ -85,8 +85,9 @@ class Key:
     snake_case JSON key), ``unit`` (SI, ``""`` for none), ``doc``, what it means, and
     ``when`` it appears (``""``: always; otherwise the key is left out where its value is
     None or empty). ``attr`` is where the value is read: a dotted attribute path from
-    the result (default: ``name``). ``type`` is the value's form for a table column
-    (:data:`TYPES`; ``""``: not a column). ``as_dict()`` is generated from these
+    the result (default: ``name``; a mapping on the way is looked up, absent: None).
+    ``type`` is the value's form for a table column (:data:`TYPES`; ``""``: not a
+    column). ``as_dict()`` is generated from these
     declarations (:func:`keyed`), and so are ``docs/cli.md``'s key tables
     (:func:`key_table`) and the batch table's columns."""
 
@@ -106,7 +107,7 @@ class Key:
         """
         value = result
         for name in (self.attr or self.name).split("."):
-            value = getattr(value, name)
+            value = value.get(name) if isinstance(value, Mapping) else getattr(value, name)
         return value
 
 

@@ -14,7 +14,6 @@ from ..massprops import MassProperties
 from ..reading import Reading
 from ..report import ReportUnits
 from ..results import Result
-from ._common import header
 
 __all__ = ["MassReport"]
 
@@ -64,27 +63,42 @@ class MassReport(Result):
         return [("path", self.reading.path), ("kind", self.kind), ("props", self.props),
                 ("parts", len(self.parts))]
 
-    def as_dict(self) -> dict[str, Any]:
-        """The JSON object of ``plumbob mass``: ``path`` and ``name`` when known, the
-        mass properties (:meth:`MassProperties.as_dict`), ``part_properties`` for an
-        assembly (each ``name``, ``kind``, ``mass``, ``area``/``volume``,
-        ``center_of_mass``, ``exact``) and the reader's ``notices``."""
-        out = {**header(self.reading, self.kind), **self.props.as_dict(self.kind)}
-        if self.parts:
-            materials = dict(self.reading.materials)
-            out["part_properties"] = [
-                {"name": name, **({"material": materials[name]} if name in materials else {}),
+    # the values of the declared keys that are not the mass properties' own
+    @property
+    def path(self) -> str | None:
+        """The file read, or None."""
+        return self.reading.path or None
+
+    @property
+    def name(self) -> str | None:
+        """The body's name, or None."""
+        return getattr(self.reading.body, "name", None) or None
+
+    @property
+    def volume(self) -> float | None:
+        """m³, for a body that has a volume (not a lamina, not particles)."""
+        return self.props.measure if self.props.size_key(self.kind) == "volume" else None
+
+    @property
+    def area(self) -> float | None:
+        """m², for a lamina."""
+        return self.props.measure if self.props.size_key(self.kind) == "area" else None
+
+    @property
+    def part_properties(self) -> list[dict[str, Any]]:
+        """Each part's ``name`` (and ``material`` when given by name) and its mass
+        properties' ``kind``, ``mass``, ``volume``/``area``, ``center_of_mass``, ``exact``."""
+        materials = dict(self.reading.materials)
+        return [{"name": name, **({"material": materials[name]} if name in materials else {}),
                  **{k: v for k, v in props.as_dict(kind).items() if k in _PART_KEYS}}
-                for name, kind, props in self.parts
-            ]
-        out["radii_of_gyration"] = self.sizes["radii_of_gyration"]
-        if self.about is not None:
-            out["inertia_about"] = {"point": self.about,
-                                    "inertia": self.props.inertia_about(self.about)}
-        out.update((k, v) for k, v in self.sizes.items() if k != "radii_of_gyration")
-        if self.reading.notices:
-            out["notices"] = list(self.reading.notices)
-        return out
+                for name, kind, props in self.parts]
+
+    @property
+    def inertia_about(self) -> dict[str, Any] | None:
+        """``point`` (m) and ``inertia`` (kg·m², about it) with ``--about``, else None."""
+        if self.about is None:
+            return None
+        return {"point": self.about, "inertia": self.props.inertia_about(self.about)}
 
     def text(self, units: ReportUnits | None = None) -> str:
         """A readable table, then a line per part and the notes; lengths and masses in
