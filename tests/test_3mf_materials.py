@@ -10,6 +10,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "bad_inputs"))
 from make_bad_inputs import cube, three_mf, zip_bytes  # noqa: E402
@@ -186,7 +188,9 @@ def test_painted_triangles_are_said_and_do_not_change_the_volume(tmp_path):
      "</object>", '<item objectid="2"/>', "not 12 finite numbers", FormatError),
     ('<object id="2"><components><component p:path="/3D/nowhere.model" objectid="1"/>'
      "</components></object>", '<item objectid="2"/>', "does not hold", FormatError),
-], ids=["cycle", "undefined", "transform", "missing part"])
+    ('<object id="2"><components><component p:path="/_rels/.rels" objectid="1"/>'
+     "</components></object>", '<item objectid="2"/>', "ends in .model", FormatError),
+], ids=["cycle", "undefined", "transform", "missing part", "not a model part"])
 def test_broken_structures_are_refused_in_one_line(objects, items, match, error, tmp_path):
     path = tmp_path / "bad.3mf"
     path.write_bytes(three_mf(model(objects, items)))
@@ -314,3 +318,28 @@ def test_a_negative_volume_is_refused_not_ignored(tmp_path):
     path.write_bytes(prusa_project(post_type="NegativeVolume"))
     with pytest.raises(FormatError, match="negative volume 'post' cuts object 'print'"):
         read(str(path))
+
+
+@settings(max_examples=15, deadline=None)
+@given(shift=st.tuples(*[st.integers(-10**6, 10**6).map(lambda k: k / 64)] * 3),
+       turns=st.integers(0, 3))
+def test_a_build_placement_moves_the_centre_and_keeps_the_mass(shift, turns, tmp_path_factory):
+    # the post turned by quarter turns about its own vertical axis and the whole print
+    # moved by `shift` (mm, exact binary fractions): mass unchanged, centre moved by it
+    c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][turns]
+    x, y, z = shift
+    # the turn about the post's axis (x, y) = (10, 5): the post's own placement
+    px, py = 10 - (c * 5 - s * 5), 5 - (s * 5 + c * 5)
+    objects = (f'<object id="2" name="block" pid="1" pindex="0">{mesh_xml(BLOCK)}</object>'
+               f'<object id="3" name="post" pid="1" pindex="1">{mesh_xml(POST)}</object>'
+               '<object id="4" name="print"><components><component objectid="2"/>'
+               f'<component objectid="3" transform="{c} {s} 0 {-s} {c} 0 0 0 1 {px} {py} 10"/>'
+               "</components></object>")
+    path = tmp_path_factory.mktemp("placed") / "placed.3mf"
+    path.write_bytes(three_mf(model(objects, f'<item objectid="4" transform="1 0 0 0 1 0 0 0 1 '
+                                             f'{x!r} {y!r} {z!r}"/>')))
+    props = read(str(path)).body.mass_properties()
+    mass, centre, _ = hand()
+    assert abs(props.mass / mass - 1) <= 1e-12
+    reach = 30 * MM + np.abs(shift).max() * MM
+    assert np.abs(props.center_of_mass - centre - np.array(shift) * MM).max() <= 1e-12 * reach

@@ -113,6 +113,9 @@ class _Model:
         if member is None:
             raise FormatError(f"refers to a model part {name!r} the archive does not hold",
                               path=self.path)
+        if not member.lower().endswith(".model"):  # only those were checked for DTDs
+            raise FormatError(f"refers to {name!r} as a model part: a model part's name ends "
+                              "in .model", path=self.path)
         return member
 
     def parse(self, member: str, root: bool = False) -> None:
