@@ -16,13 +16,12 @@ from typing import Any
 from ..loading import read
 from ..reading import Reading
 from ._notices import default_down, flush_notices, oriented, print_notices
+from .loads import add_load_arguments, force_option, hang_option, option_loads
 from .options import (  # re-exported: the commands import them from here
     add_body_arguments,
-    add_load_arguments,
     add_orientation_arguments,
     add_report_units_argument,
     add_stability_arguments,
-    option_loads,
     parameter_overrides,
     pose_down,
     report_units,
@@ -38,8 +37,6 @@ from .types import (  # re-exported
     assignment,
     count,
     direction,
-    force_option,
-    hang_option,
     length,
     length_unit,
     material_name,

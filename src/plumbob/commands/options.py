@@ -11,18 +11,15 @@ from typing import Any
 
 from ..errors import ArgumentError, SpecError
 from ..reading import Reading
-from ..units import SEED_GRAVITY, length_scale
+from ..units import SEED_GRAVITY
 from .types import (
     assignment,
     direction,
-    force_option,
-    hang_option,
     length_unit,
     material_name,
     non_negative,
     number,
     positive,
-    search_option,
 )
 
 __all__ = [
@@ -33,8 +30,6 @@ __all__ = [
     "add_stability_arguments",
     "add_orientation_arguments",
     "pose_down",
-    "add_load_arguments",
-    "option_loads",
     "requirement",
 ]
 
@@ -186,37 +181,6 @@ def pose_down(body, index: int, option: str, g: float, props):
     from ..stability.poses import resting_poses
 
     return resting_poses(body, g=g, props=props).ranked(index, option).down
-
-
-def add_load_arguments(parser: argparse.ArgumentParser) -> None:
-    """--force, --hang, --push, --press: applied loads (repeatable), points in the body's
-    own length unit (like every coordinate of its file)."""
-    group = parser.add_argument_group("applied loads (see docs/loads.md)")
-    group.add_argument("--force", type=force_option, action="append", dest="load_options",
-                       metavar="FX,FY,FZ@X,Y,Z",
-                       help="a force in newtons at a point (in the body's own length unit); "
-                            "repeatable")
-    group.add_argument("--hang", type=hang_option, action="append", dest="load_options",
-                       metavar="M@X,Y,Z", help="a mass in kg hung at a point (pulls along "
-                                               "gravity); repeatable")
-    group.add_argument("--push", type=lambda t: search_option("push", t), action="append",
-                       dest="load_options", metavar="F[@H]",
-                       help="a horizontal force of F newtons at the worst point and direction, "
-                            "no higher than H (the body's unit)")
-    group.add_argument("--press", type=lambda t: search_option("press", t), action="append",
-                       dest="load_options", metavar="F[@H]",
-                       help="a downward force of F newtons at the worst point of its top, no "
-                            "higher than H")
-
-
-def option_loads(args: argparse.Namespace, reading: Reading) -> tuple:
-    """The loads of the options (``--force``, ``--hang``, ``--push``, ``--press``) with the
-    spec's ``[[load]]`` tables, points and heights scaled to metres by the body's unit."""
-    from ..loads import loads_from_options
-
-    made = loads_from_options(getattr(args, "load_options", None),
-                              length_scale(reading.length_unit))
-    return tuple(reading.loads) + tuple(made)
 
 
 def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):

@@ -24,10 +24,7 @@ __all__ = [
     "number_option",
     "length_unit",
     "assignment",
-    "force_option",
-    "hang_option",
     "part_materials",
-    "search_option",
 ]
 
 
@@ -156,60 +153,6 @@ def assignment(text: str) -> tuple[str, str]:
     if not sep or not name.strip() or not value.strip():
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE, not {text!r}")
     return name.strip(), value.strip()
-
-
-def _numbers(text: str, what: str, dims: tuple[int, ...]) -> list[float]:
-    try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{what}: expected numbers separated by commas, not "
-                                         f"{text!r}") from None
-    if len(values) not in dims:
-        raise argparse.ArgumentTypeError(f"{what}: expected {' or '.join(map(str, dims))} "
-                                         f"numbers, not {len(values)} ({text!r})")
-    if not all(math.isfinite(v) for v in values):
-        raise argparse.ArgumentTypeError(f"{what}: expected finite numbers, not {text!r}")
-    return values
-
-
-def _at(text: str, option: str, example: str) -> tuple[str, str]:
-    head, sep, tail = text.partition("@")
-    if not sep or not head.strip() or not tail.strip():
-        raise argparse.ArgumentTypeError(f"expected {example} (an @ before the point), not "
-                                         f"{text!r}")
-    return head, tail
-
-
-def force_option(text: str) -> tuple:
-    """An argparse type: ``FX,FY,FZ@X,Y,Z`` (``--force``): N at a point (the body's unit)."""
-    head, tail = _at(text, "--force", "FX,FY,FZ@X,Y,Z")
-    force = _numbers(head, "the force", (2, 3))
-    at = _numbers(tail, "the point", (2, 3))
-    if len(force) != len(at):
-        raise argparse.ArgumentTypeError(f"the force has {len(force)} components but the point "
-                                         f"{len(at)} coordinates: {text!r}")
-    return ("force", force, at)
-
-
-def hang_option(text: str) -> tuple:
-    """An argparse type: ``M@X,Y,Z`` (``--hang``): kg hung at a point (the body's unit)."""
-    head, tail = _at(text, "--hang", "M@X,Y,Z")
-    mass = _numbers(head, "the mass", (1,))[0]
-    if mass < 0:
-        raise argparse.ArgumentTypeError(f"a hung mass must be ≥ 0 kg, not {mass:g}")
-    return ("hang", mass, _numbers(tail, "the point", (2, 3)))
-
-
-def search_option(kind: str, text: str) -> tuple:
-    head, sep, tail = text.partition("@")
-    force = _numbers(head, "the force", (1,))[0]
-    if force < 0:
-        raise argparse.ArgumentTypeError(f"a {kind}'s force must be ≥ 0 N, not {force:g}")
-    height = _numbers(tail, "the highest point", (1,))[0] if sep else None
-    if height is not None and height <= 0:
-        raise argparse.ArgumentTypeError(f"a {kind}'s highest point must be above the floor, "
-                                         f"not {height:g}")
-    return (kind, force, height)
 
 
 def part_materials(given: list[str] | None) -> dict[str, str] | None:
