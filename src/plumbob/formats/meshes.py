@@ -1,4 +1,4 @@
-"""OBJ, PLY, OFF, 3MF, GLB and glTF solids, read through trimesh.
+"""OBJ, PLY, OFF, GLB and glTF solids, read through trimesh; 3MF, read by plumbob.
 
 trimesh parses (``process=False``: nothing merged or dropped); plumbob then
 checks every mesh as it checks an STL (:func:`~plumbob.mesh.check_solid`).
@@ -7,11 +7,11 @@ A file with several meshes (a 3MF with several objects, a glTF scene) gives an
 placed by its scene transform. A 3MF is read by plumbob's own reader
 (:mod:`plumbob.formats.threemf`), which keeps each object's name and material.
 
-3MF is a zip of XML. Before trimesh opens it, the archive's declared sizes and
+3MF is a zip of XML. Before it is read, the archive's declared sizes and
 expansion ratios are checked against :mod:`plumbob.limits` (a zip bomb is
-refused unread) and every model part is parsed with defusedxml, which refuses
-DTDs and entity declarations (entity-expansion bombs). trimesh itself parses
-with entity resolution off.
+refused unread) and every model part's start is parsed with defusedxml, which
+refuses DTDs and entity declarations (entity-expansion bombs); the reader then
+parses with entity resolution off.
 
 glTF and GLB are +y up by their specification: the reading says so (``Reading.up``) and
 the stability commands rest such a body toward −y unless ``--down`` says otherwise; 3MF,
