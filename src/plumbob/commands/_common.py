@@ -1,6 +1,6 @@
 """What the commands share: reading the body with the body options, and (re-exported
-from their modules) the value types (:mod:`.types`), the shared options (:mod:`.options`)
-and the JSON output (:mod:`.output`).
+from their modules) the value types (:mod:`.types`), the shared options (:mod:`.options`),
+the load options (:mod:`.loads`) and the JSON output (:mod:`.output`).
 
 Every command module imports from here and from the library, never from another
 command module. Only numpy and plumbob's reader load at import; the stability,
@@ -15,76 +15,20 @@ from typing import Any
 
 from ..loading import read
 from ..reading import Reading
+from . import loads as _loads
+from . import options as _options
+from . import output as _output
+from . import types as _types
 from ._notices import default_down, flush_notices, oriented, print_notices
-from .loads import add_load_arguments, force_option, hang_option, option_loads
-from .options import (  # re-exported: the commands import them from here
-    add_body_arguments,
-    add_orientation_arguments,
-    add_report_units_argument,
-    add_stability_arguments,
-    parameter_overrides,
-    pose_down,
-    report_units,
-    requirement,
-)
-from .output import (  # re-exported
-    dump_json,
-    header,
-    print_json,
-    require_finite,
-)
-from .types import (  # re-exported
-    assignment,
-    count,
-    direction,
-    length,
-    length_unit,
-    material_name,
-    non_negative,
-    number,
-    number_option,
-    parse_vector,
-    part_materials,
-    positive,
-    tilt_limit,
-)
+from .loads import *  # noqa: F403  (re-exported: the commands import them from here)
+from .options import *  # noqa: F403
+from .options import parameter_overrides
+from .output import *  # noqa: F403
+from .types import *  # noqa: F403
+from .types import part_materials
 
-__all__ = [
-    "number",
-    "positive",
-    "count",
-    "non_negative",
-    "length",
-    "parse_vector",
-    "direction",
-    "material_name",
-    "tilt_limit",
-    "number_option",
-    "length_unit",
-    "assignment",
-    "force_option",
-    "hang_option",
-    "part_materials",
-    "add_body_arguments",
-    "add_report_units_argument",
-    "report_units",
-    "parameter_overrides",
-    "add_stability_arguments",
-    "add_orientation_arguments",
-    "pose_down",
-    "add_load_arguments",
-    "option_loads",
-    "requirement",
-    "header",
-    "require_finite",
-    "dump_json",
-    "print_json",
-    "load_body",
-    "open_body",
-    "print_notices",
-    "flush_notices",
-    "default_down",
-]
+__all__ = ["load_body", "open_body", "print_notices", "flush_notices", "default_down",
+           *_types.__all__, *_options.__all__, *_loads.__all__, *_output.__all__]
 
 
 def load_body(args: argparse.Namespace, *, path: str | None = None,
