@@ -200,6 +200,8 @@ def test_the_acceptance_runs_from_the_command_line(carved_files, tmp_path, capsy
                  "--margin", "3mm", "--out", str(carved), "--void", str(void)]) == 0
     report = capsys.readouterr().out
     assert "hollowing" in report and str(carved) in report
+    # a part drawn in mm reads in mm and g (issue 22), the hollowing's lines too
+    assert "walls 2 mm:" in report and " g removed" in report and " kg" not in report
     out = _cli_json(capsys, "check", str(carved), "--units", "mm", "--density", density,
                     "--json")
     assert out["verdict"] == "stands" and out["margin"] >= 3 * MM

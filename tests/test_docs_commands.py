@@ -14,7 +14,11 @@ What counts, in fenced ``sh``/``console``/``shell``/``bash`` blocks:
 * ``pip install ... && plumbob ...`` — the plumbob part.
 
 A block after ``<!-- docs: run only -->`` runs but its output is not compared (for
-output that depends on a physics engine's version). Blocks of usage synopses are
+output that depends on a physics engine's version). A block after
+``<!-- docs: slow -->`` (minutes of work, such as hollowing a figurine) is compared
+like any other, under the ``slow`` marker: ``python -m pytest -m slow
+tests/test_docs_commands.py`` runs it. A ``…`` in a shown line stands for one number
+that differs from run to run (a time). Blocks of usage synopses are
 ``text`` blocks and not run. Commands run in a folder holding the repository's
 ``shapes/``, ``docs/models/`` and the files ``docs/examples/make_examples.py`` writes,
 as the docs say.
@@ -43,6 +47,7 @@ PAGES = ["README.md"] + sorted(f"docs/{name}" for name in os.listdir(os.path.joi
                                if name.endswith(".md"))
 SHELL = {"sh", "console", "shell", "bash"}
 RUN_ONLY = "<!-- docs: run only -->"
+SLOW = "<!-- docs: slow -->"
 NUMBER = re.compile(r"(-?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)")
 
 
@@ -53,13 +58,14 @@ class Example:
     command: str
     shown: tuple[str, ...]
     compare: bool
+    slow: bool = False
 
     def __str__(self) -> str:
         return f"{self.page}:{self.line}"
 
 
 def _blocks(page: str):
-    """(info string, first line number, lines, run only?) of each fenced block."""
+    """(info string, first line number, lines, the marker before it) of each fenced block."""
     lines = open(os.path.join(ROOT, page), encoding="utf-8").read().splitlines()
     k = 0
     while k < len(lines):
@@ -67,7 +73,7 @@ def _blocks(page: str):
             info = lines[k][3:].strip()
             before = next((lines[j] for j in range(k - 1, -1, -1) if lines[j].strip()), "")
             end = next(j for j in range(k + 1, len(lines)) if lines[j].startswith("```"))
-            yield info, k + 2, lines[k + 1:end], before.strip() == RUN_ONLY
+            yield info, k + 2, lines[k + 1:end], before.strip()
             k = end
         k += 1
 
@@ -75,9 +81,10 @@ def _blocks(page: str):
 def _examples() -> list[Example]:
     found = []
     for page in PAGES:
-        for info, first, lines, run_only in _blocks(page):
+        for info, first, lines, marker in _blocks(page):
             if info not in SHELL:
                 continue
+            run_only, slow = marker == RUN_ONLY, marker == SLOW
             current = None
             prompted = any(line.strip().startswith("$ ") for line in lines)
             for offset, line in enumerate(lines):
@@ -91,10 +98,11 @@ def _examples() -> list[Example]:
                         found.append(current)
                     current = None
                     if command.startswith("plumbob "):
-                        current = Example(page, first + offset, command, (), not run_only)
+                        current = Example(page, first + offset, command, (), not run_only,
+                                          slow)
                 elif current is not None and prompted:
                     current = Example(current.page, current.line, current.command,
-                                      (*current.shown, line), current.compare)
+                                      (*current.shown, line), current.compare, current.slow)
             if current:
                 found.append(current)
     return found
@@ -148,7 +156,10 @@ def _without_comment(line: str) -> str:
 
 
 def _same(shown: str, printed: str) -> bool:
-    """Words equal, numbers equal to the digits shown."""
+    """Words equal, numbers equal to the digits shown; a ``…`` stands for any one number."""
+    if shown.count("…") > printed.count("…"):
+        return any(_same(shown, printed[:m.start()] + "…" + printed[m.end():])
+                   for m in NUMBER.finditer(printed))
     a, b = NUMBER.split(" ".join(shown.split())), NUMBER.split(" ".join(printed.split()))
     if len(a) != len(b):
         return False
@@ -182,10 +193,13 @@ def _contains_in_order(shown: list[str], printed: list[str]) -> str | None:
 
 def test_the_docs_show_commands():
     assert len(EXAMPLES) > 40
+    assert not [line for page in PAGES for info, line, _, _ in _blocks(page) if not info], \
+        "every fenced block says what it is: sh/console (run), python, toml, text"
     assert {e.page for e in EXAMPLES} >= {"README.md", "docs/tutorial.md", "docs/stability.md"}
 
 
-@pytest.mark.parametrize("example", EXAMPLES, ids=str)
+@pytest.mark.parametrize("example", [pytest.param(e, marks=pytest.mark.slow) if e.slow else e
+                                     for e in EXAMPLES], ids=str)
 def test_a_command_the_docs_show_runs_and_prints_what_they_show(example, folder, monkeypatch):
     monkeypatch.chdir(folder)
     words = shlex.split(example.command, comments=True)
@@ -226,3 +240,6 @@ def test_the_comparison_holds_numbers_to_the_digits_shown():
     assert _without_comment("  #  probability  down") == "  #  probability  down"
     assert _contains_in_order(["a 1", "...", "c 3"], ["a 1", "b 2", "c 3.0"]) is None
     assert _contains_in_order(["c 3", "a 1"], ["a 1", "b 2", "c 3"]) == "a 1"
+    assert _same("planned in … s, 2 cuts", "planned in 409.6 s, 2 cuts")
+    assert not _same("planned in … s, 2 cuts", "planned in 409.6 s, 3 cuts")
+    assert not _same("planned in … s", "planned in s")

@@ -4,6 +4,7 @@ units; the JSON stays SI. Each converted number is checked against the SI JSON."
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 
@@ -143,3 +144,48 @@ def test_an_unknown_unit_is_one_line_naming_the_choices(capsys, box_mm):
     assert exit_status.value.code == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "furlong" in err and "mm" in err
+
+
+
+def test_balance_reads_in_mm_and_g_for_a_mm_part_and_its_json_stays_si(capsys, box_mm):
+    """A 40 × 20 × 60 mm box of PLA tilted to 25°: the ballast plan's text in mm and g,
+    each number the SI JSON's scaled."""
+    args = ["balance", box_mm, "--units", "mm", "--material", "pla", "--require-tilt", "25"]
+    si = json.loads(_run(capsys, *args, "--json"))
+    text = _run(capsys, *args)
+    before = _row(text, "before")
+    assert "margin 10 mm" in before and before.endswith("(20, 10, 30) mm")
+    ballast = _row(text, "ballast ")
+    assert ballast.split()[2] == "g" and not re.search(r"\bm\b|kg", ballast)
+    assert _numbers(ballast) == pytest.approx(
+        [si["ballast"]["mass"] * 1e3] + [c * 1e3 for c in si["ballast"]["center_of_mass"]],
+        rel=1e-5, abs=1e-9)
+    after = _row(text, "after")
+    assert after.endswith(f"mass {si['after']['mass'] * 1e3:.6g} g")
+    assert _numbers(after.split("centre of mass")[1])[:3] == pytest.approx(
+        [c * 1e3 for c in si["after"]["center_of_mass"]], rel=1e-5)
+    # the JSON is SI: the box's centre height 30 mm → tilt 25° needs tan(25°)·h = 10 mm
+    assert si["after"]["com_height"] == pytest.approx(0.01 / math.tan(math.radians(25)),
+                                                      rel=1e-6)
+
+
+def test_the_ballast_shape_line_follows_the_report_units():
+    """The formatter alone (a plan with a steel cube): volumes in mm³, densities in
+    g/mm³, sides in mm; SI by default."""
+    from dataclasses import replace
+
+    from plumbob.balance.result import balance
+    from plumbob.bodies.primitives import box
+    from plumbob.report.balance import balance_text
+
+    r = balance(box(0.04, 0.02, 0.06, density=1240.0), require_tilt_deg=25)
+    side = (r.ballast_mass / 7850) ** (1 / 3)
+    r = replace(r, ballast_material="steel", ballast_density=7850.0,
+                ballast_volume=r.ballast_mass / 7850, ballast_shape="box",
+                ballast_dimensions=(side,))
+    mm = _row(balance_text(r, "b", "solid", [], 0.06, ReportUnits("mm", "g")), "ballast shape")
+    assert mm.startswith("ballast shape  steel (0.00785 g/mm³), ")
+    assert _numbers(mm)[1:] == pytest.approx([r.ballast_volume * 1e9, side * 1e3], rel=1e-3)
+    assert mm.endswith("mm, fits inside") and "mm³:" in mm
+    si = _row(balance_text(r, "b", "solid", [], 0.06), "ballast shape")
+    assert "(7850 kg/m³)" in si and "m³:" in si and si.endswith(" m, fits inside")

@@ -17,6 +17,9 @@ The files (binary STL, no unit inside, as most exports are):
   plinth, a body (radius 9, 55 long) leaning 58° from a foot 6 mm off centre, a head
   of radius 11 (as a solid it topples);
 * ``l-block.stl`` a 3 × 1 × 1 bar with a 1 × 1 × 1 block on one end, in metres.
+
+and the small specs whose errors docs/shapes.md and docs/density.md show
+(``x.toml``, ``y.toml``, ``z.toml``, ``negative.toml``).
 """
 
 from __future__ import annotations
@@ -53,6 +56,15 @@ def _bodies() -> dict:
     }
 
 
+#: specs with a mistake each, for the error messages the docs show
+SPECS = {
+    "x.toml": '[[part]]\ntype = "box"\nwidht = 1\nlength = 1\nheight = 1\n',
+    "y.toml": '[[part]]\ntype = "sphere"\nradius = "__import__(\'os\')"\n',
+    "z.toml": '[[part]]\ntype = "box"\nlength = 1\nwidth = 1\nheight = 1\ncentered = "no"\n',
+    "negative.toml": '[shape]\ndensity = "x - 0.25"\n\n[[part]]\ntype = "cube"\nside = 1\n',
+}
+
+
 def _rotation_y(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
@@ -68,6 +80,11 @@ def make_examples(folder: str = ".") -> list[str]:
         path = os.path.join(folder, name)
         with open(path, "wb") as handle:
             handle.write(stl_bytes(body.surface().triangles, os.path.splitext(name)[0], unit))
+        written.append(path)
+    for name, text in SPECS.items():
+        path = os.path.join(folder, name)
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write(text)
         written.append(path)
     return written
 

@@ -13,6 +13,7 @@ import argparse
 from ._common import (
     add_load_arguments,
     add_orientation_arguments,
+    add_report_units_argument,
     add_stability_arguments,
     default_down,
     header,
@@ -21,6 +22,7 @@ from ._common import (
     option_loads,
     pose_down,
     print_json,
+    report_units,
     requirement,
     tilt_limit,
 )
@@ -79,6 +81,7 @@ def register(subparsers) -> None:
                         help="the ballast's shape with --ballast-material (default box; a "
                              "lamina's is a square through its thickness)")
     add_load_arguments(parser)
+    add_report_units_argument(parser)
     parser.add_argument("--standard", metavar="NAME",
                         help="the least ballast that passes a standard's bundle (iec62368-1: "
                              "its tilt test or its force test, whichever needs less; "
@@ -156,7 +159,7 @@ def _hollow(args, reading, props, down=None, hollowing=None):
     return written.body, written.mass_properties, written
 
 
-def _auto_pose(args, reading, props):
+def _auto_pose(args, reading, props, units=None):
     """``--target-pose auto``: the most probable resting poses, each with what it needs —
     nothing, the least mass emptied (with --wall), or the least ballast — and the pose
     that needs the least. Returns (its down, rows of (pose, probability, down, what it
@@ -170,6 +173,11 @@ def _auto_pose(args, reading, props):
 
     body = reading.body
     poses = resting_poses(body, g=args.g, props=props)[:AUTO_POSES]
+
+    def kg(value: float) -> str:  # in the report's mass unit (the JSON's rows: kg)
+        return (f"{value:.6g} kg" if units is None else
+                f"{units.mass(value):.6g} {units.mass_unit}")
+
     hollowing = None
     if args.wall is not None:
         from ..balance.hollow import Hollowing
@@ -185,7 +193,7 @@ def _auto_pose(args, reading, props):
                 plan = hollowing.plan(target, lightest=args.lightest)
                 cost, what = plan.removed_mass, (
                     "meets it as it is" if plan.cut is None else
-                    f"{plan.removed_mass:.6g} kg emptied")
+                    f"{kg(plan.removed_mass)} emptied")
             except StabilityError:
                 bound = hollowing.plan(target, best_effort=True).bound
                 cost, what = float("inf"), f"no carve does: {bound.sentence()}"
@@ -195,7 +203,7 @@ def _auto_pose(args, reading, props):
                             g=args.g, props=props)
                 cost = r.ballast_mass if r.passes else float("inf")
                 what = ("meets it as it is" if r.ballast_mass == 0 else
-                        f"{r.ballast_mass:.6g} kg of ballast")
+                        f"{kg(r.ballast_mass)} of ballast")
             except StabilityError as error:
                 cost, what = float("inf"), f"no ballast does: {error}"
         rows.append((k, pose.probability, down, what, cost))
@@ -221,12 +229,13 @@ def run(args) -> int:
     from ._common import load_body
 
     reading, props, notes = open_body(args)
+    units = report_units(args, reading)  # the part's own (mm and g for mm), or asked
     loads = option_loads(args, reading)
     if loads or args.standard is not None:
-        return _run_loaded(args, reading, props, notes, loads)
+        return _run_loaded(args, reading, props, notes, loads, units)
     chosen = hollowing = tried = number = None
     if args.target_pose == "auto":
-        chosen, tried, number, hollowing = _auto_pose(args, reading, props)
+        chosen, tried, number, hollowing = _auto_pose(args, reading, props, units)
     body, props, carved = _hollow(args, reading, props, chosen, hollowing)
     down, margin, tilt, toward = _target(args, body, props, default_down(args, reading), chosen)
     region = None
@@ -259,12 +268,12 @@ def run(args) -> int:
         if tried is not None:
             print(_auto_text(tried, number))
         if carved is not None:
-            print(hollow_text(carved, scale))
-        print(balance_text(result, args.path, kind, notes, scale))
+            print(hollow_text(carved, scale, units))
+        print(balance_text(result, args.path, kind, notes, scale, units))
     return 0 if result.passes else 1
 
 
-def _run_loaded(args, reading, props, notes, loads) -> int:
+def _run_loaded(args, reading, props, notes, loads, units=None) -> int:
     """balance with --force/--hang/--push/--press or --standard: the least ballast that
     stands under the loads (factor of safety ≥ 1), or passes the standard."""
     from ..balance.loaded import balance_standard, balance_under_loads
@@ -310,11 +319,11 @@ def _run_loaded(args, reading, props, notes, loads) -> int:
         from ..stability.support import body_size
 
         scale = body_size(body)
-        print(balance_text(plain, args.path, kind, notes, scale))
+        print(balance_text(plain, args.path, kind, notes, scale, units))
         if hasattr(result, "after"):
             which = f" ({args.standard}: its {result.test} test)" if args.standard else ""
             print(f"\nwith the ballast{which}:")
-            print(loads_report(result.after.loaded, None, scale))
+            print(loads_report(result.after.loaded, units, scale))
         elif args.standard:
             print(f"\n({args.standard}: its tilt test needs the least ballast)")
     return 0 if result.passes else 1
