@@ -18,6 +18,7 @@ from plumbob.bodies import primitives as P  # noqa: E402
 from plumbob.cli import main  # noqa: E402
 from plumbob.plot import plot_body, plot_check, plot_lift, plot_poses, tilt_rose  # noqa: E402
 from plumbob.plot.geometry import decimate, drawing  # noqa: E402
+from plumbob.plot.style import SI  # noqa: E402
 from plumbob.stability import check, resting_poses  # noqa: E402
 
 A = np.sqrt(3) / 2  # the sculpture's a; h = √3 a = 1.5
@@ -352,7 +353,7 @@ def test_the_report_gallery_captions_are_as_large_as_the_tables_text(monkeypatch
 
     monkeypatch.setattr(files, "png_bytes", keep)
     body = P.box(1.0, 2.0, 3.0)
-    html._poses_html(resting_poses(body), body, html._SI())
+    html._poses_html(resting_poses(body), body, SI)
     (_, dpi, sizes), = drawn
     assert sizes and min(sizes) * dpi / 72 >= html.TABLE_FONT_PX - 1e-9
 

@@ -24,6 +24,7 @@ from ._common import (
     non_negative,
     open_body,
     option_loads,
+    picture_units,
     pose_down,
     positive,
     print_json,
@@ -145,7 +146,8 @@ def run(args) -> int:
         standard = run_standard(body, args.standard, v.requirement.replace(loads=()),
                                 extendables=reading.extendables, props=props)
     if args.plot:
-        write_plot(args.plot, "check", v, body, path=args.path)
+        write_plot(args.plot, "check", v, body, path=args.path,
+                   units=picture_units(args, reading))
     sheet = None
     if explain is not None:
         from ..report import sheet_html, sheet_markdown

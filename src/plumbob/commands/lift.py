@@ -16,6 +16,7 @@ from ._common import (
     header,
     number,
     open_body,
+    picture_units,
     positive,
     print_json,
     report_units,
@@ -60,7 +61,8 @@ def run(args) -> int:
     body = reading.body
     lift = lift_energy(body, datum=args.datum, g=args.g, props=props)
     if args.plot:
-        write_plot(args.plot, "lift", lift, body, props=props, path=args.path)
+        write_plot(args.plot, "lift", lift, body, props=props, path=args.path,
+                   units=picture_units(args, reading))
     out = {**header(reading, getattr(body, "kind", "solid")), **lift.as_dict()}
     crew = None
     if args.crew is not None or args.work_per_day is not None:

@@ -11,6 +11,7 @@ from ._common import (
     dump_json,
     load_body,
     parse_vector,
+    picture_units,
     print_notices,
     report_units,
     require_finite,
@@ -59,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
     report = MassReport.of(reading, about=about, sizes=args.sizes)
     answer = require_finite(report.as_dict())  # built once: checked here, printed below
     if args.plot:
-        write_plot(args.plot, "mass", reading.body, path=args.path)
+        write_plot(args.plot, "mass", reading.body, props=report.props, path=args.path,
+                   units=picture_units(args, reading))
     if getattr(args, "format", None):
         from ..export.inertial import inertial_xml
 

@@ -26,6 +26,7 @@ __all__ = [
     "add_body_arguments",
     "add_report_units_argument",
     "report_units",
+    "picture_units",
     "parameter_overrides",
     "add_stability_arguments",
     "add_orientation_arguments",
@@ -128,6 +129,15 @@ def report_units(args: argparse.Namespace, reading: Reading | None = None):
     from ..report import natural_units  # the text report's, loaded only for text
 
     return units or natural_units(reading.length_unit if reading is not None else None)
+
+
+def picture_units(args: argparse.Namespace, reading: Reading):
+    """The units ``--plot`` labels its picture in: the text report's (``--report-units``,
+    else the part's own: mm and g for a part drawn in mm), with ``--json`` too (the JSON
+    is SI; a picture is read by a person)."""
+    from ..report import natural_units
+
+    return getattr(args, "report_units", None) or natural_units(reading.length_unit)
 
 
 def parameter_overrides(pairs: list[tuple[str, str]] | Mapping[str, Any] | None

@@ -16,6 +16,7 @@ from ._common import (
     header,
     non_negative,
     open_body,
+    picture_units,
     positive,
     report_units,
 )
@@ -106,7 +107,8 @@ def run(args) -> int:
         written = export_poses(body, shown, args.export, args.export_format,
                                getattr(args, "units", None))
     if args.plot:
-        write_plot(args.plot, "poses", result, body, path=args.path)
+        write_plot(args.plot, "poses", result, body, path=args.path,
+                   units=picture_units(args, reading))
     if args.json:
         out = {**header(reading, getattr(body, "kind", "solid")), **result.as_dict()}
         out["poses"] = [p.as_dict() for p in shown]

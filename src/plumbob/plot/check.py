@@ -28,12 +28,16 @@ from .style import (
     STATUS_WORDS,
     caption,
     fmt,
+    fmt_at,
+    fmt_length,
     fmt_point,
     label_axes,
     new_figure,
     part_colours,
+    scale_ticks,
     status,
     title_for,
+    units_or_si,
 )
 
 __all__ = ["plot_check"]
@@ -58,12 +62,13 @@ def _names(verdict, rows: np.ndarray) -> tuple[str, ...]:
     return ("e1", "e2", "up") if len(rows) == 3 else ("e1", "up")
 
 
-def _com_label(verdict, rows: np.ndarray) -> str:
-    """G in the figure's frame (its axes' names when that is not the body's own)."""
+def _com_label(verdict, rows: np.ndarray, u) -> str:
+    """G in the figure's frame (its axes' names when that is not the body's own), in the
+    report's length unit."""
     names = _names(verdict, rows)
     where = "" if names[0] == "x" else f" ({', '.join(names)})"
     point = in_frame(verdict.center_of_mass, rows)
-    return f"centre of mass G{where} {fmt_point(point, scale=_size(verdict))} m"
+    return f"centre of mass G{where} {fmt_at(point, u, scale=_size(verdict))}"
 
 
 def _way_name(verdict, rows: np.ndarray, vector=None) -> str:
@@ -78,20 +83,21 @@ def _way_name(verdict, rows: np.ndarray, vector=None) -> str:
     return f"{fmt_point(g, 3)} in {', '.join(names[:-1])}"
 
 
-def _foot_label(verdict) -> str:
+def _foot_label(verdict, u) -> str:
     word = STATUS_WORDS[status(verdict)] if verdict.verdict != "neutral" else "neutral"
-    return f"foot of G: {word}, margin {fmt(verdict.margin, 3)} m"
+    return f"foot of G: {word}, margin {fmt_length(verdict.margin, u, 3)}"
 
 
-def _draw_foot(ax, point, verdict) -> None:
+def _draw_foot(ax, point, verdict, u) -> None:
     colour = STATUS_COLOURS[status(verdict)]
     marker = {"stands": "s", "amber": "D", "topples": "X"}[status(verdict)]
     (foot,) = ax.plot(*[[c] for c in point], marker=marker, markersize=10, color=colour,
-                      markeredgecolor=INK, linestyle="none", zorder=19, label=_foot_label(verdict))
+                      markeredgecolor=INK, linestyle="none", zorder=19,
+                      label=_foot_label(verdict, u))
     foot.set_gid("foot")
 
 
-def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray, u) -> None:
     com = in_frame(verdict.center_of_mass, rows)
     foot = in_frame(verdict.support.plane_point, rows)
     support = in_frame(verdict.support.polygon, rows)
@@ -110,8 +116,8 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.annotate("", xy=foot, xytext=com, zorder=18,
                 arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
     ax.plot([], [], linestyle="--", color=INK, label="line of action of the weight")
-    draw_com(ax, com, label=_com_label(verdict, rows))
-    _draw_foot(ax, foot, verdict)
+    draw_com(ax, com, label=_com_label(verdict, rows, u))
+    _draw_foot(ax, foot, verdict, u)
     for edge in verdict.edges:
         tip = in_frame(edge.start, rows)
         (mark,) = ax.plot([tip[0]], [tip[1]], marker="^", markersize=10, color="white",
@@ -122,11 +128,11 @@ def _lamina_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
                     arrowprops=dict(arrowstyle="-", color=INK, linewidth=0.6))
     ax.update_datalim([[lo, ground - 0.12 * width]])
     ax.autoscale_view()
-    label_axes(ax, _names(verdict, rows))
+    label_axes(ax, _names(verdict, rows), u)
     draw_legend(ax, legend if d is not None and len(d.pieces) > 1 else [], loc="upper left")
 
 
-def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray, u) -> None:
     """The ground seen from above: footprint, support polygon, foot of G, critical direction."""
     if d is not None:
         shapes = draw_silhouette(ax, d, ["#dddddd"] * len(d.pieces), 0, 1)
@@ -144,7 +150,7 @@ def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
         (line,) = ax.plot(support[:, 0], support[:, 1], color=INK, linewidth=4, marker="o",
                           label=f"support ({verdict.support.kind})", zorder=10)
         line.set_gid("support polygon")
-    _draw_foot(ax, foot, verdict)
+    _draw_foot(ax, foot, verdict, u)
     size = float(np.ptp(ax.dataLim.get_points(), axis=0).max()) if d is not None else \
         max(float(np.ptp(support, axis=0).max()), abs(verdict.margin), 1e-9)
     ax.update_datalim(np.vstack((support, foot)))
@@ -178,7 +184,7 @@ def _plan_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     ax.autoscale_view()
     ax.set_aspect("equal", adjustable="datalim")
     names = _names(verdict, rows)
-    label_axes(ax, names[:2])
+    label_axes(ax, names[:2], u)
     ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title(f"ground plan ({names[0]}–{names[1]}): support and foot of G", fontsize="medium")
 
@@ -192,7 +198,7 @@ def _ground_patch(verdict, d: Drawing | None, rows: np.ndarray) -> np.ndarray:
                      [hi[0] + pad, hi[1] + pad, z], [lo[0] - pad, hi[1] + pad, z]])
 
 
-def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
+def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray, u) -> None:
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     ground = _ground_patch(verdict, d, rows)
@@ -209,11 +215,13 @@ def _solid_3d_panel(ax, verdict, d: Drawing | None, rows: np.ndarray) -> None:
     com = in_frame(verdict.center_of_mass, rows)
     foot = in_frame(verdict.support.plane_point, rows)
     ax.plot(*np.array([com, foot]).T, linestyle="--", color=INK, label="weight", zorder=18)
-    draw_com_3d(ax, com, label=_com_label(verdict, rows))
-    _draw_foot(ax, foot, verdict)
+    draw_com_3d(ax, com, label=_com_label(verdict, rows, u))
+    _draw_foot(ax, foot, verdict, u)
     # the axes' names in the title: a 3-D axis' own label lands on its tick labels
-    ax.set_title(f"3-D view, resting on the ground (axes {', '.join(_names(verdict, rows))}, m)",
-                 fontsize="medium")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        scale_ticks(axis, float(u.length(1.0)))
+    ax.set_title(f"3-D view, resting on the ground (axes {', '.join(_names(verdict, rows))}, "
+                 f"{u.length_unit})", fontsize="medium")
 
 
 def side_rows(verdict, rows: np.ndarray) -> np.ndarray:
@@ -230,7 +238,7 @@ def side_rows(verdict, rows: np.ndarray) -> np.ndarray:
     return np.array([along, np.cross(up, along), up])
 
 
-def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray,
+def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray, u,
                 legend: list[tuple[str, str]] | None = None) -> None:
     """The body from the side, cut by the vertical plane of the critical direction: that
     direction left to right (``d`` drawn in :func:`side_rows`)."""
@@ -250,27 +258,32 @@ def _side_panel(ax, verdict, d: Drawing | None, rows: np.ndarray,
     ax.annotate("", xy=foot[[0, 2]], xytext=com[[0, 2]], zorder=18,
                 arrowprops=dict(arrowstyle="-|>", linestyle="--", color=INK, linewidth=1.2))
     draw_com(ax, com[[0, 2]], label="centre of mass G")
-    _draw_foot(ax, foot[[0, 2]], verdict)
+    _draw_foot(ax, foot[[0, 2]], verdict, u)
     ax.update_datalim([[lo, foot[2] - 0.08 * (hi - lo)]])
     ax.autoscale_view()
     names = _names(verdict, rows)
     way = _way_name(verdict, rows)
-    ax.set_xlabel(f"along the weakest way, toward {way} →, m")
-    ax.set_ylabel(f"{names[-1]}, m")
+    unit = u.length_unit
+    ax.set_xlabel(f"along the weakest way, toward {way} →, {unit}")
+    ax.set_ylabel(f"{names[-1]}, {unit}")
+    scale_ticks(ax.xaxis, float(u.length(1.0)))
+    scale_ticks(ax.yaxis, float(u.length(1.0)))
     ax.set_title(f"from the side, across the weakest way: toward {way}", fontsize="medium")
     if legend:  # an assembly: one entry per part
         draw_legend(ax, legend, loc="upper left", bbox_to_anchor=(1.02, 1.0))
 
 
-def _summary(verdict, rows: np.ndarray) -> str:
+def _summary(verdict, rows: np.ndarray, u) -> str:
     settled = getattr(verdict, "settling", None)
     word = verdict.verdict if settled is None else f"{verdict.verdict} ({settled.phrase})"
     names = _names(verdict, rows)
     where = "" if names[0] == "x" else f" ({', '.join(names)})"
     point = in_frame(verdict.center_of_mass, rows)
     text = (f"{word}: critical tilt {fmt(verdict.critical_tilt_deg, 3)}°, margin "
-            f"{fmt(verdict.margin, 3)} m, energy to topple {fmt(verdict.energy_to_topple, 4)} J, "
-            f"G{where} {fmt_point(point, scale=_size(verdict))} m")
+            f"{fmt_length(verdict.margin, u, 3)}, height of G "
+            f"{fmt_length(verdict.com_height, u, 4)}, energy to topple "
+            f"{fmt(verdict.energy_to_topple, 4)} J, G{where} "
+            f"{fmt_at(point, u, scale=_size(verdict))}")
     if verdict.required_tilt_deg is not None:
         text += f"; required tilt {fmt(verdict.required_tilt_deg, 3)}°: " + \
             ("PASS" if verdict.passes else "FAIL")
@@ -283,7 +296,7 @@ def _summary(verdict, rows: np.ndarray) -> str:
 
 
 def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
-               max_faces: int = DISPLAY_FACES):
+               max_faces: int = DISPLAY_FACES, units=None):
     """Draw a stability verdict; returns the figure.
 
     Parameters
@@ -296,47 +309,50 @@ def plot_check(verdict, body=None, ax=None, *, path: str | None = None,
         lamina, or the solid's ground plan — its 3-D view on a 3-D axes).
     path : the file the body came from, for the title.
     max_faces : triangles drawn at most.
+    units : the report's units (:class:`plumbob.report.ReportUnits`): margins, heights and
+        points labelled in them (a part drawn in mm reads in mm); default SI.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
     rows = _frame(verdict)
+    u = units_or_si(units)
     base = drawing(body, max_faces) if body is not None else None
     d = base.moved(rows) if base is not None else None
     lamina = verdict.support.frame.dim == 2
     names = _names(verdict, rows)
     if ax is not None:
         if lamina:
-            _lamina_panel(ax, verdict, d, rows)
+            _lamina_panel(ax, verdict, d, rows, u)
         elif hasattr(ax, "zaxis"):
-            _solid_3d_panel(ax, verdict, d, rows)
+            _solid_3d_panel(ax, verdict, d, rows, u)
         else:
-            _plan_panel(ax, verdict, d, rows)
+            _plan_panel(ax, verdict, d, rows, u)
         return ax.figure
     if lamina:
         fig = new_figure((12, 5.4))
         grid = fig.add_gridspec(1, 2, width_ratios=(1.7, 1))
         main = fig.add_subplot(grid[0, 0])
-        _lamina_panel(main, verdict, d, rows)
+        _lamina_panel(main, verdict, d, rows, u)
         draw_loads(main, verdict, rows, (0, 1), _size(verdict))
         tilt_rose(verdict, fig.add_subplot(grid[0, 1], projection="polar"), names=names[:1])
     elif d is None:
         fig = new_figure((11, 5))
-        _plan_panel(fig.add_subplot(1, 2, 1), verdict, None, rows)
+        _plan_panel(fig.add_subplot(1, 2, 1), verdict, None, rows, u)
         tilt_rose(verdict, fig.add_subplot(1, 2, 2, projection="polar"), names=names[:2])
     else:
         fig = new_figure((14, 10))
-        _solid_3d_panel(new_3d_axes(fig, 2, 2, 1), verdict, d, rows)
+        _solid_3d_panel(new_3d_axes(fig, 2, 2, 1), verdict, d, rows, u)
         _, legend = part_colours(d.pieces)
         side = fig.add_subplot(2, 2, 2)
         across = side_rows(verdict, rows)
-        _side_panel(side, verdict, base.moved(across), rows,
+        _side_panel(side, verdict, base.moved(across), rows, u,
                     legend if len(d.pieces) > 1 else None)
         draw_loads(side, verdict, across, (0, 2), _size(verdict))
-        _plan_panel(fig.add_subplot(2, 2, 3), verdict, d, rows)
+        _plan_panel(fig.add_subplot(2, 2, 3), verdict, d, rows, u)
         tilt_rose(verdict, fig.add_subplot(2, 2, 4, projection="polar"), names=names[:2])
-    fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict, rows),
+    fig.suptitle(title_for(body, path, "plumbob check") + "\n" + _summary(verdict, rows, u),
                  fontsize="medium")
     if d is not None and d.note:
         caption(fig, d.note)

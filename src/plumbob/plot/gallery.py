@@ -17,7 +17,7 @@ from matplotlib.patches import Polygon
 from .geometry import Drawing, drawing, in_frame, rest_frame
 from .lamina import draw_com, draw_outline
 from .solid import draw_3d, draw_com_3d, new_3d_axes
-from .style import INK, caption, fmt, new_figure, part_colours, title_for
+from .style import INK, caption, fmt, fmt_length, new_figure, part_colours, title_for
 
 __all__ = ["plot_poses", "MAX_PANELS"]
 
@@ -25,8 +25,10 @@ MAX_PANELS = 24  # poses drawn at most; the rest are summed up in a caption
 _PANEL_FACES = 2500  # triangles per panel
 
 
-def _caption(k: int, pose) -> str:
-    text = f"#{k}  p = {pose.probability:.3f}\ntilt {fmt(pose.critical_tilt_deg, 3)}°"
+def _caption(k: int, pose, units=None) -> str:
+    """``#k  p = …``, then the critical tilt and the height of G (in the report's unit)."""
+    text = (f"#{k}  p = {pose.probability:.3f}\ntilt {fmt(pose.critical_tilt_deg, 3)}°, "
+            f"G at {fmt_length(pose.com_height, units, 3)}")
     return text + ("  (rolls)" if pose.neutral else "")
 
 
@@ -89,7 +91,7 @@ def _panel_plan(ax, pose, com) -> None:
 
 
 def plot_poses(poses, body=None, fig=None, *, path: str | None = None,
-               max_panels: int = MAX_PANELS):
+               max_panels: int = MAX_PANELS, units=None):
     """Draw the pose gallery of a :class:`~plumbob.stability.poses.Poses` result.
 
     Parameters
@@ -101,6 +103,8 @@ def plot_poses(poses, body=None, fig=None, *, path: str | None = None,
         so it takes a figure rather than one axes); None makes a new one.
     path : the file the body came from, for the title.
     max_panels : poses drawn at most, most probable first.
+    units : the report's units (:class:`plumbob.report.ReportUnits`): each panel's height
+        of the centre of mass in them (a part drawn in mm: mm); default SI.
 
     Returns
     -------
@@ -130,7 +134,7 @@ def plot_poses(poses, body=None, fig=None, *, path: str | None = None,
             else:
                 _panel_plan(ax, pose, com)
         ax.set_gid("pose")
-        ax.set_title(_caption(k, pose), fontsize="small")
+        ax.set_title(_caption(k, pose, units), fontsize="small")
     title = title_for(body, path, f"resting poses ({len(poses)}), most probable first")
     fig.suptitle(title, fontsize="medium")
     notes = []

@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import Drawing, drawing, in_frame, rest_frame
 from .rose import _direction_name, rose_samples
-from .style import STATUS_COLOURS, fmt, fmt_point, part_colours, status
+from .style import STATUS_COLOURS, fmt, fmt_point, part_colours, status, units_or_si
 
 __all__ = ["report_page", "REPORT_FACES"]
 
@@ -48,33 +48,6 @@ def _table(rows: list[tuple[str, str]]) -> str:
     return f"<table>{body}</table>"
 
 
-class _SI:
-    """The report units when none are given: SI (the duck type of
-    :class:`plumbob.report.ReportUnits`, which this layer may not import)."""
-
-    length_unit, mass_unit = "m", "kg"
-
-    def length(self, value):
-        return value
-
-    def mass(self, value):
-        return value
-
-    def measure(self, value, dim):
-        return value
-
-    def density(self, value, dim):
-        return value
-
-    def inertia(self, value):
-        return value
-
-    def unit(self, quantity, dim=3):
-        return {"length": "m", "mass": "kg", "inertia": "kg·m²", "measure": f"m{_POWER[dim]}",
-                "density": f"kg/m{_POWER[dim]}"}[quantity]
-
-
-_POWER = {2: "²", 3: "³"}
 
 
 def _mass_rows(body, props, size: float, u) -> list[tuple[str, str]]:
@@ -281,7 +254,7 @@ def _poses_html(poses, body, u) -> str:
     # Captions ("small", 0.833 of font.size) no smaller than the table's text on screen.
     points = TABLE_FONT_PX * 72 / GALLERY_DPI / 0.833
     with matplotlib.rc_context({"font.size": points}):
-        figure = plot_poses(poses, body)
+        figure = plot_poses(poses, body, units=u)
         image = base64.b64encode(png_bytes(figure, dpi=GALLERY_DPI)).decode("ascii")
     head = f"<tr><th>#</th><th>probability</th><th>down</th><th>height of G, {u.length_unit}" \
            "</th><th>critical tilt, °</th></tr>"
@@ -333,7 +306,7 @@ def report_page(body, props, verdict=None, poses=None, *, path: str | None = Non
     mass properties) of each part of an assembly, for the per-part table. standard: a
     standard's tests (:func:`plumbob.stability.standards.run_standard`), or None.
     """
-    u = units or _SI()
+    u = units_or_si(units)
     parts_of = tuple(parts)
     d = drawing(body, max_faces)
     size = float(np.ptp(d.all_points(), axis=0).max()) or 1.0

@@ -13,7 +13,7 @@ from matplotlib.patches import PathPatch
 from matplotlib.path import Path
 
 from .geometry import Drawing
-from .style import COM_STYLE, INK, fmt_point
+from .style import COM_STYLE, INK, fmt_at
 
 __all__ = ["draw_outline", "draw_silhouette", "draw_com", "draw_legend"]
 
@@ -72,10 +72,12 @@ def draw_silhouette(ax, drawing: Drawing, colours: list[str], across: int = 0,
     return artists
 
 
-def draw_com(ax, point, label: str | None = None, scale: float | None = None, **style):
-    """The centre-of-mass marker (a ringed dot, gid ``"centre of mass"``) at ``point``."""
+def draw_com(ax, point, label: str | None = None, scale: float | None = None, units=None,
+             **style):
+    """The centre-of-mass marker (a ringed dot, gid ``"centre of mass"``) at ``point``,
+    labelled in ``units`` (default SI)."""
     point = np.asarray(point, dtype=float)
-    text = label if label is not None else f"centre of mass G {fmt_point(point, scale=scale)} m"
+    text = label if label is not None else f"centre of mass G {fmt_at(point, units, scale=scale)}"
     (marker,) = ax.plot([point[0]], [point[1]], **{**COM_STYLE, **style}, label=text)
     marker.set_gid("centre of mass")
     ax.plot([point[0]], [point[1]], marker="+", color="black", markersize=9, zorder=21)

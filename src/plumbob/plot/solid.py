@@ -11,7 +11,7 @@ import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from .geometry import Drawing
-from .style import COM_STYLE, INK, equal_3d, fmt_point
+from .style import COM_STYLE, INK, equal_3d, fmt_at
 
 __all__ = ["draw_3d", "draw_com_3d", "shade", "new_3d_axes"]
 
@@ -67,10 +67,12 @@ def draw_3d(ax, drawing: Drawing, colours: list[str], alpha: float = 0.55,
     return artists
 
 
-def draw_com_3d(ax, point, label: str | None = None, scale: float | None = None, **style):
-    """The centre-of-mass marker (gid ``"centre of mass"``) at ``point`` (3,)."""
+def draw_com_3d(ax, point, label: str | None = None, scale: float | None = None, units=None,
+                **style):
+    """The centre-of-mass marker (gid ``"centre of mass"``) at ``point`` (3,), labelled in
+    ``units`` (default SI)."""
     point = np.asarray(point, dtype=float)
-    text = label if label is not None else f"centre of mass G {fmt_point(point, scale=scale)} m"
+    text = label if label is not None else f"centre of mass G {fmt_at(point, units, scale=scale)}"
     (marker,) = ax.plot([point[0]], [point[1]], [point[2]], **{**COM_STYLE, **style}, label=text)
     marker.set_gid("centre of mass")
     return marker

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["STATUS_COLOURS", "PART_COLOURS", "status", "new_figure", "label_axes", "equal_3d",
-           "fmt", "fmt_point", "part_colours", "title_for", "caption"]
+           "fmt", "fmt_point", "fmt_length", "fmt_at", "part_colours", "title_for", "caption",
+           "SI", "units_or_si", "scale_ticks"]
 
 STATUS_COLOURS = {"stands": "#1a7f37", "amber": "#f0b400", "topples": "#c62828"}
 STATUS_WORDS = {"stands": "stands", "amber": "below the required tilt", "topples": "topples"}
@@ -19,6 +20,46 @@ PART_COLOURS = ("#8fa8c8", "#d9a066", "#9cc89a", "#c79ac7", "#c8c070", "#e08f8f"
 COM_STYLE = dict(marker="o", markersize=9, markerfacecolor="white", markeredgecolor="black",
                  markeredgewidth=2.0, linestyle="none", zorder=20)
 INK = "#222222"
+
+
+_POWER = {2: "²", 3: "³"}
+
+
+class SIUnits:
+    """The units a picture labels lengths, masses and inertias in when none are given: SI.
+    The duck type of :class:`plumbob.report.ReportUnits` (which this room may not import):
+    a command passes the text report's units, so a part drawn in mm is drawn in mm and g
+    too (``length``, ``mass``, ``measure``, ``density``, ``inertia`` convert from SI;
+    ``unit`` names the symbol)."""
+
+    length_unit, mass_unit = "m", "kg"
+
+    def length(self, value):
+        return value
+
+    def mass(self, value):
+        return value
+
+    def measure(self, value, dim: int = 3):
+        return value
+
+    def density(self, value, dim: int = 3):
+        return value
+
+    def inertia(self, value):
+        return value
+
+    def unit(self, quantity: str, dim: int = 3) -> str:
+        return {"length": "m", "mass": "kg", "inertia": "kg·m²", "measure": f"m{_POWER[dim]}",
+                "density": f"kg/m{_POWER[dim]}"}[quantity]
+
+
+SI = SIUnits()
+
+
+def units_or_si(units):
+    """``units`` (a :class:`~plumbob.report.ReportUnits`), or :data:`SI` for None."""
+    return SI if units is None else units
 
 
 def status(verdict) -> str:
@@ -55,12 +96,52 @@ def fmt_point(point, digits: int = 4, scale: float | None = None) -> str:
     return "(" + ", ".join(fmt(v, digits) for v in point) + ")"
 
 
-def label_axes(ax, names=("x", "y"), unit: str = "m") -> None:
-    """Axis labels with units (``x, m``)."""
+def fmt_length(value: float, units=None, digits: int = 4) -> str:
+    """A length, m, in the picture's units: ``5 mm``.
+
+    >>> fmt_length(0.005), fmt_length(0.005, _Millimetres())
+    ('0.005 m', '5 mm')
+    """
+    u = units_or_si(units)
+    return f"{fmt(u.length(float(value)), digits)} {u.length_unit}"
+
+
+def fmt_at(point, units=None, digits: int = 4, scale: float | None = None) -> str:
+    """A point, m, in the picture's units (round-off below ``scale``, m, as 0): ``(1, 2) mm``."""
+    u = units_or_si(units)
+    scale = None if scale is None else float(u.length(float(scale)))
+    return f"{fmt_point(u.length(np.asarray(point, dtype=float)), digits, scale)} {u.length_unit}"
+
+
+class _Millimetres(SIUnits):  # for the doctests: what plumbob.report.ReportUnits("mm") does
+    length_unit = "mm"
+
+    def length(self, value):
+        return value * 1e3
+
+
+def scale_ticks(axis, factor: float) -> None:
+    """Tick labels of ``axis`` (drawn in metres) shown ``factor`` times larger: the axes
+    read in the report's length unit while the geometry stays in metres."""
+    if factor == 1.0:
+        return
+    from matplotlib.ticker import FuncFormatter
+
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v * factor:.6g}"))
+
+
+def label_axes(ax, names=("x", "y"), units=None) -> None:
+    """Axis labels with the length unit (``x, m``; ``x, mm`` for a part drawn in mm, its
+    ticks scaled to match)."""
+    u = units_or_si(units)
+    unit, factor = u.length_unit, float(u.length(1.0))
     ax.set_xlabel(f"{names[0]}, {unit}")
     ax.set_ylabel(f"{names[1]}, {unit}")
+    scale_ticks(ax.xaxis, factor)
+    scale_ticks(ax.yaxis, factor)
     if len(names) > 2 and hasattr(ax, "set_zlabel"):
         ax.set_zlabel(f"{names[2]}, {unit}")
+        scale_ticks(ax.zaxis, factor)
 
 
 def equal_3d(ax, points: np.ndarray) -> None:
