@@ -15,7 +15,7 @@ What counts, in fenced ``sh``/``console``/``shell``/``bash`` blocks:
 
 A block after ``<!-- docs: run only -->`` runs but its output is not compared (for
 output that depends on a physics engine's version). A block after
-``<!-- docs: slow -->`` (minutes of work, such as hollowing a figurine) is compared
+``<!-- docs: slow -->`` (seconds of work a command, such as hollowing a figurine) is compared
 like any other, under the ``slow`` marker: ``python -m pytest -m slow
 tests/test_docs_commands.py`` runs it. A ``…`` in a shown line stands for one number
 that differs from run to run (a time). Blocks of usage synopses are
