@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .errors import DensityError, MaterialError
+from .results import Key, Result
 
 # tomllib, importlib.resources and difflib load when the table is first read: every body
 # imports check_density from here, and reading a mesh never opens the table.
@@ -51,7 +52,7 @@ ALIASES = {
 
 
 @dataclass(frozen=True)
-class Material:
+class Material(Result):
     """A named material.
 
     name: the table's key. density: kg/m³. description: one line.
@@ -64,14 +65,14 @@ class Material:
     source: str
     category: str = "other"
 
-    def as_dict(self) -> dict[str, float | str]:
-        """The entry as ``plumbob materials --json`` lists it (density in kg/m³).
-
-        >>> Material("oak", 750.0, "oak, seasoned", "engineering-toolbox", "wood").as_dict()["density"]
-        750.0
-        """
-        return {"name": self.name, "density": self.density, "category": self.category,
-                "description": self.description, "source": self.source}
+    #: the keys of each of ``plumbob materials --json``'s ``materials``
+    KEYS = (
+        Key("name", "", "the table's key, as `--material` takes it", type="str"),
+        Key("density", "kg/m³", "its density", type="float"),
+        Key("category", "", "one of the table's categories", type="str"),
+        Key("description", "", "one line", type="str"),
+        Key("source", "", "a key of the references (`sources`)", type="str"),
+    )
 
     @property
     def reference(self) -> str:

@@ -40,6 +40,7 @@ DOCUMENTED = {
     "CrewTime": "plumbob.energy",
     "SimulationResult": "plumbob.dynamics.motion",
     "CollisionResult": "plumbob.dynamics.collisions",
+    "Material": "plumbob.materials",
 }
 
 #: a table between its markers (none inside: an empty block is filled, never overrun)
