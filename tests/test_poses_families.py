@@ -164,23 +164,32 @@ def test_a_fine_sphere_is_fast_and_rolls():
 
 
 @settings(max_examples=6, deadline=None)
-@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1))
-def test_the_rockers_candidate_filter_drops_nothing(seed, eps):
+@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1), st.booleans())
+def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat):
     """rocking() sweeps only the points its exact filter keeps (those near the rim of the
-    projected hull): the same heights and tilts as sweeping every point."""
+    projected hull): the same heights and tilts as sweeping every point. ``flat``: a
+    box's corners and the points of its faces, whose projections leave wide sectors of
+    angle without a point and hold many points within eps of the support at once."""
     import plumbob.stability.rocking as rocking_module
 
     rng = np.random.default_rng(seed)
-    X = rng.normal(size=(1500, 3))  # a rim of some hundred points the filter must keep
+    X = rng.normal(size=(700, 3))  # a rim of some hundred points the filter must keep
     X /= np.linalg.norm(X, axis=1)[:, None]
     X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
+    if flat:  # points on the faces of a box, snapped to them
+        half, rows = np.array([1.0, 0.7, 0.4]), np.arange(len(X))
+        axis = rng.integers(0, 3, len(X))
+        X = rng.uniform(-1.0, 1.0, size=X.shape) * half
+        X[rows, axis] = np.where(rng.random(len(X)) < 0.5, -1.0, 1.0) * half[axis]
+        X += [0.05, -0.1, 0.1]
     down = rng.normal(size=3)
     down /= np.linalg.norm(down)
     fast = rocking_module.rocking(X, down, eps, azimuths=6)
     keep = rocking_module._sweep_pairs
     try:  # every point at every angle of the sweep
-        rocking_module._sweep_pairs = lambda a, b, alpha, eps: (
+        rocking_module._sweep_pairs = lambda a, B, alpha, eps, planes=None: [(
             np.repeat(np.arange(len(alpha)), len(a)), np.tile(np.arange(len(a)), len(alpha)))
+        ] * len(B)
         slow = rocking_module.rocking(X, down, eps, azimuths=6)
     finally:
         rocking_module._sweep_pairs = keep
