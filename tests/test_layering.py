@@ -18,7 +18,7 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 #: Rooms from the bottom up: a room may import its own layer and the layers below it.
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "version"),
-    ("units", "tolerances", "results", "plot", "limits", "arguments", "blockwise",
+    ("units", "tolerances", "results", "plot", "limits", "arguments", "frames", "blockwise",
      "callable_module", "files", "arrays"),
     ("expr", "integrals", "massprops", "materials", "loads"),
     ("mesh",),

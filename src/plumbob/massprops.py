@@ -22,11 +22,12 @@ from typing import Any
 
 import numpy as np
 
-from .arguments import floats, instance, mass_fields, non_negative, number, positive, unit_vector, vector
+from .arguments import floats, instance, mass_fields, non_negative, positive, unit_vector, vector
 from .errors import GeometryError
+from .frames import frame_axes, frame_rows, rotation_matrix
 from .results import Result
 
-__all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix"]
+__all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix", "frame_axes"]
 
 
 def _as_3d(vector: np.ndarray) -> np.ndarray:
@@ -36,37 +37,6 @@ def _as_3d(vector: np.ndarray) -> np.ndarray:
 def _parallel_axis(mass: float, offset: np.ndarray) -> np.ndarray:
     """Tensor of a point mass ``mass`` at ``offset`` (3,) about the origin."""
     return mass * (np.dot(offset, offset) * np.eye(3) - np.outer(offset, offset))
-
-
-def rotation_matrix(axis: np.ndarray | list[float], angle: float) -> np.ndarray:
-    """The matrix of a turn about an axis through the origin.
-
-    Parameters
-    ----------
-    axis, angle : array_like (3,), float
-        The axis (any length but zero); radians, by the right-hand rule.
-
-    Returns
-    -------
-    numpy.ndarray, shape (3, 3)
-        The rotation matrix; quarter turns are exact.
-
-    Examples
-    --------
-    >>> rotation_matrix([0, 0, 1], np.pi / 2) @ [1, 0, 0]
-    array([0., 1., 0.])
-    >>> rotation_matrix([0, 0, 0], 1.0)
-    Traceback (most recent call last):
-    ...
-    plumbob.errors.GeometryError: a rotation axis must be a non-zero vector, not [0, 0, 0]
-    """
-    x, y, z = unit_vector(axis, "a rotation axis", (3,), error=GeometryError)
-    angle = number(angle, "angle", error=GeometryError)
-    c, s = np.cos(angle), np.sin(angle)
-    # Quarter turns are exact: cos(π/2) is 6e-17 in floating point, not 0.
-    c, s = (0.0 if abs(c) < 1e-15 else c), (0.0 if abs(s) < 1e-15 else s)
-    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
-    return c * np.eye(3) + s * k + (1 - c) * np.outer([x, y, z], [x, y, z])
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -295,6 +265,35 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         """
         offset = self.center_of_mass_3d - _as_3d(vector(point, "point", (self.dim, 3)))
         return self.inertia + _parallel_axis(self.mass, offset)
+
+    def inertia_in(self, axes, point: np.ndarray | list[float] | None = None) -> np.ndarray:
+        """The inertia tensor about ``point`` (default the centre of mass) in another frame.
+
+        Parameters
+        ----------
+        axes : ``"principal"`` or array_like (3, 3)
+            The frame's unit axes as rows, right-handed and at right angles (see
+            :func:`frame_axes`), in the body's coordinates; ``"principal"``: the principal
+            axes (about the centre of mass the tensor is then diagonal).
+        point : array_like, shape (dim,) or (3,), optional
+            The point, m (the parallel-axis theorem, :meth:`inertia_about`).
+
+        Returns
+        -------
+        numpy.ndarray, shape (3, 3)
+            ``R I_point Rᵀ``, kg·m², with ``R`` the rows of ``axes``. A rod of 1 kg, 2 m
+            long along x, in a frame turned 90° about z:
+
+        >>> rod = MassProperties(3, 1.0, 0.0, [0, 0, 0], np.diag([0.0, 1 / 3, 1 / 3]))
+        >>> rod.inertia_in([[0, 1, 0], [-1, 0, 0], [0, 0, 1]]).diagonal().round(6)
+        array([0.333333, 0.      , 0.333333])
+        >>> rod.inertia_in("principal").diagonal().round(6)
+        array([0.      , 0.333333, 0.333333])
+        """
+        rows = self.principal_axes if isinstance(axes, str) and axes == "principal" else \
+            frame_rows(axes)
+        tensor = self.inertia if point is None else self.inertia_about(point)
+        return rows @ tensor @ rows.T
 
     def moment_about_axis(
         self, point: np.ndarray | list[float], axis: np.ndarray | list[float]

@@ -57,6 +57,11 @@ MASS_KEYS = (
         attr="sizes.radii_of_gyration", type="123"),
     Key("inertia_about", "m, kg·m²", "`point` and `inertia`, the 3×3 tensor about it",
         "with `--about X,Y,Z`"),
+    Key("inertia_in_frame", "m, kg·m²", "`axes` (rows, unit vectors in the body's "
+                                        "coordinates), `point` (the centre of mass or the "
+                                        "`--about` point) and `inertia`, the 3×3 tensor about "
+                                        "it in that frame, R I Rᵀ",
+        "with `--frame principal` or `--frame x=X,Y,Z y=X,Y,Z`"),
     Key("bounding_box_lower", "m", "the bounding box's least corner: the farthest points "
                                    "along −x, −y (, −z), exact for curved primitives too",
         "with `--sizes`", attr="sizes.bounding_box_lower"),

@@ -9,6 +9,8 @@ from ._common import (
     add_body_arguments,
     add_report_units_argument,
     dump_json,
+    frame_rows,
+    frame_word,
     load_body,
     parse_vector,
     picture_units,
@@ -31,6 +33,11 @@ def register(subparsers) -> None:
     parser.add_argument("--about", type=parse_vector, metavar="X,Y,Z",
                         help="also give the inertia tensor about this point (in the file's "
                              "length unit, like its coordinates)")
+    parser.add_argument("--frame", type=frame_word, nargs="+", metavar="AXES",
+                        help="also give the inertia tensor in another frame, about the centre "
+                             "of mass (or the --about point): 'principal' (its principal axes), "
+                             "or two axes in the body's coordinates, e.g. --frame x=1,1,0 "
+                             "y=-1,1,0 (at right angles; the third is their cross product)")
     parser.add_argument("--sizes", action="store_true",
                         help="also the bounding box and, for solids, the surface area (curved "
                              "faces faceted, with a stated bound)")
@@ -57,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         from ..units import length_scale
 
         about = [v * length_scale(reading.length_unit) for v in args.about]
-    report = MassReport.of(reading, about=about, sizes=args.sizes)
+    report = MassReport.of(reading, about=about, sizes=args.sizes, frame=frame_rows(args.frame))
     answer = require_finite(report.as_dict())  # built once: checked here, printed below
     if args.plot:
         write_plot(args.plot, "mass", reading.body, props=report.props, path=args.path,

@@ -29,7 +29,8 @@ class MassReport(Result):
     properties. parts: (name, kind, mass properties) of each part of an assembly
     (empty for other bodies). sizes: radii of gyration, bounding box and surface area
     (:func:`~plumbob.bodies.measures.size_keys`). about: a point, m, to give the
-    inertia tensor about as well (``--about``), or None.
+    inertia tensor about as well (``--about``), or None. frame: ``"principal"`` or the
+    rows (3, 3) of a frame to give the inertia tensor in as well (``--frame``), or None.
     """
 
     reading: Reading
@@ -37,22 +38,24 @@ class MassReport(Result):
     parts: tuple[tuple[str, str, MassProperties], ...] = ()
     sizes: dict = field(default_factory=dict)
     about: np.ndarray | None = None
+    frame: Any = None
 
     #: the keys of ``plumbob mass --json``, in order (docs/cli.md's table is made from
     #: them; declared beside the mass properties, whose keys they are, for the batch table)
     KEYS = MASS_KEYS
 
     @classmethod
-    def of(cls, reading: Reading, about=None, sizes: bool = False) -> MassReport:
+    def of(cls, reading: Reading, about=None, sizes: bool = False, frame=None) -> MassReport:
         """The report on the body of ``reading`` (``about``: a point for the inertia;
-        ``sizes``: the bounding box and surface area too)."""
+        ``sizes``: the bounding box and surface area too; ``frame``: ``"principal"`` or
+        axes as rows, a frame for the inertia)."""
         body = reading.body
         parts = tuple((p.name or f"part {i + 1}", p.kind, p.mass_properties())
                       for i, p in enumerate(body.assembly_parts()))
         props = body.mass_properties()
         if about is not None:
             about = vector(about, "about", (props.dim, 3))
-        return cls(reading, props, parts, size_keys(body, props, sizes), about)
+        return cls(reading, props, parts, size_keys(body, props, sizes), about, frame)
 
     @property
     def kind(self) -> str:
@@ -99,6 +102,17 @@ class MassReport(Result):
         if self.about is None:
             return None
         return {"point": self.about, "inertia": self.props.inertia_about(self.about)}
+
+    @property
+    def inertia_in_frame(self) -> dict[str, Any] | None:
+        """With ``--frame``: ``axes`` (rows, unit vectors in the body's coordinates),
+        ``point`` (m: the centre of mass, or the ``--about`` point) and ``inertia``
+        (kg·m², ``R I Rᵀ`` about that point), else None."""
+        if self.frame is None:
+            return None
+        rows = self.props.principal_axes if isinstance(self.frame, str) else self.frame
+        point = self.props.center_of_mass if self.about is None else self.about
+        return {"axes": rows, "point": point, "inertia": self.props.inertia_in(rows, point)}
 
     def text(self, units: ReportUnits | None = None) -> str:
         """A readable table, then a line per part and the notes; lengths and masses in

@@ -25,6 +25,8 @@ __all__ = [
     "length_unit",
     "assignment",
     "part_materials",
+    "frame_word",
+    "frame_rows",
 ]
 
 
@@ -80,6 +82,35 @@ def length(text: str) -> float:
     if value < 0:
         raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
     return value
+
+
+def frame_word(text: str):
+    """An argparse type, one word of ``--frame``: ``principal``, or an axis ``x=1,1,0``
+    (``y=…``, ``z=…``) in the body's coordinates, as (name, vector)."""
+    if text.strip().lower() == "principal":
+        return "principal"
+    name, sep, value = text.partition("=")
+    if not sep or name.strip().lower() not in ("x", "y", "z"):
+        raise argparse.ArgumentTypeError(
+            f"expected 'principal' or two axes such as x=1,1,0 y=-1,1,0, not {text!r} (give "
+            "--frame after PATH)")
+    return name.strip().lower(), parse_vector(value, (3,))
+
+
+def frame_rows(words: list | None):
+    """``--frame``'s words as :meth:`~plumbob.massprops.MassProperties.inertia_in` takes
+    them: ``"principal"``, or the rows of the frame two axes give
+    (:func:`~plumbob.massprops.frame_axes`); None when not asked."""
+    if not words:
+        return None
+    if words == ["principal"]:
+        return "principal"
+    if "principal" in words or len({w[0] for w in words}) != len(words) or len(words) != 2:
+        raise ArgumentError("--frame takes 'principal' or two different axes, e.g. "
+                            "--frame x=1,1,0 y=-1,1,0 (the third is their cross product)")
+    from ..frames import frame_axes
+
+    return frame_axes(**dict(words))
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:

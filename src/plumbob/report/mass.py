@@ -53,6 +53,19 @@ def mass_text(report, units: ReportUnits | None = None) -> str:
         for label, row in zip((point, "", ""), u.inertia(about)):
             rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row)
                          + f"]  {u.unit('inertia')}"))
+    framed = getattr(report, "inertia_in_frame", None)
+    if framed is not None:
+        tensor = framed["inertia"]
+        tensor = np.where(np.abs(tensor) < 1e-12 * np.abs(tensor).max(initial=0.0), 0.0, tensor)
+        where = ("centre" if report.about is None else
+                 f"{format_vector(u.length(report.about))} {u.length_unit}")
+        frame = "principal axes" if isinstance(report.frame, str) else "the frame below"
+        head = f"inertia (about {where}, in {frame})"
+        for label, row in zip((head, "", ""), u.inertia(tensor)):
+            rows.append((label, "[" + ", ".join(f"{format_number(v):>12}" for v in row)
+                         + f"]  {u.unit('inertia')}"))
+        for name, axis in zip("xyz", framed["axes"]):
+            rows.append((f"frame axis {name}", format_vector(np.round(axis, 12) + 0.0)))
     if "surface_area" in sizes:
         bound = "" if sizes["surface_area_exact"] else (
             f" (curved faces faceted: within {sizes['surface_area_relative_error']:.1e} "
