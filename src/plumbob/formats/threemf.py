@@ -23,6 +23,7 @@ says so.
 
 from __future__ import annotations
 
+import io
 import zipfile
 from dataclasses import dataclass, field, replace
 
@@ -85,14 +86,22 @@ def _matrix(text: str | None, path: str) -> np.ndarray:
     return out
 
 
-def _numbers(values: list[str], dtype, what: str, path: str) -> np.ndarray:
+def _numbers(values: list[str], whole: bool, what: str, path: str) -> np.ndarray:
+    """The numbers of ``values`` (three each) as an (n, 3) array, parsed in one C pass:
+    float64, or int64 when ``whole``."""
+    import warnings
+
     text = " ".join(values)
     try:
-        array = np.array(text.split(), dtype=dtype)
-    except (ValueError, OverflowError):
-        raise FormatError(f"has {what} that are not numbers", path=path) from None
-    if len(array) != len(values) * 3:
-        raise FormatError(f"has {what} with a coordinate or index missing", path=path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            # stops (or raises) at a word that is not a number: "1.5" as an index included
+            array = np.fromstring(text, dtype=np.int64 if whole else float, sep=" ")
+    except ValueError:
+        array = None
+    if array is None or len(array) != len(values) * 3:
+        raise FormatError(f"has {what} with a coordinate or index that is not a number (or "
+                          "is missing)", path=path)
     return array.reshape(-1, 3)
 
 
@@ -131,7 +140,7 @@ class _Model:
         check_count("model parts", len(self.parsed), limits.MAX_ARCHIVE_MEMBERS, path=self.path)
         bases: dict[str, list[str]] = {}
         try:
-            with self.archive.open(member) as stream:
+            with self.archive.open(member) as raw, io.BufferedReader(raw, 1 << 20) as stream:
                 for _, element in etree.iterparse(
                         stream, events=("end",), resolve_entities=False, no_network=True,
                         load_dtd=False, tag=("{*}basematerials", "{*}object", "{*}item")):
@@ -166,14 +175,16 @@ class _Model:
             self.triangles += len(triangles)
             check_count("triangles", self.triangles, limits.MAX_TRIANGLES, path=self.path)
             found.vertices = _numbers([f"{v.get('x')} {v.get('y')} {v.get('z')}"
-                                       for v in vertices], float, "vertices", self.path)
+                                       for v in vertices], False, "vertices", self.path)
             found.faces = _numbers([f"{t.get('v1')} {t.get('v2')} {t.get('v3')}"
-                                    for t in triangles], np.int64, "triangles", self.path)
+                                    for t in triangles], True, "triangles", self.path)
             if len(found.faces) and (found.faces.min() < 0
                                      or found.faces.max() >= len(found.vertices)):
                 raise FormatError(f"object {element.get('id')!r} has a triangle referring to a "
                                   "vertex it does not have", path=self.path)
-            painted = {(t.get("pid"), t.get("p1")) for t in triangles if t.get("p1") is not None}
+            painted = set() if not len(triangles) or triangles.find(
+                "{*}triangle[@p1]") is None else {
+                (t.get("pid"), t.get("p1")) for t in triangles if t.get("p1") is not None}
             found.painted = {_base(bases, pid or element.get("pid"), p1) for pid, p1 in painted}
             found.painted.discard(None)
         for c in next((e for e in element if _local(e.tag) == "components"), ()):
