@@ -343,3 +343,13 @@ def test_a_build_placement_moves_the_centre_and_keeps_the_mass(shift, turns, tmp
     assert abs(props.mass / mass - 1) <= 1e-12
     reach = 30 * MM + np.abs(shift).max() * MM
     assert np.abs(props.center_of_mass - centre - np.array(shift) * MM).max() <= 1e-12 * reach
+
+
+def test_part_material_overrides_what_the_file_names(files, capsys):
+    reading = read(files["print"], part_materials={"post": "abs"})  # ABS: 1040 kg/m³
+    m1, m2 = PLA * 2000 * MM**3, 1040.0 * 3000 * MM**3
+    assert abs(reading.body.mass_properties().mass / (m1 + m2) - 1) <= 1e-9
+    assert dict(reading.materials) == {"block": "pla", "post": "abs"}
+    assert main(["mass", files["print"], "--part-material", "post=abs"]) == 0
+    table = capsys.readouterr().out.split("part ")[-1].splitlines()
+    assert table[1].split()[:2] == ["block", "pla"] and table[2].split()[:2] == ["post", "abs"]

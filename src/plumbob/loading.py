@@ -14,7 +14,7 @@ from dataclasses import replace
 from . import formats
 from .arguments import file_path
 from .errors import ArgumentError, DensityError, PlumbobError, SpecError
-from .formats.parts import require_part_densities, with_part_materials
+from .formats.parts import require_part_densities, with_file_materials, with_part_materials
 from .reading import Reading
 
 __all__ = ["read", "with_default_density", "SUFFIXES"]
@@ -130,6 +130,7 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
     if part_materials:
         reading = with_part_materials(reading, part_materials,
                                       "--part-material" if option else "part_materials")
+    reading = with_file_materials(reading)  # what the file names, for the other parts
     if material is not None:
         from .materials import material as named
 

@@ -39,6 +39,10 @@ class Reading:
     densities_required: the file gives its parts different materials (a multi-material
     3MF), so every part needs a density: one assumed for all would be wrong
     (:func:`plumbob.formats.parts.require_part_densities`).
+    file_materials: (part name, material, density kg/m³) for the parts the file gives a
+    material by a name plumbob knows (a 3MF's base materials, a slicer's filaments): applied
+    by :func:`plumbob.formats.parts.with_file_materials` after ``--part-material``, which
+    may name another.
     """
 
     body: Body
@@ -51,6 +55,7 @@ class Reading:
     materials: tuple[tuple[str, str], ...] = ()
     units_assumed: bool = False
     densities_required: bool = False
+    file_materials: tuple[tuple[str, str, float], ...] = ()
 
     def default_down(self) -> list[float] | None:
         """Gravity's direction when the user gives none: against the file's up axis, or

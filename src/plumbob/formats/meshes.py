@@ -180,16 +180,15 @@ def read_mesh(path: str, units: str | None = None, repair: bool = False,
     if up is not None:
         notices.append(GLTF_UP_NOTICE)
     materials, required = (), False
-    if instances:
+    if instances:  # the parts' materials, applied by plumbob.read (after --part-material)
         from .threemf import material_notices
 
         chosen, more, required = material_notices([n for n, _ in meshes], instances)
         notices.extend(more)
-        parts = [p if m is None else p.with_default_density(m.density)
-                 for p, m in zip(parts, chosen)]
-        materials = tuple((n, m.name) for (n, _), m in zip(meshes, chosen) if m is not None)
+        materials = tuple((n, m.name, m.density) for (n, _), m in zip(meshes, chosen)
+                          if m is not None)
     return Reading(assemble(parts, stem(path)), tuple(notices), path,
-                   reading_unit(units, file_units), up=up, materials=materials,
+                   reading_unit(units, file_units), up=up, file_materials=materials,
                    densities_required=required,
                    units_assumed=unit_assumed(units, file_units, file_unit_scale(file_units)))
 

@@ -15,8 +15,8 @@ from ..bodies.base import Body
 from ..errors import DensityError
 from ..reading import Reading
 
-__all__ = ["stem", "unique_names", "assemble", "with_part_materials", "require_part_densities",
-           "CAD_SUFFIXES"]
+__all__ = ["stem", "unique_names", "assemble", "with_part_materials", "with_file_materials",
+           "require_part_densities", "CAD_SUFFIXES"]
 
 #: the files whose assemblies need a density for every part (:func:`require_part_densities`)
 CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
@@ -103,6 +103,42 @@ def with_part_materials(reading: Reading, materials: Mapping[str, str], option: 
     else:
         body = new[0]
     return replace(reading, body=body, materials=reading.materials + tuple(given))
+
+
+def with_file_materials(reading: Reading) -> Reading:
+    """``reading`` with the materials its file names (:attr:`Reading.file_materials`: a
+    3MF's base materials, a slicer's filaments) given to the parts that have no density
+    yet — after ``--part-material``, so a part the user names keeps the user's.
+
+    >>> from plumbob.bodies.csg import Assembly
+    >>> from plumbob.bodies.primitives import box
+    >>> two = Reading(Assembly((box(1, 1, 1, name="a"), box(1, 1, 1, name="b"))),
+    ...               file_materials=(("a", "pla", 1240.0), ("b", "petg", 1270.0)))
+    >>> mine = with_part_materials(two, {"b": "abs"}, "--part-material")
+    >>> read = with_file_materials(mine)
+    >>> [p.mass_properties().mass for p in read.body.assembly_parts()], read.materials
+    ([1240.0, 1040.0], (('b', 'abs'), ('a', 'pla')))
+    """
+    if not reading.file_materials:
+        return reading
+    given = dict((name, (label, density)) for name, label, density in reading.file_materials)
+    body = reading.body
+    parts = body.assembly_parts() or (body,)
+    names = [p.name or f"part {i + 1}" for i, p in enumerate(parts)]
+    new, labels = [], []
+    for part, name in zip(parts, names):
+        if name in given and part.densities() == {None}:
+            part = part.with_default_density(given[name][1])
+            labels.append((name, given[name][0]))
+        new.append(part)
+    if body.assembly_parts():
+        from ..bodies.csg import Assembly
+
+        body = Assembly(tuple(new), name=body.name)
+    else:
+        body = new[0]
+    return replace(reading, body=body, materials=reading.materials + tuple(labels),
+                   file_materials=())
 
 
 def require_part_densities(reading: Reading, how: str) -> Reading:

@@ -178,7 +178,9 @@ def _mesh_file(spec: SpecContext, t: dict, where: str) -> Body:
     spec.notices.extend(f"{MESH_NOTICE}{name}: {notice}" for notice in reading.notices)
     if repair and not reading.notices:
         spec.notices.append(f"{MESH_NOTICE}{name}: nothing to repair")
-    return reading.body
+    from ..formats.parts import with_file_materials
+
+    return with_file_materials(reading).body  # a 3MF's materials, as plumbob.read gives them
 
 
 def _step_file(spec: SpecContext, t: dict, where: str) -> Body:
