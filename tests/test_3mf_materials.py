@@ -353,3 +353,18 @@ def test_part_material_overrides_what_the_file_names(files, capsys):
     assert main(["mass", files["print"], "--part-material", "post=abs"]) == 0
     table = capsys.readouterr().out.split("part ")[-1].splitlines()
     assert table[1].split()[:2] == ["block", "pla"] and table[2].split()[:2] == ["post", "abs"]
+
+
+def test_components_that_multiply_are_refused_before_the_walk_explodes(tmp_path, monkeypatch):
+    # six levels of ten components each: a million placements from a few hundred bytes
+    from plumbob import limits
+
+    monkeypatch.setattr(limits, "MAX_PARTS", 500)  # the same refusal, sooner
+    levels = "".join(f'<object id="{i}"><components>'
+                     + f'<component objectid="{i + 1}"/>' * 10 + "</components></object>"
+                     for i in range(2, 8))
+    levels += f'<object id="8">{mesh_xml(BLOCK)}</object>'
+    path = tmp_path / "fan.3mf"
+    path.write_bytes(three_mf(model(levels, '<item objectid="2"/>')))
+    with pytest.raises(LimitError, match="placed objects"):
+        read(str(path))

@@ -152,6 +152,8 @@ class _Model:
                         self._object(member, element, bases)
                     elif tag == "item" and root:
                         target = element.get(f"{_PRODUCTION}path")
+                        check_count("build items", len(self.items) + 1, limits.MAX_PARTS,
+                                    path=self.path)
                         self.items.append((self.part(target) if target else member,
                                            element.get("objectid", ""),
                                            _matrix(element.get("transform"), self.path)))
@@ -193,14 +195,18 @@ class _Model:
                                      c.get("objectid", ""), _matrix(c.get("transform"),
                                                                    self.path)))
         self.objects[(member, element.get("id", ""))] = found
+        check_count("objects", len(self.objects), limits.MAX_PARTS, path=self.path)
 
     def instances(self) -> list[Instance]:
         """Every mesh object every build item places, placed, named and with its material."""
         out: list[Instance] = []
+        visits = 0
         for member, top, matrix in self.items:  # per build item
             stack = [(member, top, matrix, None, None, ())]
             while stack:
                 member, object_id, matrix, name, material, path = stack.pop()
+                visits += 1  # components of components multiply: bounded, not just deep
+                check_count("placed objects", visits, limits.MAX_PARTS, path=self.path)
                 key = (member, object_id)
                 if key in path:
                     raise FormatError(f"object {object_id!r} contains itself", path=self.path)
