@@ -36,6 +36,11 @@ def test_balance_standard_makes_a_column_pass_iec62368():
     col = box(0.2, 0.2, 1.8, density=30 / (0.2 * 0.2 * 1.8))
     r = balance_standard(col, "iec62368-1")
     assert r.passes and r.after.critical_tilt_deg >= 10 - 1e-9
+    # the text report says which test the ballast is for (it was an internal error)
+    from plumbob.report.balance import loaded_text
+
+    text = loaded_text(r, "column", "solid", [], 1.8, None, "iec62368-1")
+    assert text.endswith("\n\n(iec62368-1: its tilt test needs the least ballast)")
 
 
 def test_balance_command_with_loads(capsys):

@@ -222,3 +222,53 @@ def test_no_command_forges_a_namespace():
 def test_the_namespace_check_sees_a_forged_one():
     assert _forged_namespaces("import argparse\nargparse.Namespace(**vars(a))") == [2]
     assert _forged_namespaces("from argparse import Namespace\nNamespace(path=p)") == [2]
+
+
+#: the most lines of logic a command module may hold: its code, the declarations of its
+#: options (``add_argument`` and the like), imports, docstrings and comments aside —
+#: a command parses arguments, calls the library and prints (docs/architecture.md)
+MAX_COMMAND_LINES = 100
+_DECLARATIONS = {"add_argument", "add_argument_group", "add_mutually_exclusive_group",
+                 "add_parser", "set_defaults"}
+
+
+def _logic_lines(source: str) -> int:
+    import io
+    import tokenize
+
+    tree = ast.parse(source)
+    aside: set[int] = set()
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(node, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) \
+                and body and isinstance(body[0], ast.Expr) \
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
+            aside.update(range(body[0].lineno, body[0].end_lineno + 1))
+        if (isinstance(node, ast.Call) and getattr(node.func, "attr", None) in _DECLARATIONS) \
+                or isinstance(node, (ast.Import, ast.ImportFrom)):
+            aside.update(range(node.lineno, node.end_lineno + 1))
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) in ("__all__", "DESCRIPTION")
+                                                for t in node.targets):
+            aside.update(range(node.lineno, node.end_lineno + 1))
+    code: set[int] = set()
+    skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT, tokenize.DEDENT,
+            tokenize.ENDMARKER}
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type not in skip:
+            code.update(range(tok.start[0], tok.end[0] + 1))
+    return len(code - aside)
+
+
+def test_no_command_module_is_over_100_lines_of_logic():
+    """Text reports live in ``report/``, what a command computes in the library: a command
+    module keeps to parsing, calling and printing."""
+    long = {p.name: n for p in sorted((PACKAGE / "commands").glob("*.py"))
+            if (n := _logic_lines(p.read_text(encoding="utf-8"))) > MAX_COMMAND_LINES}
+    assert not long, f"move reports to report/ and work to the library: {long}"
+
+
+def test_the_command_size_check_counts_logic_only():
+    source = ('"""doc"""\nimport argparse\n\n\ndef register(p):\n    """doc\n    more"""\n'
+              '    p.add_argument("--x",\n                   help="x")\n    # a comment\n'
+              '    return p\n')
+    assert _logic_lines(source) == 2  # the def line and the return

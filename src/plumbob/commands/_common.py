@@ -13,6 +13,7 @@ import argparse
 from collections.abc import Mapping
 from typing import Any
 
+from ..errors import ArgumentError
 from ..loading import read
 from ..reading import Reading
 from . import loads as _loads
@@ -25,10 +26,23 @@ from .options import *  # noqa: F403
 from .options import parameter_overrides
 from .output import *  # noqa: F403
 from .types import *  # noqa: F403
-from .types import part_materials
 
-__all__ = ["load_body", "open_body", "print_notices", "flush_notices", "default_down",
+__all__ = ["load_body", "open_body", "part_materials", "print_notices", "flush_notices", "default_down",
            *_types.__all__, *_options.__all__, *_loads.__all__, *_output.__all__]
+
+
+def part_materials(given: list[str] | None) -> dict[str, str] | None:
+    """``--part-material NAME=MATERIAL`` options as ``{name or glob: material}``, in order."""
+    if not given:
+        return None
+    out: dict[str, str] = {}
+    for item in given:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip() or not value.strip():
+            raise ArgumentError(f"--part-material {item!r}: write NAME=MATERIAL, e.g. "
+                                "--part-material 'post*=aluminium'")
+        out[name.strip()] = value.strip()
+    return out
 
 
 def load_body(args: argparse.Namespace, *, path: str | None = None,

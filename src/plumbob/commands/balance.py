@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 
+from ._balance_loads import ballast_options, run_loaded
 from ._common import (
     add_load_arguments,
     add_orientation_arguments,
@@ -21,6 +22,7 @@ from ._common import (
     open_body,
     option_loads,
     pose_down,
+    pose_or_auto,
     print_json,
     report_units,
     requirement,
@@ -40,20 +42,6 @@ the body with the ballast added, not the plan's."""
 
 
 
-#: how many of the most probable resting poses --target-pose auto tries
-AUTO_POSES = 4
-
-
-def _pose_or_auto(text: str):
-    """``--target-pose``: a whole number K, or ``auto``."""
-    if text.strip().lower() == "auto":
-        return "auto"
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a pose number or 'auto', not {text!r}") from None
-
-
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "balance", help="make it stand: the least ballast that meets a margin or tilt",
@@ -62,7 +50,7 @@ def register(subparsers) -> None:
     add_orientation_arguments(parser, "--target-pose",
                               tilt_help="it must stand on a plane tilted DEG degrees (toward "
                                         "--toward, else in every direction)",
-                              pose_type=_pose_or_auto,
+                              pose_type=pose_or_auto,
                               pose_help="rest it in its K-th most probable resting pose (see "
                                         "'plumbob poses'), or 'auto': try the most probable "
                                         "poses and take the one that needs the least carving "
@@ -159,171 +147,69 @@ def _hollow(args, reading, props, down=None, hollowing=None):
     return written.body, written.mass_properties, written
 
 
-def _auto_pose(args, reading, props, units=None):
-    """``--target-pose auto``: the most probable resting poses, each with what it needs —
-    nothing, the least mass emptied (with --wall), or the least ballast — and the pose
-    that needs the least. Returns (its down, rows of (pose, probability, down, what it
-    needs, kg), its number, the prepared hollowing or None)."""
-    import numpy as np
-
-    from ..balance.result import balance
-    from ..balance.targets import target_for
+def _auto_pose(args, reading, props):
+    """``--target-pose auto``: what each of the most probable resting poses needs
+    (:func:`plumbob.balance.auto.pose_needs`: with --wall the mass emptied, else the
+    ballast) and the one that needs the least. Returns (the needs, the chosen one, the
+    prepared hollowing or None)."""
+    from ..balance.auto import cheapest, pose_needs
     from ..errors import StabilityError
-    from ..stability.poses import resting_poses
-
-    body = reading.body
-    poses = resting_poses(body, g=args.g, props=props)[:AUTO_POSES]
-
-    def kg(value: float) -> str:  # in the report's mass unit (the JSON's rows: kg)
-        return (f"{value:.6g} kg" if units is None else
-                f"{units.mass(value):.6g} {units.mass_unit}")
+    from ..report.balance import need_text
 
     hollowing = None
     if args.wall is not None:
         from ..balance.hollow import Hollowing
 
-        hollowing = Hollowing.prepare(body, args.wall, cell_size=args.cell)
-    rows = []
-    for k, pose in enumerate(poses, start=1):
-        down, margin, tilt, toward = _target(args, body, props, chosen=pose.down)
-        if hollowing is not None:
-            target = target_for(body, down=down, margin=margin,
-                                require_tilt_deg=tilt)
-            try:
-                plan = hollowing.plan(target, lightest=args.lightest)
-                cost, what = plan.removed_mass, (
-                    "meets it as it is" if plan.cut is None else
-                    f"{kg(plan.removed_mass)} emptied")
-            except StabilityError:
-                bound = hollowing.plan(target, best_effort=True).bound
-                cost, what = float("inf"), f"no carve does: {bound.sentence()}"
-        else:
-            try:
-                r = balance(body, down, margin=margin, require_tilt_deg=tilt, toward=toward,
-                            g=args.g, props=props)
-                cost = r.ballast_mass if r.passes else float("inf")
-                what = ("meets it as it is" if r.ballast_mass == 0 else
-                        f"{kg(r.ballast_mass)} of ballast")
-            except StabilityError as error:
-                cost, what = float("inf"), f"no ballast does: {error}"
-        rows.append((k, pose.probability, down, what, cost))
-    best = min(rows, key=lambda row: (row[4], row[0]))
-    if not np.isfinite(best[4]):
-        raise StabilityError(f"--target-pose auto: none of the {len(rows)} most probable poses "
-                             "can meet the target; " + "; ".join(f"pose {r[0]}: {r[3]}"
-                                                               for r in rows))
-    return best[2], rows, best[0], hollowing
-
-
-def _auto_text(rows, chosen: int) -> str:
-    from ..report import format_vector, table
-
-    lines = [(f"pose {k} ({100 * p:.3g} %)", f"down {format_vector(down, 4)}: {what}"
-              + ("  <- chosen" if k == chosen else ""))
-             for k, p, down, what, _ in rows]
-    return table(lines, title="--target-pose auto: the most probable poses tried")
+        hollowing = Hollowing.prepare(reading.body, args.wall, cell_size=args.cell)
+    needs = pose_needs(reading.body, lambda down: _target(args, reading.body, props, chosen=down),
+                       g=args.g, props=props, hollowing=hollowing, lightest=args.lightest)
+    best = cheapest(needs)
+    if best is None:
+        units = report_units(args, reading)
+        raise StabilityError(f"--target-pose auto: none of the {len(needs)} most probable poses "
+                             "can meet the target; " + "; ".join(
+                                 f"pose {n.pose}: {need_text(n, units)}" for n in needs))
+    return needs, best, hollowing
 
 
 def run(args) -> int:
     from ..balance.result import balance
-    from ._common import load_body
 
     reading, props, notes = open_body(args)
     units = report_units(args, reading)  # the part's own (mm and g for mm), or asked
     loads = option_loads(args, reading)
     if loads or args.standard is not None:
-        return _run_loaded(args, reading, props, notes, loads, units)
-    chosen = hollowing = tried = number = None
+        return run_loaded(args, reading, props, notes, loads, units)
+    needs = best = hollowing = None
     if args.target_pose == "auto":
-        chosen, tried, number, hollowing = _auto_pose(args, reading, props, units)
+        needs, best, hollowing = _auto_pose(args, reading, props)
+    chosen = None if best is None else best.down
     body, props, carved = _hollow(args, reading, props, chosen, hollowing)
     down, margin, tilt, toward = _target(args, body, props, default_down(args, reading), chosen)
-    region = None
-    if args.ballast_region:
-        region = load_body(args, path=args.ballast_region).body
-    density = None
-    if args.ballast_material:
-        from ..materials import material
-
-        density = material(args.ballast_material).density
     result = balance(body, down, margin=margin, require_tilt_deg=tilt, toward=toward,
-                     region=region, material=args.ballast_material, density=density,
-                     shape=args.ballast_shape, g=args.g, props=props)
+                     g=args.g, **ballast_options(args, props))
     kind = getattr(body, "kind", "solid")
     if args.json:
+        from ..report.balance import need_text
+
         out = {**header(reading, kind), **result.as_dict()}
         if carved is not None:
             out["hollow"] = carved.as_dict()
-        if tried is not None:
-            out["poses_tried"] = [{"pose": k, "probability": p, "down": d, "needs": what,
-                                   "cost": cost if cost != float("inf") else None}
-                                  for k, p, d, what, cost in tried]
-            out["pose"] = number
+        if needs is not None:
+            out["poses_tried"] = [{"pose": n.pose, "probability": n.probability, "down": n.down,
+                                   "needs": need_text(n, units),
+                                   "cost": n.cost if n.cost != float("inf") else None}
+                                  for n in needs]
+            out["pose"] = best.pose
         print_json(out, reading, notes)
     else:
-        from ..report.balance import balance_text, hollow_text
+        from ..report.balance import auto_pose_text, balance_text, hollow_text
         from ..stability.support import body_size
 
         scale = body_size(body)
-        if tried is not None:
-            print(_auto_text(tried, number))
+        if needs is not None:
+            print(auto_pose_text(needs, best.pose, units))
         if carved is not None:
             print(hollow_text(carved, scale, units))
         print(balance_text(result, args.path, kind, notes, scale, units))
-    return 0 if result.passes else 1
-
-
-def _run_loaded(args, reading, props, notes, loads, units=None) -> int:
-    """balance with --force/--hang/--push/--press or --standard: the least ballast that
-    stands under the loads (factor of safety ≥ 1), or passes the standard."""
-    from ..balance.loaded import balance_standard, balance_under_loads
-    from ..errors import StabilityError
-    from ..report import loads_report
-
-    if args.wall is not None or args.margin is not None or args.require_tilt is not None:
-        raise StabilityError("with loads or --standard, balance finds the ballast for them "
-                             "alone: leave out --wall, --margin and --require-tilt")
-    if loads and args.standard is not None:
-        raise StabilityError("give loads or --standard, not both (a standard sets its own)")
-    if args.target_pose == "auto":
-        raise StabilityError("--target-pose auto goes with --margin or --require-tilt; with "
-                             "loads or --standard give the pose's number")
-    body = reading.body
-    down = args.down
-    if args.target_pose is not None:
-        down = pose_down(body, args.target_pose, "--target-pose", args.g, props)
-    options = {"shape": args.ballast_shape, "props": props}
-    if args.ballast_material:
-        from ..materials import material
-
-        options.update(material=args.ballast_material,
-                       density=material(args.ballast_material).density)
-    if args.ballast_region:
-        from ._common import load_body
-
-        options["region"] = load_body(args, path=args.ballast_region).body
-    req = requirement(args, down, loads)
-    if args.standard is not None:
-        result = balance_standard(body, args.standard, req, **options)
-    else:
-        result = balance_under_loads(body, req, **options)
-    kind = getattr(body, "kind", "solid")
-    plain = getattr(result, "ballast", result)
-    if args.json:
-        out = {**header(reading, kind), **result.as_dict()}
-        if args.standard is not None:
-            out["standard"] = args.standard
-        print_json(out, reading, notes)
-    else:
-        from ..report.balance import balance_text
-        from ..stability.support import body_size
-
-        scale = body_size(body)
-        print(balance_text(plain, args.path, kind, notes, scale, units))
-        if hasattr(result, "after"):
-            which = f" ({args.standard}: its {result.test} test)" if args.standard else ""
-            print(f"\nwith the ballast{which}:")
-            print(loads_report(result.after.loaded, units, scale))
-        elif args.standard:
-            print(f"\n({args.standard}: its tilt test needs the least ballast)")
     return 0 if result.passes else 1

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..errors import ArgumentError, DynamicsError, PlumbobError
+from ..errors import DynamicsError, PlumbobError
 
 __all__ = [
     "number",
@@ -21,10 +21,10 @@ __all__ = [
     "direction",
     "material_name",
     "tilt_limit",
+    "pose_or_auto",
     "number_option",
     "length_unit",
     "assignment",
-    "part_materials",
     "frame_word",
     "frame_rows",
 ]
@@ -155,6 +155,16 @@ def tilt_limit(text: str) -> float:
     return value
 
 
+def pose_or_auto(text: str) -> int | str:
+    """A resting pose's number K, or ``auto`` (``balance --target-pose``)."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a pose number or 'auto', not {text!r}") from None
+
+
 def number_option(text: str, label: str, *, infinite: bool = False) -> float:
     """The number given as option ``label`` of the dynamics commands, or a
     :class:`DynamicsError` naming it; ``infinite`` lets ``inf`` through (a wall's mass)."""
@@ -184,18 +194,3 @@ def assignment(text: str) -> tuple[str, str]:
     if not sep or not name.strip() or not value.strip():
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE, not {text!r}")
     return name.strip(), value.strip()
-
-
-def part_materials(given: list[str] | None) -> dict[str, str] | None:
-    """``--part-material NAME=MATERIAL`` options as ``{name or glob: material}``, in order."""
-    if not given:
-        return None
-    out: dict[str, str] = {}
-    for item in given:
-        name, sep, value = item.partition("=")
-        if not sep or not name.strip() or not value.strip():
-            raise ArgumentError(f"--part-material {item!r}: write NAME=MATERIAL, e.g. "
-                                "--part-material 'post*=aluminium'")
-        out[name.strip()] = value.strip()
-    return out
-

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from . import ReportUnits, clean, format_number, format_vector, table
 
-__all__ = ["balance_text", "hollow_text"]
+__all__ = ["balance_text", "hollow_text", "need_text", "auto_pose_text", "loaded_text"]
 
 
 class _Units:
@@ -120,3 +120,49 @@ def balance_text(r, path: str, kind: str, notes: list[str], scale: float,
     lines = [table(rows, title=f"plumbob balance {path} ({kind})")]
     lines += [f"note: {note}" for note in notes]
     return "\n".join(lines)
+
+
+def need_text(need, units: ReportUnits | None = None) -> str:
+    """What one resting pose needs (a :class:`~plumbob.balance.auto.PoseNeed`), in words:
+    ``"meets it as it is"``, ``"12 g emptied"``, ``"3.5 kg of ballast"``, ``"no carve
+    does: …"``; masses in ``units`` (default kg)."""
+    def kg(value: float) -> str:
+        return (f"{value:.6g} kg" if units is None else
+                f"{units.mass(value):.6g} {units.mass_unit}")
+
+    if need.need == "none":
+        return "meets it as it is"
+    if need.need == "emptied":
+        return f"{kg(need.mass)} emptied"
+    if need.need == "ballast":
+        return f"{kg(need.mass)} of ballast"
+    return f"{need.need} does: {need.reason}"
+
+
+def auto_pose_text(needs, chosen: int, units: ReportUnits | None = None) -> str:
+    """The poses ``--target-pose auto`` tried, what each needs, and the one ``chosen``."""
+    lines = [(f"pose {n.pose} ({100 * n.probability:.3g} %)",
+              f"down {format_vector(n.down, 4)}: {need_text(n, units)}"
+              + ("  <- chosen" if n.pose == chosen else ""))
+             for n in needs]
+    return table(lines, title="--target-pose auto: the most probable poses tried")
+
+
+def loaded_text(result, path: str, kind: str, notes: list[str], scale: float,
+                units: ReportUnits | None = None, standard: str | None = None) -> str:
+    """The report of the least ballast under loads or for a ``standard``: the plan
+    (:func:`balance_text`), then the check under the loads with the ballast — for a
+    :class:`~plumbob.balance.loaded.LoadedBalance`; a standard whose tilt test needs the
+    least gives a plain :class:`~plumbob.balance.result.BalanceResult`."""
+    from . import loads_report
+
+    loaded = hasattr(result, "after") and hasattr(result, "test")
+    text = balance_text(result.ballast if loaded else result, path, kind, notes, scale, units)
+    if loaded:
+        which = f" ({standard}: its {result.test} test)" if standard else ""
+        return (f"{text}\n\nwith the ballast{which}:\n"
+                + loads_report(result.after.loaded, units, scale))
+    if standard:
+        return f"{text}\n\n({standard}: its tilt test needs the least ballast)"
+    return text
+
