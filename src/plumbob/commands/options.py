@@ -32,6 +32,7 @@ __all__ = [
     "add_orientation_arguments",
     "pose_down",
     "requirement",
+    "frame_rows",
 ]
 
 
@@ -205,3 +206,18 @@ def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
         getattr(args, "toward", None), getattr(args, "friction", None),
         getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
 
+
+def frame_rows(words: list | None):
+    """``--frame``'s words as :meth:`~plumbob.massprops.MassProperties.inertia_in` takes
+    them: ``"principal"``, or the rows of the frame two axes give
+    (:func:`~plumbob.massprops.frame_axes`); None when not asked."""
+    if not words:
+        return None
+    if words == ["principal"]:
+        return "principal"
+    if "principal" in words or len({w[0] for w in words}) != len(words) or len(words) != 2:
+        raise ArgumentError("--frame takes 'principal' or two different axes, e.g. "
+                            "--frame x=1,1,0 y=-1,1,0 (the third is their cross product)")
+    from ..frames import frame_axes
+
+    return frame_axes(**dict(words))

@@ -26,7 +26,6 @@ __all__ = [
     "length_unit",
     "assignment",
     "frame_word",
-    "frame_rows",
 ]
 
 
@@ -95,22 +94,6 @@ def frame_word(text: str):
             f"expected 'principal' or two axes such as x=1,1,0 y=-1,1,0, not {text!r} (give "
             "--frame after PATH)")
     return name.strip().lower(), parse_vector(value, (3,))
-
-
-def frame_rows(words: list | None):
-    """``--frame``'s words as :meth:`~plumbob.massprops.MassProperties.inertia_in` takes
-    them: ``"principal"``, or the rows of the frame two axes give
-    (:func:`~plumbob.massprops.frame_axes`); None when not asked."""
-    if not words:
-        return None
-    if words == ["principal"]:
-        return "principal"
-    if "principal" in words or len({w[0] for w in words}) != len(words) or len(words) != 2:
-        raise ArgumentError("--frame takes 'principal' or two different axes, e.g. "
-                            "--frame x=1,1,0 y=-1,1,0 (the third is their cross product)")
-    from ..frames import frame_axes
-
-    return frame_axes(**dict(words))
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
