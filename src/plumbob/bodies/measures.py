@@ -8,13 +8,13 @@ be off.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from ..errors import GeometryError
-from ..results import Key, Result
+from ..results import Key, Result, pick
 from ..tolerances import CONTACT
 from .base import Body
 
@@ -96,10 +96,11 @@ class SurfaceArea(Result):
     def _repr_items(self) -> list[tuple[str, Any]]:
         return [("area", self.area), ("exact", self.exact)]
 
-    def as_dict(self) -> dict[str, Any]:
-        """``surface_area`` (m²), ``surface_area_exact`` and ``surface_area_relative_error``."""
-        return {"surface_area": self.area, "surface_area_exact": self.exact,
-                "surface_area_relative_error": self.relative_error}
+    #: ``surface_area`` (m²), ``surface_area_exact`` and ``surface_area_relative_error``:
+    #: the mass report's keys (``MASS_KEYS``), read from this result's fields
+    KEYS = tuple(replace(k, when="", attr=attr) for k, attr in zip(
+        pick(MASS_KEYS, ("surface_area", "surface_area_exact", "surface_area_relative_error")),
+        ("area", "exact", "relative_error"), strict=True))
 
 
 @dataclass(frozen=True, repr=False)
@@ -129,10 +130,13 @@ class BoundingBox(Result):
     def _repr_items(self) -> list[tuple[str, Any]]:
         return [("extents", self.extents), ("center", self.center)]
 
-    def as_dict(self) -> dict[str, Any]:
-        """``extents``, ``center``, ``axes`` (rows), ``lower`` and ``upper`` (box frame), m."""
-        return {"extents": self.extents, "center": self.center, "axes": self.axes,
-                "lower": self.lower, "upper": self.upper}
+    KEYS = (
+        Key("extents", "m", "edge lengths along `axes`"),
+        Key("center", "m", "the box's centre, body frame"),
+        Key("axes", "", "the box's unit edge directions, rows, body frame"),
+        Key("lower", "m", "its least corner, in the box's frame"),
+        Key("upper", "m", "its greatest corner, in the box's frame"),
+    )
 
 
 def surface_area(body: Body, segments: int = FACET_SEGMENTS) -> SurfaceArea:
