@@ -76,6 +76,7 @@ class Rocking:
 
 
 _DENSE = 512  # up to this many points, every pair is tried
+_MANY = 20_000  # past this many points, narrower windows pay for more passes
 _CHUNK = 1_000_000  # points × planes filtered together (bounds the temporaries)
 _FINE = 4  # finer bins per bin for the farthest points that bound the support
 _GROUP = 32  # finer bins whose farthest point finds where the support is
@@ -153,12 +154,12 @@ def _support_below(x: np.ndarray, y: np.ndarray, far: np.ndarray, cos_t: np.ndar
     return low
 
 
-def _distances(limit: int) -> list[tuple[int, int]]:
+def _distances(limit: int, fine: int) -> list[tuple[int, int]]:
     """(d, w): the angular distances (in bins) tried, ``d .. d + w − 1`` at once: one by
-    one up to 64, then in blocks of 4 to 128, of 16 to 256 and of 64 (each block judged
-    by its least level and its nearest distance)."""
+    one up to ``fine``, then in blocks of 4 to 2 ``fine``, of 16 to 256 and of 64 (each
+    block judged by its least level and its nearest distance)."""
     out, d = [], 0
-    for w, upto in ((1, 64), (4, 128), (16, 256), (64, limit)):
+    for w, upto in ((1, fine), (4, 2 * fine), (16, 256), (64, limit)):
         while d < min(upto, limit):
             out.append((d, w))
             d += w
@@ -186,14 +187,15 @@ def _farthest(a: np.ndarray, Bc: np.ndarray, step: float, bins: int
     return r, fine // _FINE, far, far_fine.reshape(P, -1), champion.reshape(P, -1)
 
 
-def _windows(level: np.ndarray, far: np.ndarray, cos_d: np.ndarray
+def _windows(level: np.ndarray, far: np.ndarray, cos_d: np.ndarray, fine: int
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per bin (P, bins) of crest angles: the least radius a point of it needs to come
     within eps of the support at some angle (``level``: the support's lower bound less
     eps, inf where not swept), and its window each side, (2, P, bins): the angles
     b − d (left) and b + 1 + d (right) for d from ``first`` to ``last``, the distances
     its farthest point (``far``) may reach. A bin is done at the distance past which
-    its farthest point reaches no angle of its plane."""
+    its farthest point reaches no angle of its plane. Distances up to ``fine`` are tried
+    one by one (narrower windows), farther ones in blocks (fewer passes)."""
     P, bins = level.shape
     floor = np.full(P * bins, np.inf)
     first = np.full((2, P * bins), bins, dtype=np.int64)
@@ -202,7 +204,7 @@ def _windows(level: np.ndarray, far: np.ndarray, cos_d: np.ndarray
     far = far.ravel()
     active = np.flatnonzero(far >= np.repeat(least_in, bins))
     least_over = {1: level.ravel()}  # the least level over w angles from each on
-    for d, w in _distances(len(cos_d)):
+    for d, w in _distances(len(cos_d), fine):
         if cos_d[d] <= 0:
             break
         active = active[far[active] * cos_d[d] >= least_in[active // bins]]
@@ -215,12 +217,16 @@ def _windows(level: np.ndarray, far: np.ndarray, cos_d: np.ndarray
             least_over[w] = x.ravel()
         row, b = np.divmod(active, bins)
         row *= bins
-        for side, at_angle in ((0, b - d - w + 1), (1, b + 1 + d)):
-            need = least_over[w][row + at_angle % bins] / cos_d[d]
-            floor[active] = np.minimum(floor[active], need)
-            hit = active[need <= far[active]]
-            first[side][hit] = np.minimum(first[side][hit], d)
-            last[side][hit] = d + w - 1
+        # both sides at once: the angles b − d − w + 1 … (left) and b + 1 + d … (right)
+        at = np.concatenate((b - (d + w - 1), b + 1 + d)) % bins
+        need = least_over[w][np.concatenate((row, row)) + at] / cos_d[d]
+        floor[active] = np.minimum(floor[active], np.minimum(need[:len(b)], need[len(b):]))
+        hit = need <= np.concatenate((far[active], far[active]))
+        side = hit.reshape(2, -1)
+        for k in (0, 1):
+            h = active[side[k]]
+            first[k][h] = np.minimum(first[k][h], d)
+            last[k][h] = d + w - 1
     return floor.reshape(P, bins), first.reshape(2, P, bins), last.reshape(2, P, bins)
 
 
@@ -290,7 +296,7 @@ def _sweep_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float,
                 for kk in (k, k2)[:1 + (k2 >= 0)]:
                     out[kk] = (np.repeat(np.arange(m), n), np.tile(np.arange(n), m))
             continue
-        floor, first, last = _windows(level, far, cos_d)
+        floor, first, last = _windows(level, far, cos_d, 64 if n > _MANY else 16)
         for p, (k, k2) in enumerate(chunk):
             j = np.flatnonzero(r[p] >= floor[p, bin_[p]] - slack)
             b = bin_[p, j]
