@@ -22,9 +22,11 @@ from .laminas import counter_clockwise, disc_region, polygon, positive_number
 # Every solid primitive passes ``**kw`` to its body: ``density`` (kg/m³) and ``name``.
 
 def _mesh_from_faces(vertices: np.ndarray, faces: list[list[int]], **kw) -> MeshSolid:
-    """Triangulate convex planar faces (fans) of a polyhedron."""
+    """Triangulate convex planar faces (fans) of a polyhedron. The faces close by
+    construction (a box's six, a tetrahedron's four), so the mesh's closure is not
+    checked again (10⁴ cubes of a spec: half their building time)."""
     tris = [[f[0], f[i], f[i + 1]] for f in faces for i in range(1, len(f) - 1)]
-    return MeshSolid(np.asarray(vertices, dtype=float)[np.array(tris)], **kw)
+    return MeshSolid(np.asarray(vertices, dtype=float)[np.array(tris)], checked=True, **kw)
 
 
 def box(length: float, width: float, height: float, *, centered: bool = False,
