@@ -20,7 +20,8 @@ PENDING_DOCS: set[str] = set()
 
 
 def test_all_is_what_is_exported_and_dir_shows_it():
-    assert set(plumbob.__all__) == {"load", "mass_properties"} | set(plumbob._LAZY)
+    assert set(plumbob.__all__) == {"load", "mass_properties", "check", "poses", "lift"} | \
+        set(plumbob._LAZY)
     assert len(plumbob.__all__) == len(set(plumbob.__all__))
     for name in plumbob.__all__:
         assert getattr(plumbob, name) is not None

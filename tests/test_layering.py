@@ -18,8 +18,8 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 #: Rooms from the bottom up: a room may import its own layer and the layers below it.
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "version"),
-    ("units", "tolerances", "results", "plot", "limits", "arguments", "frames", "blockwise",
-     "callable_module", "files", "arrays"),
+    ("units", "tolerances", "results", "plot", "report", "limits", "arguments", "frames",
+     "blockwise", "callable_module", "files", "arrays"),
     ("expr", "integrals", "massprops", "materials", "loads"),
     ("mesh",),
     ("bodies",),
@@ -30,7 +30,6 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("loading",),
     ("stability", "energy"),
     ("export", "batch", "balance"),
-    ("report",),
     ("commands",),
     ("cli", "__main__"),
 )

@@ -71,14 +71,11 @@ _LAZY = {
     "Lamina": ("plumbob.bodies.lamina", "Lamina"),
     "MeshSolid": ("plumbob.bodies.solid", "MeshSolid"),
     "material": ("plumbob.materials", "material"),
-    "check": ("plumbob.stability", "check"),
     "Force": ("plumbob.loads", "Force"),
     "Hang": ("plumbob.loads", "Hang"),
     "Push": ("plumbob.loads", "Push"),
     "Press": ("plumbob.loads", "Press"),
-    "poses": ("plumbob.stability", "resting_poses"),
     "drop_poses": ("plumbob.stability", "drop_poses"),
-    "lift": ("plumbob.energy", "lift_energy"),
     "collide": ("plumbob.dynamics.collisions", "collide"),
     "balance": ("plumbob.balance", None),
     "batch": ("plumbob.batch", None),
@@ -149,14 +146,138 @@ def load(path: str, *, units: str | None = None, material: str | None = None,
     return read(path, units=units, repair=repair, material=material, density=density).body
 
 
-def mass_properties(body):
+_LOADING = ("units", "material", "density", "repair")
+
+
+def _opened(body, options: dict):
+    """(body, reading or None): a file name read with the ``load`` options popped from
+    ``options``; a body as it is (load options then refused)."""
+    from os import PathLike
+
+    load_options = {k: options.pop(k) for k in _LOADING if k in options}
+    if isinstance(body, (str, PathLike)):
+        from .loading import read
+
+        reading = read(body, **load_options)
+        return reading.body, reading
+    if load_options:
+        from .errors import ArgumentError
+
+        raise ArgumentError(f"{sorted(load_options)[0]}= reads a file: give a file name, or "
+                            "set it on the body")
+    return body, None
+
+
+def check(body, *args, **options):
+    """Will it stand on a horizontal plane?
+
+    Parameters
+    ----------
+    body : Body or str
+        A plumbob body, or a file name (read as :func:`load` reads it, with the options
+        ``units``, ``material``, ``density``, ``repair``; the file's up axis gives the
+        default down, as on the command line).
+    *args, **options
+        Those of :func:`plumbob.stability.check`: ``down``, ``g``, ``tilt_deg``,
+        ``toward_deg``, ``friction``, ``require_tilt_deg``, ``margin``, ``loads``, ….
+
+    Returns
+    -------
+    Verdict
+        Given a file, ``str(verdict)`` is what ``plumbob check FILE`` prints: in the part's
+        units (mm and g for a part in mm), with its notes.
+
+    Examples
+    --------
+    >>> import plumbob
+    >>> plumbob.check(plumbob.primitives.box(1, 1, 4, density=1000.0)).verdict
+    'stands'
+    """
+    from .stability import check as checked
+
+    body, reading = _opened(body, options)
+    if reading is None:
+        return checked(body, *args, **options)
+    props = body.mass_properties()
+    if not args and options.get("down") is None and options.get("requirement") is None:
+        options["down"] = reading.default_down()  # the file's up axis, as the CLI takes it
+    return checked(body, *args, props=props, **options).described(reading.source(props))
+
+
+def poses(body, **options):
+    """The stable resting poses and how likely a random drop lands in each.
+
+    Parameters
+    ----------
+    body : Body or str
+        A plumbob body, or a file name (read with the :func:`load` options ``units``,
+        ``material``, ``density``, ``repair``).
+    **options
+        Those of :func:`plumbob.stability.resting_poses` (``g``, ``tolerance``, …).
+
+    Returns
+    -------
+    Poses
+        Given a file, ``str(poses)`` is what ``plumbob poses FILE`` prints.
+
+    Examples
+    --------
+    >>> import plumbob
+    >>> len(plumbob.poses(plumbob.primitives.box(1, 1, 4)))
+    6
+    """
+    from .stability import resting_poses
+    from .stability.support import body_size
+
+    body, reading = _opened(body, options)
+    if reading is None:
+        return resting_poses(body, **options)
+    props = body.mass_properties()
+    return resting_poses(body, props=props, **options).described(
+        reading.source(props, body_size(body)))
+
+
+def lift(body, **options):
+    """The energy to raise a structure's material into place, M g z_G.
+
+    Parameters
+    ----------
+    body : Body or str
+        A plumbob body, or a file name (read with the :func:`load` options ``units``,
+        ``material``, ``density``, ``repair``).
+    **options
+        Those of :func:`plumbob.energy.lift_energy` (``datum``, ``g``, ``down``).
+
+    Returns
+    -------
+    LiftEnergy
+        Given a file, ``str(lift)`` is what ``plumbob lift FILE`` prints.
+
+    Examples
+    --------
+    >>> import plumbob
+    >>> plumbob.lift(plumbob.primitives.box(2, 2, 10, density=1.0), g=10.0).lift_energy
+    2000.0
+    """
+    from .energy import lift_energy
+
+    body, reading = _opened(body, options)
+    if reading is None:
+        return lift_energy(body, **options)
+    props = body.mass_properties()
+    return lift_energy(body, props=props, **options).described(reading.source(props))
+
+
+def mass_properties(body, **options):
     """Mass, size, centre of mass and inertia of a body.
 
     Parameters
     ----------
     body : Body or str
         A plumbob body, or the path of a file to :func:`load` (in metres, or in the
-        unit the file declares).
+        unit the file declares); with a path, the ``load`` options ``units``,
+        ``material``, ``density`` and ``repair``, and ``str(props)`` is the table
+        ``plumbob mass FILE`` prints, in the part's units.
 
     Returns
     -------
@@ -168,8 +289,8 @@ def mass_properties(body):
     --------
     >>> from plumbob import primitives
     >>> mass_properties(primitives.box(1, 1, 4, density=1000.0))
-    MassProperties(dim=3, mass=4000, volume=4, center_of_mass=[0.5, 0.5, 2], \
-principal_moments=[666.667, 5666.67, 5666.67], exact=True)
+    MassProperties(dim=3, mass=4000 kg, volume=4 m³, center_of_mass=[0.5, 0.5, 2] m, \
+principal_moments=[666.667, 5666.67, 5666.67] kg·m², exact=True)
     >>> mass_properties(primitives.box(1, 1, 1)).notes[0].startswith("no density given")
     True
 
@@ -181,14 +302,17 @@ principal_moments=[666.667, 5666.67, 5666.67], exact=True)
     >>> mass_properties(path).area
     2.0
     """
-    from os import PathLike
-
     from .arguments import answering
 
-    if isinstance(body, (str, PathLike)):
-        body = load(body)
-    return answering(body, "body", "mass_properties", kind="a plumbob body or a file name"
-                     ).mass_properties()
+    body, reading = _opened(body, options)
+    if options:
+        from .errors import ArgumentError
+
+        raise ArgumentError(f"mass_properties() takes the load options {', '.join(_LOADING)}, "
+                            f"not {sorted(options)[0]!r}")
+    props = answering(body, "body", "mass_properties", kind="a plumbob body or a file name"
+                      ).mass_properties()
+    return props if reading is None else props.described(reading.source(props))
 
 
 def __getattr__(name: str):

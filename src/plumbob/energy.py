@@ -20,14 +20,14 @@ Heights are along ``up``: +z for solids, +y for a lamina in its own plane.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .arguments import answering, count, finite_result, instance, number, positive, unit_vector, vector
 from .errors import ArgumentError
 from .massprops import MassProperties
-from .results import Key, Result
+from .results import Key, Result, Source
 from .tolerances import contact_tolerance
 from .units import SEED_GRAVITY
 
@@ -133,7 +133,7 @@ def potential_energy(body_or_props, *, datum: float = 0.0, g: float = SEED_GRAVI
     --------
     >>> from plumbob.massprops import point_mass
     >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=10.0)
-    PotentialEnergy(energy=60, mass=2, height=3, datum=0, g=10)
+    PotentialEnergy(energy=60 J, mass=2 kg, height=3 m, datum=0 m, g=10 m/s²)
     >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), datum=5.0, g=10.0).energy   # below
     -40.0
     >>> potential_energy(point_mass(2.0, [0.0, 0.0, 3.0]), g=0.0)
@@ -242,6 +242,20 @@ class LiftEnergy(Result):
     com_height: float
     lift_energy: float
     g: float
+    source: Source | None = field(default=None, compare=False)
+
+    _repr_fields = ("mass", "center_of_mass", "datum", "com_height", "lift_energy", "g")
+
+    def text(self, units=None, *, crew=None) -> str:
+        """The report ``plumbob lift`` prints (``str(lift)``): lengths and masses in
+        ``units`` (a :class:`~plumbob.report.ReportUnits` or ``"mm,g"``; default the
+        part's own, else SI), energies in J; with a :class:`CrewTime`, the days of work."""
+        from .report import units_for
+        from .report.lift import lift_text
+
+        s = self.source or Source()
+        return lift_text(self, s.path or "body", units_for(units, s.length_unit), crew=crew,
+                         notes=s.notes, size=s.size)
 
     #: the keys of ``plumbob lift --json`` after the file's (docs/cli.md's table)
     KEYS = (
@@ -286,7 +300,8 @@ def lift_energy(body, *, datum: float | None = None, g: float = SEED_GRAVITY, do
     >>> from plumbob.bodies.primitives import box
     >>> lift = lift_energy(box(2, 2, 10, density=1.0), g=10.0)   # 40 kg raised 5 m
     >>> lift
-    LiftEnergy(mass=40, center_of_mass=[1, 1, 5], datum=0, com_height=5, lift_energy=2000, g=10)
+    LiftEnergy(mass=40 kg, center_of_mass=[1, 1, 5] m, datum=0 m, com_height=5 m, \
+lift_energy=2000 J, g=10 m/s²)
 
     Below the datum the energy is negative (it is released):
 

@@ -25,7 +25,7 @@ import numpy as np
 from .arguments import floats, instance, mass_fields, non_negative, positive, unit_vector, vector
 from .errors import GeometryError
 from .frames import frame_axes, frame_rows, rotation_matrix
-from .results import Result
+from .results import Result, Source
 
 __all__ = ["MassProperties", "combine", "point_mass", "rotation_matrix", "frame_axes"]
 
@@ -65,8 +65,8 @@ class MassProperties(Result):
 
     >>> cube = MassProperties(3, 1000.0, 1.0, [0.5, 0.5, 0.5], np.eye(3) * 1000 / 6)
     >>> cube
-    MassProperties(dim=3, mass=1000, volume=1, center_of_mass=[0.5, 0.5, 0.5], \
-principal_moments=[166.667, 166.667, 166.667], exact=True)
+    MassProperties(dim=3, mass=1000 kg, volume=1 m³, center_of_mass=[0.5, 0.5, 0.5] m, \
+principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
     >>> cube.density
     1000.0
 
@@ -87,6 +87,9 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
     relative_error: float = 0.0
     parts: int = 1
     notes: tuple[str, ...] = field(default=())
+    source: Source | None = field(default=None, compare=False)  # the file, for str()
+    _repr_units = {"mass": "kg", "area": "m²", "volume": "m³", "center_of_mass": "m",
+                   "principal_moments": "kg·m²"}
 
     def __post_init__(self) -> None:
         # Checked here, once, so every result built anywhere is a physical one.
@@ -278,11 +281,8 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         point : array_like, shape (dim,) or (3,), optional
             The point, m (the parallel-axis theorem, :meth:`inertia_about`).
 
-        Returns
-        -------
-        numpy.ndarray, shape (3, 3)
-            ``R I_point Rᵀ``, kg·m², with ``R`` the rows of ``axes``. A rod of 1 kg, 2 m
-            long along x, in a frame turned 90° about z:
+        Returns ``R I_point Rᵀ`` (3, 3), kg·m², ``R`` the rows of ``axes``. A rod of 1 kg,
+        2 m long along x, in a frame turned 90° about z:
 
         >>> rod = MassProperties(3, 1.0, 0.0, [0, 0, 0], np.diag([0.0, 1 / 3, 1 / 3]))
         >>> rod.inertia_in([[0, 1, 0], [-1, 0, 0], [0, 0, 1]]).diagonal().round(6)
@@ -295,9 +295,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         tensor = self.inertia if point is None else self.inertia_about(point)
         return rows @ tensor @ rows.T
 
-    def moment_about_axis(
-        self, point: np.ndarray | list[float], axis: np.ndarray | list[float]
-    ) -> float:
+    def moment_about_axis(self, point: np.ndarray | list[float], axis: np.ndarray | list[float]) -> float:
         """Moment of inertia about a line.
 
         Parameters
@@ -356,7 +354,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         3.0
         """
         factor = non_negative(factor, "factor")
-        return replace(self, mass=self.mass * factor, inertia=self.inertia * factor)
+        return replace(self, mass=self.mass * factor, inertia=self.inertia * factor, source=None)
 
     def with_density(self, density: float) -> MassProperties:
         """The same shape at a uniform density.
@@ -403,7 +401,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         array([2., 3.])
         """
         offset = vector(offset, "offset", (self.dim, 3))
-        return replace(self, center_of_mass=self.center_of_mass + offset[: self.dim])
+        return replace(self, center_of_mass=self.center_of_mass + offset[: self.dim], source=None)
 
     def transformed(
         self, matrix: np.ndarray, offset: np.ndarray | list[float] | None = None
@@ -441,12 +439,10 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         if self.dim == 2 and n == 3 and not np.allclose(full[2, :2], 0, atol=1e-15):
             raise GeometryError("a lamina can only be turned within its plane; use to_3d() first")
         com = (full @ self.center_of_mass_3d)[: self.dim]
-        result = replace(self, center_of_mass=com, inertia=full @ self.inertia @ full.T)
+        result = replace(self, center_of_mass=com, inertia=full @ self.inertia @ full.T, source=None)
         return result if offset is None else result.translated(offset)
 
-    def rotated(
-        self, angle: float, axis: np.ndarray | list[float] = (0.0, 0.0, 1.0)
-    ) -> MassProperties:
+    def rotated(self, angle: float, axis: np.ndarray | list[float] = (0.0, 0.0, 1.0)) -> MassProperties:
         """Turned about an axis through the origin.
 
         Parameters
@@ -500,7 +496,7 @@ principal_moments=[166.667, 166.667, 166.667], exact=True)
         """
         if self.dim == 3:
             return self
-        return replace(self, dim=3, center_of_mass=self.center_of_mass_3d)
+        return replace(self, dim=3, center_of_mass=self.center_of_mass_3d, source=None)
 
 
 def point_mass(mass: float, position: np.ndarray | list[float]) -> MassProperties:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .bodies.base import DEFAULT_DENSITY_NOTE, Body
+from .results import Source
 
 __all__ = ["Reading"]
 
@@ -56,6 +57,15 @@ class Reading:
     units_assumed: bool = False
     densities_required: bool = False
     file_materials: tuple[tuple[str, str, float], ...] = ()
+
+    def source(self, props, size: float = 0.0) -> Source:
+        """Where a result on this body came from, for its ``str()`` (the command line's
+        report): the file, its unit, the body's kind and name, the notes of its mass
+        properties ``props`` (assumed densities, faceted curves) and, when known, its
+        ``size`` (m)."""
+        body = self.body
+        return Source(self.path, self.length_unit, body.kind, tuple(props.notes), size,
+                      getattr(body, "name", None) or None)
 
     def default_down(self) -> list[float] | None:
         """Gravity's direction when the user gives none: against the file's up axis, or

@@ -16,7 +16,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Result", "Key", "TYPES", "keyed", "pick", "key_table", "undeclared_keys", "jsonable", "short"]
+__all__ = ["Result", "Source", "Key", "TYPES", "keyed", "pick", "key_table", "undeclared_keys",
+           "jsonable", "short"]
 
 #: arrays with more entries than this are summarised by their shape in a repr
 _INLINE = 4
@@ -194,6 +195,25 @@ def undeclared_keys(out: Mapping[str, Any], keys: Iterable[Key]) -> list[str]:
             + [f"{k.name} (missing)" for k in keys if not k.when and k.name not in out])
 
 
+@dataclass(frozen=True)
+class Source:
+    """Where a result's body came from, for its text report (``str(result)``): ``path``
+    (the file, or None), ``length_unit`` (the unit it was read in: a part in mm reads in mm
+    and g), ``kind`` (``lamina``, ``solid``, ``particles``, ``assembly``), ``notes`` (what
+    the command line prints after the report: assumed densities, faceted curves) and
+    ``size`` (m, the body's size, below which round-off shows as 0; 0: the result's own)
+    and ``name`` (the body's, which heads the mass table).
+    The front door's verbs given a file name (``plumbob.check("part.stl")``) attach it,
+    so the result prints what ``plumbob check part.stl`` prints."""
+
+    path: str | None = None
+    length_unit: str | None = None
+    kind: str | None = None
+    notes: tuple[str, ...] = ()
+    size: float = 0.0
+    name: str | None = None
+
+
 class Result:
     """Mixin for the frozen dataclasses that hold results (declare them ``repr=False``).
 
@@ -205,6 +225,8 @@ class Result:
     """
 
     _repr_fields: ClassVar[tuple[str, ...] | None] = None
+    #: units the repr gives its numbers besides those of ``KEYS`` (name → unit)
+    _repr_units: ClassVar[dict[str, str]] = {}
     #: the keys of ``as_dict()``, declared once (empty: not declared yet)
     KEYS: ClassVar[tuple[Key, ...]] = ()
 
@@ -215,12 +237,37 @@ class Result:
             return keyed(self, self.KEYS)
         return {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
 
+    def described(self, source: Source):
+        """The same result, with where its body came from (:class:`Source`) for its
+        ``str()``: the command line's report on that file."""
+        from dataclasses import replace
+
+        return replace(self, source=source)  # type: ignore[type-var]
+
     def _repr_items(self) -> list[tuple[str, Any]]:
         names = self._repr_fields or tuple(f.name for f in fields(self))  # type: ignore[arg-type]
         return [(n, getattr(self, n)) for n in names]
 
+    def __str__(self) -> str:
+        """The command line's report of the result where it has one
+        (:func:`plumbob.report.text.text_of`: the result's ``text()``, or the mass table),
+        else the repr."""
+        from .report.text import text_of
+
+        return text_of(self)
+
     def __repr__(self) -> str:
-        inner = ", ".join(f"{n}={short(v)}" for n, v in self._repr_items() if v is not None)
+        """One line: the headline numbers with their units (``mass=0.5 kg``)."""
+        units = {**{k.name: k.unit for k in self.KEYS}, **self._repr_units}
+
+        def item(name: str, value: Any) -> str:
+            unit = units.get(name, "")
+            numeric = isinstance(value, (int, float, np.number, np.ndarray)) and not \
+                isinstance(value, (bool, np.bool_))
+            shown = unit if numeric and unit and "," not in unit else ""
+            return f"{name}={short(value)}" + (f" {shown}" if shown not in ("", "°") else shown)
+
+        inner = ", ".join(item(n, v) for n, v in self._repr_items() if v is not None)
         return f"{type(self).__name__}({inner})"
 
     def _repr_html_(self) -> str:

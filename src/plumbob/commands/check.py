@@ -168,10 +168,9 @@ def run(args) -> int:
             out["standard"] = standard.as_dict()
         print_json(out, reading, notes)
     else:
-        from ..report.check import check_text
-
-        text = check_text(v, args.path, kind, notes, units, solution=solution,
-                          standard=standard, edges=None if args.all_edges else WEAKEST)
+        # the verdict's own report, str(plumbob.check(path)) with these options
+        text = v.described(reading.source(props)).text(
+            units, solution=solution, standard=standard, edges=None if args.all_edges else WEAKEST)
         print(text if explain != "-" else f"{text}\n\n{sheet}")
     failed = v.meets_requirement is False or (standard is not None and not standard.passes)
     return 1 if failed else 0

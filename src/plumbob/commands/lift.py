@@ -51,10 +51,9 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    from dataclasses import replace
+
     from ..energy import crew_time, lift_energy, seed_work_per_day
-    from ..errors import printable
-    from ..report import format_number as num
-    from ..report import table
 
     reading, props, notes = open_body(args)
     u = report_units(args, reading)
@@ -77,20 +76,7 @@ def run(args) -> int:
     if args.json:
         print_json(out, reading, notes)
         return 0
-    rows = [
-        ("mass", f"{num(u.mass(lift.mass))} {u.mass_unit}"),
-        ("ground datum", f"{num(u.length(lift.datum))} {u.length_unit}"),
-        ("centre of mass above it", f"{num(u.length(lift.com_height))} {u.length_unit}"),
-        ("lift energy", f"{num(lift.lift_energy)} J"),
-    ]
-    if crew is not None:
-        rows += [
-            ("work per person per day", f"{num(crew.work_per_day)} J"),
-            ("person-days", num(crew.person_days)),
-            (f"days for a crew of {crew.crew}", num(crew.crew_days)),
-            ("years", num(crew.crew_years, 4)),
-        ]
-    print(table(rows, title=f"plumbob lift {args.path}"))
-    for note in notes:
-        print(f"note: {printable(note)}")
+    # the result's own report: str(plumbob.lift(path)), with the crew's days and its note
+    source = replace(reading.source(props), notes=tuple(notes))
+    print(lift.described(source).text(u, crew=crew))
     return 0

@@ -122,9 +122,9 @@ def run(args) -> int:
             out["notices"] = list(reading.notices)
         to_json(out)
         return 0
-    from ..report.poses import poses_text
     from ..stability.support import body_size
 
-    print(poses_text(result, shown, args.path, body_size(body), units, left_out=(rest, rest_p),
-                     written=written, notes=notes))
+    # the result's own report: str(plumbob.poses(path)) with these options
+    print(result.described(reading.source(props, body_size(body))).text(
+        units, top=args.top, min_probability=args.min_probability, written=written))
     return 0

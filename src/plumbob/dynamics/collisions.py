@@ -208,8 +208,8 @@ def collide(m1: float, v1: Vector, m2: float, v2: Vector | None = None,
     A ball bouncing on a floor (normal from the ball into the floor, i.e. down):
 
     >>> collide(0.1, [3, -4], float("inf"), [0, 0], normal=[0, -1], e=0.5)
-    CollisionResult(m1=0.1, m2=inf, e=0.5, normal=[0, -1], v1_after=[3, 2], v2_after=[0, 0], \
-ke_loss=0.6, elastic=False)
+    CollisionResult(m1=0.1 kg, m2=inf kg, e=0.5, normal=[0, -1], v1_after=[3, 2] m/s, \
+v2_after=[0, 0] m/s, ke_loss=0.6 J, elastic=False)
 
     Bodies moving apart do not collide:
 

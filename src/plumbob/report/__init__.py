@@ -84,6 +84,19 @@ _POWERS = {2: "²", 3: "³"}
 _NATURAL_MASS = {"mm": "g", "cm": "g", "in": "lb", "ft": "lb"}
 
 
+def units_for(units, length_unit: str | None = None) -> ReportUnits:
+    """The units a result's ``text()`` is shown in: ``units`` as given (a
+    :class:`ReportUnits`, or ``"mm,g"``), else the part's own (:func:`natural_units` of
+    the unit it was read in).
+
+    >>> units_for("mm,g"), units_for(None, "in").length_unit, units_for(None).si
+    (ReportUnits(length_unit='mm', mass_unit='g'), 'in', True)
+    """
+    if units is None:
+        return natural_units(length_unit)
+    return ReportUnits.parse(units) if isinstance(units, str) else units
+
+
 def natural_units(length_unit: str | None) -> ReportUnits:
     """The report units for a part read in ``length_unit`` (the user's ``--units`` or
     the file's declared unit): millimetres and grams for a part drawn in mm, inches and

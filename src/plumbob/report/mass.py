@@ -13,7 +13,35 @@ from ..errors import printable
 from ..tolerances import TEXT_ROUND_OFF
 from . import ReportUnits, format_number, format_vector, table
 
-__all__ = ["mass_text"]
+__all__ = ["mass_text", "props_text"]
+
+
+class _Alone:
+    """Mass properties without the command's report around them: what :func:`mass_text`
+    reads of a :class:`~plumbob.commands.mass_report.MassReport`, from the properties and
+    where they came from (their ``source``)."""
+
+    about = frame = inertia_in_frame = None
+    parts = ()
+
+    def __init__(self, props):
+        s = props.source
+        self.props, self.kind = props, (s.kind if s is not None and s.kind else
+                                        "lamina" if props.size_key() == "area" else
+                                        "solid" if props.measure else "particles")
+        moments = np.maximum(props.principal_moments, 0.0)
+        self.sizes = {"radii_of_gyration": np.sqrt(moments / props.mass)}
+        self.title = (s.name or s.path) if s is not None else None
+
+
+def props_text(props, units=None) -> str:
+    """The table of ``plumbob mass`` for mass properties alone (``str(props)``): lengths
+    and masses in ``units`` (:class:`ReportUnits` or ``"mm,g"``; default the part's own,
+    from ``props.source``, else SI)."""
+    from . import units_for
+
+    s = props.source
+    return mass_text(_Alone(props), units_for(units, s.length_unit if s is not None else None))
 
 
 def mass_text(report, units: ReportUnits | None = None) -> str:
@@ -79,7 +107,8 @@ def mass_text(report, units: ReportUnits | None = None) -> str:
                      + f" {u.length_unit}, from {format_vector(u.length(lower))}"))
     rows.append(("exact", props.exactness))
     rows.append(("parts", str(props.parts)))
-    title = getattr(report.reading.body, "name", None) or report.reading.path or "body"
+    title = (report.title if isinstance(report, _Alone) else
+             getattr(report.reading.body, "name", None) or report.reading.path) or "body"
     text = table(rows, title)
     if report.parts:
         names = [printable(n) for n, _, _ in report.parts]

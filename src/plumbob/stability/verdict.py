@@ -29,7 +29,7 @@ depends on its curvature, which this verdict does not judge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -37,7 +37,7 @@ import numpy as np
 from ..arguments import answering, finite_result, instance
 from ..errors import StabilityError
 from ..massprops import MassProperties
-from ..results import Key, Result
+from ..results import Key, Result, Source
 from ..tolerances import sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
@@ -192,6 +192,7 @@ class Verdict(Result):
     design: DesignCheck | None = None
     settling: Settling | None = None
     loaded: LoadVerdict | None = None
+    source: Source | None = field(default=None, compare=False)
 
     _repr_fields = ("verdict", "margin", "critical_tilt_deg", "critical_direction",
                     "energy_to_topple", "com_height", "mass", "passes")
@@ -316,6 +317,20 @@ class Verdict(Result):
         from ..plot.files import png_bytes
 
         return png_bytes(self.plot())
+
+    def text(self, units=None, *, edges: int | None = 4, solution=None, standard=None) -> str:
+        """The report ``plumbob check`` prints (``str(verdict)``): lengths and masses in
+        ``units`` (a :class:`~plumbob.report.ReportUnits` or ``"mm,g"``; default the
+        part's own, from its :class:`~plumbob.results.Source`, else SI), the ``edges``
+        weakest tipping edges (None: all), a parameter ``solution``'s line and a
+        ``standard``'s bundle."""
+        from ..report import units_for
+        from ..report.check import check_text
+
+        s = self.source or Source()
+        kind = s.kind or ("lamina" if self.support.frame.dim == 2 else "solid")
+        return check_text(self, s.path or "body", kind, s.notes, units_for(units, s.length_unit),
+                          edges=edges, solution=solution, standard=standard)
 
     def tipping_angle_deg(self, direction) -> float:
         """The tilt, degrees, that topples the body when the plane descends toward the
@@ -480,7 +495,7 @@ def check(body, down=None, *, g: float = SEED_GRAVITY, tilt_deg: float | None = 
     On a 20° slope it goes over before it slides, and it fails a 15° design check:
 
     >>> check(block, tilt_deg=20, friction=0.3).slope
-    SlopeCheck(tilt_deg=20, toward_deg=-90, verdict='topples', tipping_angle_deg=14.0362, \
+    SlopeCheck(tilt_deg=20°, toward_deg=-90°, verdict='topples', tipping_angle_deg=14.0362°, \
 friction=0.3, slides_first=False)
     >>> check(block, require_tilt_deg=15).passes
     False

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...results import Key, Result
+from ...results import Key, Result, Source
 
 __all__ = ["Pose", "Poses"]
 
@@ -157,6 +157,23 @@ class Poses(Result):
     saddles: int
     area_error: float
     notes: tuple[str, ...] = field(default=())
+    source: Source | None = field(default=None, compare=False)
+
+    def text(self, units=None, *, top: int | None = None,
+             min_probability: float | None = None, written=()) -> str:
+        """The report ``plumbob poses`` prints (``str(poses)``): lengths and masses in
+        ``units`` (a :class:`~plumbob.report.ReportUnits` or ``"mm,g"``; default the
+        part's own, else SI); at most ``top`` poses, each at least ``min_probability``
+        likely; the files ``written``; the body's notes and these poses'."""
+        from ...report import units_for
+        from ...report.poses import poses_text
+
+        s = self.source or Source()
+        shown, rest, rest_p = self.shown(top, min_probability)
+        size = s.size or float(np.abs(self.center_of_mass).max(initial=0.0)) or 1.0
+        return poses_text(self, shown, s.path or "body", size, units_for(units, s.length_unit),
+                          left_out=(rest, rest_p), written=written,
+                          notes=(*s.notes, *self.notes))
 
     def __len__(self) -> int:
         return len(self.poses)
