@@ -403,10 +403,15 @@ class Hollowing:
         # the target needs no ballast after it
         safety = 4e-6 * self.size
         bound, best = hollow_bound(self.problem, target, wall)
-        if float(np.min(target.slack(before.center_of_mass))) >= 0:
+        slack = float(np.min(target.slack(before.center_of_mass)))
+
+        def untouched(met: bool) -> HollowResult:
             return HollowResult(self.outer_mesh, None, wall, self.offset, bound, None, before,
-                                before, True, lightest, 0,
+                                before, met, lightest, 0,
                                 self.seconds + time.perf_counter() - clock)
+
+        if slack >= 0:
+            return untouched(True)
         cut = self.problem.least(target, safety, lightest, best) if best.slack >= safety else None
         if cut is None:
             if not best_effort:
@@ -414,9 +419,13 @@ class Hollowing:
                     f"hollowing cannot meet the target: {bound.sentence()}; ask for less, give "
                     "thinner walls (--wall), or add ballast (--wall with --ballast-material "
                     "carves the best and ballasts the rest)")
+            if best.slack <= slack:  # no carve does better than none: nothing is emptied
+                return untouched(False)
             cut = best
         void_manifold, pieces = _void(self.interior, cut, self.problem.carver, target,
                                       safety if best.slack >= safety else -np.inf)
+        if void_manifold.is_empty():
+            return untouched(False)
         import manifold3d
 
         outer = self.outer_mesh.to_geometry() if self.own else self.body.to_geometry(256)

@@ -113,6 +113,10 @@ class Carver:
         start = np.asarray(start, dtype=float)
         if not np.any(start):
             start = -grads.mean(axis=0)
+        if not np.any(start):  # rows that cancel (a rectangle's): away from the worst one
+            start = -grads[int(np.argmin(target.slack(self.moment / self.mass)))]
+        if not np.any(start):
+            start = np.array([1.0, 0.0, 0.0])
         start = start / np.linalg.norm(start)
         found: dict[tuple, tuple[float, Cut | None]] = {}
 

@@ -6,16 +6,17 @@ Every test takes a ``tolerance`` (m): a positive one grows the body by that much
 negative one shrinks it (a point must lie that far inside), so a composite can
 keep its holes' rims while removing their insides.
 
-The mesh test asks :func:`plumbob.mesh.winding_numbers` (the one copy of Van
-Oosterom and Strackee's solid angle): the winding number of a closed surface
-about a point is the sum of its triangles' signed solid angles over 4π.
+The mesh test takes the winding number of the surface about each point (the sum of
+its triangles' signed solid angles over 4π; libigl's, exact, with a hierarchy of
+bounding boxes so far triangles are summed in bulk — :func:`plumbob.mesh.winding_numbers`
+is the same formula in numpy, point by triangle) and, for the tolerance, the exact
+distance to the surface (:class:`plumbob.bodies.distance.SurfaceDistance`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..mesh.winding import winding_numbers
 from .region import Region
 
 __all__ = ["mesh_contains", "region_contains", "triangle_distances"]
@@ -147,12 +148,23 @@ def mesh_contains(triangles: np.ndarray, points: np.ndarray, tolerance: float) -
     >>> mesh_contains(tri, pts, -0.1).tolist()
     [True, False, False]
     """
+    import igl
+
+    from .distance import SurfaceDistance
+
     points = np.asarray(points, dtype=float).reshape(-1, 3)
-    inside = winding_numbers(points, triangles)[:, 0] > 0.5
+    triangles = np.asarray(triangles, dtype=float).reshape(-1, 3, 3)
+    if not len(points) or not len(triangles):
+        return np.zeros(len(points), dtype=bool)
+    # a local origin, so the solid angles keep their digits far from the file's origin
+    origin = triangles.reshape(-1, 3).min(axis=0)
+    corners = np.ascontiguousarray((triangles - origin).reshape(-1, 3))
+    faces = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
+    inside = igl.winding_number(corners, faces, np.ascontiguousarray(points - origin)) > 0.5
     tolerance = float(tolerance)
     if tolerance > 0 and not inside.all():
         near = ~inside
-        inside[near] = triangle_distances(triangles, points[near]) <= tolerance
+        inside[near] = SurfaceDistance(triangles).distances(points[near]) <= tolerance
     elif tolerance < 0 and inside.any():
-        inside[inside] = triangle_distances(triangles, points[inside]) > -tolerance
+        inside[inside] = SurfaceDistance(triangles).distances(points[inside]) > -tolerance
     return inside
