@@ -132,3 +132,23 @@ def test_plot_on_the_command_line_follows_the_part_units_and_report_units(tmp_pa
     assert f"z_G − datum = {0.03 / 0.0254:.4g} in" in inches
     assert any(s.endswith(f"(mass {0.05952 / 0.45359237:.4g} lb)") for s in inches)
     assert np.isclose(0.03 / 0.0254, 1.181, rtol=1e-3)
+
+
+
+@pytest.mark.parametrize("picture", ["check in mm", "mass of an assembly", "lift in mm"])
+def test_nothing_covers_anything_in_mm_pictures_and_the_mass_and_lift_pictures(part, picture):
+    """The overlap measure of test_plot_check_truth on what it did not cover: a mm part's
+    check picture (longer labels, scaled ticks) and the mass and lift pictures (legend,
+    caption, the centre's label)."""
+    from conftest import SHAPES
+    from test_plot_check_truth import _covered, _cut_off
+
+    import plumbob
+
+    if picture == "check in mm":
+        fig = plot_check(check(part), part, units=MM)
+    elif picture == "mass of an assembly":
+        fig = plot_body(plumbob.load(f"{SHAPES}/mace_assembly.toml"))
+    else:
+        fig = plot_lift(lift_energy(part), part, units=MM)
+    assert _covered(fig) == [] and _cut_off(fig) == []
