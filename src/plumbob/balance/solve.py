@@ -21,7 +21,7 @@ from ..results import Key, Result
 
 __all__ = ["ParameterSolution", "solve_parameter", "spec_parameters_of", "solve_spec_parameter"]
 
-_STEPS = 20  # doublings of the step on each side: up to ~1000 times the start
+_STEPS = 20  # doublings of the step on each side: up to ~10⁴ times the start
 _FIRST_STEP = 1e-2  # of the parameter's size (or of 1 when it is 0)
 
 
@@ -82,6 +82,9 @@ def solve_parameter(name: str, start: float, evaluate: Callable[[float], float],
     for _ in range(2 * _STEPS):
         for side in list(sides):
             last, step, bad = sides[side]
+            if bad is None and step > first * 2.0**_STEPS:
+                del sides[side]  # doubled _STEPS times and still short: nothing that way
+                continue
             value = last + side * step if bad is None else (last + bad) / 2
             try:
                 g = gap(value)
