@@ -62,6 +62,14 @@ def test_a_result_of_a_body_reads_in_si_and_every_repr_has_units():
     assert repr(lift) == ("LiftEnergy(mass=4000 kg, center_of_mass=[0.5, 0.5, 2] m, datum=0 m, "
                           "com_height=2 m, lift_energy=80000 J, g=10 m/s²)")
     assert "mass=4000 kg" in repr(plumbob.poses(block))
+    assert repr(plumbob.poses(block)[0]).endswith(
+        "com_height=0.5 m, critical_tilt_deg=45°, energy_barrier=8127 J)")
+    # 4000 kg at 2 m high, ballast m at the floor: 8000 / (4000 + m) = 0.5 / tan 20°
+    assert repr(plumbob.balance(block, require_tilt_deg=20)).startswith(
+        "BalanceResult(ballast_mass=1823.52 kg, ballast_point=[0.5, 0.5, 0] m")
+    from plumbob.energy import crew_time
+
+    assert repr(crew_time(1e6, 1e4, 3)).startswith("CrewTime(energy=1e+06 J, work_per_day=10000 J")
 
 
 def test_load_options_need_a_file():

@@ -335,6 +335,7 @@ class CrewTime(Result):
     crew_days: float
     crew_years: float
 
+    _repr_units = {"energy": "J"}
     #: the crew keys of ``plumbob lift --json`` (the energy is the lift's ``lift_energy``)
     KEYS = (
         Key("work_per_day", "J", "the work one person does in a day", type="float"),

@@ -82,6 +82,7 @@ class BalanceResult(Result):
     added_mass: float | None = None
     pocket: bool = False
 
+    _repr_units = {"ballast_mass": "kg", "ballast_point": "m", "ballast_volume": "m³"}
     _repr_fields = ("ballast_mass", "ballast_point", "ballast_volume", "ballast_shape",
                     "passes")
 

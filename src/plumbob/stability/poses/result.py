@@ -115,7 +115,7 @@ class Pose(Result):
             kind = f", rocking ({self.members} faces)"
         return (f"Pose(probability={_short(self.probability)}, down={_vector(self.down)}, "
                 f"com_height={_short(self.com_height)} m, "
-                f"critical_tilt_deg={_short(self.critical_tilt_deg)}, "
+                f"critical_tilt_deg={_short(self.critical_tilt_deg)}°, "
                 f"energy_barrier={barrier}{kind})")
 
 
