@@ -104,7 +104,7 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
 
     def _repr_items(self) -> list[tuple[str, Any]]:
         # The headline numbers only: the tensor and the notes are an attribute away.
-        size = self.size_key()
+        size = self._size_key()
         items = [("dim", self.dim), ("mass", self.mass)]
         items += [(size, self.measure)] if size else []
         items += [("center_of_mass", self.center_of_mass),
@@ -119,7 +119,7 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
                 if self.exact else f"no (relative error ~{self.relative_error:.1e})")
 
     # ------------------------------------------------------------ serialising
-    def size_key(self, kind: str | None = None) -> str | None:
+    def _size_key(self, kind: str | None = None) -> str | None:
         """"area", "volume" or None (a particle has no size), as ``plumbob mass`` says it."""
         if kind == "lamina" or (self.dim == 2 and self.measure > 0):
             return "area"
@@ -156,7 +156,7 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
         """
         out: dict[str, Any] = {} if kind is None else {"kind": kind}
         out["mass"] = self.mass
-        size = self.size_key(kind)
+        size = self._size_key(kind)
         if size:
             out[size] = self.measure
         out.update(

@@ -80,12 +80,12 @@ class MassReport(Result):
     @property
     def volume(self) -> float | None:
         """m³, for a body that has a volume (not a lamina, not particles)."""
-        return self.props.measure if self.props.size_key(self.kind) == "volume" else None
+        return self.props.as_dict(self.kind).get("volume")
 
     @property
     def area(self) -> float | None:
         """m², for a lamina."""
-        return self.props.measure if self.props.size_key(self.kind) == "area" else None
+        return self.props.as_dict(self.kind).get("area")
 
     @property
     def part_properties(self) -> list[dict[str, Any]]:
