@@ -39,6 +39,16 @@ def _parallel_axis(mass: float, offset: np.ndarray) -> np.ndarray:
     return mass * (np.dot(offset, offset) * np.eye(3) - np.outer(offset, offset))
 
 
+
+def size_key(props: MassProperties, kind: str | None = None) -> str | None:
+    """``"area"``, ``"volume"`` or None (a particle has no size): the key ``plumbob mass``
+    gives the size of ``props`` under, for a body of ``kind``."""
+    if kind == "lamina" or (props.dim == 2 and props.measure > 0):
+        return "area"
+    if props.measure > 0 or (kind is not None and kind != "particles"):
+        return "volume"
+    return None
+
 @dataclass(frozen=True, eq=False, repr=False)
 class MassProperties(Result):
     """Mass properties of a lamina (``dim`` 2), a solid or a set of particles (``dim`` 3).
@@ -104,7 +114,7 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
 
     def _repr_items(self) -> list[tuple[str, Any]]:
         # The headline numbers only: the tensor and the notes are an attribute away.
-        size = self._size_key()
+        size = size_key(self)
         items = [("dim", self.dim), ("mass", self.mass)]
         items += [(size, self.measure)] if size else []
         items += [("center_of_mass", self.center_of_mass),
@@ -119,14 +129,6 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
                 if self.exact else f"no (relative error ~{self.relative_error:.1e})")
 
     # ------------------------------------------------------------ serialising
-    def _size_key(self, kind: str | None = None) -> str | None:
-        """"area", "volume" or None (a particle has no size), as ``plumbob mass`` says it."""
-        if kind == "lamina" or (self.dim == 2 and self.measure > 0):
-            return "area"
-        if self.measure > 0 or (kind is not None and kind != "particles"):
-            return "volume"
-        return None
-
     def as_dict(self, kind: str | None = None) -> dict[str, Any]:
         """The mass properties keyed as ``plumbob mass --json`` prints them, SI units.
 
@@ -156,18 +158,12 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
         """
         out: dict[str, Any] = {} if kind is None else {"kind": kind}
         out["mass"] = self.mass
-        size = self._size_key(kind)
+        size = size_key(self, kind)
         if size:
             out[size] = self.measure
-        out.update(
-            center_of_mass=self.center_of_mass,
-            inertia=self.inertia,
-            principal_moments=self.principal_moments,
-            principal_axes=self.principal_axes,
-            exact=self.exact,
-            relative_error=self.relative_error,
-            parts=self.parts,
-        )
+        out.update(center_of_mass=self.center_of_mass, inertia=self.inertia,
+                   principal_moments=self.principal_moments, principal_axes=self.principal_axes,
+                   exact=self.exact, relative_error=self.relative_error, parts=self.parts)
         if self.notes:
             out["notes"] = list(self.notes)
         return out
@@ -281,10 +277,14 @@ principal_moments=[166.667, 166.667, 166.667] kg·m², exact=True)
         point : array_like, shape (dim,) or (3,), optional
             The point, m (the parallel-axis theorem, :meth:`inertia_about`).
 
-        Returns ``R I_point Rᵀ`` (3, 3), kg·m², ``R`` the rows of ``axes``. A rod of 1 kg,
-        2 m long along x, in a frame turned 90° about z:
+        Returns
+        -------
+        numpy.ndarray
+            ``R I_point Rᵀ`` (3, 3), kg·m², ``R`` the rows of ``axes``.
 
-        >>> rod = MassProperties(3, 1.0, 0.0, [0, 0, 0], np.diag([0.0, 1 / 3, 1 / 3]))
+        Examples
+        --------
+        >>> rod = MassProperties(3, 1.0, 0.0, [0, 0, 0], np.diag([0.0, 1 / 3, 1 / 3]))  # 2 m on x
         >>> rod.inertia_in([[0, 1, 0], [-1, 0, 0], [0, 0, 1]]).diagonal().round(6)
         array([0.333333, 0.      , 0.333333])
         >>> rod.inertia_in("principal").diagonal().round(6)

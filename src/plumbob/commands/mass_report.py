@@ -10,7 +10,7 @@ import numpy as np
 
 from ..arguments import vector
 from ..bodies.measures import MASS_KEYS, size_keys
-from ..massprops import MassProperties
+from ..massprops import MassProperties, size_key
 from ..reading import Reading
 from ..report import ReportUnits
 from ..results import Result
@@ -80,12 +80,12 @@ class MassReport(Result):
     @property
     def volume(self) -> float | None:
         """m³, for a body that has a volume (not a lamina, not particles)."""
-        return self.props.as_dict(self.kind).get("volume")
+        return self.props.measure if size_key(self.props, self.kind) == "volume" else None
 
     @property
     def area(self) -> float | None:
         """m², for a lamina."""
-        return self.props.as_dict(self.kind).get("area")
+        return self.props.measure if size_key(self.props, self.kind) == "area" else None
 
     @property
     def part_properties(self) -> list[dict[str, Any]]:

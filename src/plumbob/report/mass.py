@@ -27,7 +27,7 @@ class _Alone:
     def __init__(self, props):
         s = props.source
         self.props, self.kind = props, (s.kind if s is not None and s.kind else
-                                        "lamina" if props.size_key() == "area" else
+                                        "lamina" if "area" in props.as_dict() else
                                         "solid" if props.measure else "particles")
         moments = np.maximum(props.principal_moments, 0.0)
         self.sizes = {"radii_of_gyration": np.sqrt(moments / props.mass)}
