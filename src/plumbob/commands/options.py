@@ -19,6 +19,7 @@ from .types import (
     material_name,
     non_negative,
     number,
+    parse_vector,
     positive,
 )
 
@@ -32,6 +33,7 @@ __all__ = [
     "add_orientation_arguments",
     "pose_down",
     "requirement",
+    "frame_word",
     "frame_rows",
 ]
 
@@ -205,6 +207,19 @@ def requirement(args: argparse.Namespace, down=None, loads: tuple = ()):
         down, getattr(args, "g", SEED_GRAVITY), getattr(args, "tilt", None),
         getattr(args, "toward", None), getattr(args, "friction", None),
         getattr(args, "margin", None), getattr(args, "require_tilt", None), tuple(loads))
+
+
+def frame_word(text: str):
+    """An argparse type, one word of ``--frame``: ``principal``, or an axis ``x=1,1,0``
+    (``y=…``, ``z=…``) in the body's coordinates, as (name, vector)."""
+    if text.strip().lower() == "principal":
+        return "principal"
+    name, sep, value = text.partition("=")
+    if not sep or name.strip().lower() not in ("x", "y", "z"):
+        raise argparse.ArgumentTypeError(
+            f"expected 'principal' or two axes such as x=1,1,0 y=-1,1,0, not {text!r} (give "
+            "--frame after PATH)")
+    return name.strip().lower(), parse_vector(value, (3,))
 
 
 def frame_rows(words: list | None):

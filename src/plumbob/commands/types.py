@@ -25,7 +25,6 @@ __all__ = [
     "number_option",
     "length_unit",
     "assignment",
-    "frame_word",
 ]
 
 
@@ -81,19 +80,6 @@ def length(text: str) -> float:
     if value < 0:
         raise argparse.ArgumentTypeError(f"must not be negative, not {text}")
     return value
-
-
-def frame_word(text: str):
-    """An argparse type, one word of ``--frame``: ``principal``, or an axis ``x=1,1,0``
-    (``y=…``, ``z=…``) in the body's coordinates, as (name, vector)."""
-    if text.strip().lower() == "principal":
-        return "principal"
-    name, sep, value = text.partition("=")
-    if not sep or name.strip().lower() not in ("x", "y", "z"):
-        raise argparse.ArgumentTypeError(
-            f"expected 'principal' or two axes such as x=1,1,0 y=-1,1,0, not {text!r} (give "
-            "--frame after PATH)")
-    return name.strip().lower(), parse_vector(value, (3,))
 
 
 def parse_vector(text: str, dims: tuple[int, ...] = (2, 3)) -> list[float]:
