@@ -163,14 +163,16 @@ def test_a_fine_sphere_is_fast_and_rolls():
     assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].members > 80_000
 
 
-@settings(max_examples=6, deadline=None)
-@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1), st.booleans())
-def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat):
+@settings(max_examples=8, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-5, 1e-1), st.booleans(), st.booleans())
+def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     """rocking() sweeps only the points its exact filter keeps (those near the rim of the
     projected hull): the same heights and tilts as sweeping every point. ``flat``: a
     box's corners and the points of its faces, whose projections leave wide sectors of
-    angle without a point and hold many points within eps of the support at once."""
+    angle without a point and hold many points within eps of the support at once.
+    ``binned``: the crest-angle bins' filter (else the intervals', as for few points)."""
     import plumbob.stability.rocking as rocking_module
+    import plumbob.stability.sweep as sweep_module
 
     rng = np.random.default_rng(seed)
     X = rng.normal(size=(700, 3))  # a rim of some hundred points the filter must keep
@@ -184,7 +186,12 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat):
         X += [0.05, -0.1, 0.1]
     down = rng.normal(size=3)
     down /= np.linalg.norm(down)
-    fast = rocking_module.rocking(X, down, eps, azimuths=6)
+    threshold = sweep_module._BINNED
+    try:
+        sweep_module._BINNED = 0 if binned else 10**9
+        fast = rocking_module.rocking(X, down, eps, azimuths=6)
+    finally:
+        sweep_module._BINNED = threshold
     keep = rocking_module._sweep_pairs
     try:  # every point at every angle of the sweep
         rocking_module._sweep_pairs = lambda a, B, alpha, eps, planes=None: [(
