@@ -9,7 +9,6 @@ the test writes into ``tmp_path`` and the command line that reads it.
 from __future__ import annotations
 
 import os
-import resource
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -34,24 +33,57 @@ class Outcome:
         return [line for line in self.stderr.splitlines() if line.strip()]
 
 
-def _limit_memory() -> None:
-    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+class _Server:
+    """This test process's fork server (``tests/_fork_server.py``), started on first use."""
+
+    process: subprocess.Popen | None = None
+
+    @classmethod
+    def ask(cls, request: dict, timeout: float, command: str) -> int:
+        """Run one command; its exit status (a hang is killed and fails the test)."""
+        import json
+        import select
+        import signal
+
+        if cls.process is None or cls.process.poll() is not None:
+            env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), OPENBLAS_NUM_THREADS="1",
+                       OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+            env.pop("PLUMBOB_DEBUG", None)
+            cls.process = subprocess.Popen(
+                [sys.executable, os.path.join(ROOT, "tests", "_fork_server.py"), str(MEMORY_LIMIT)],
+                env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
+        server = cls.process
+        server.stdin.write(json.dumps(request) + "\n")
+        server.stdin.flush()
+        pid = json.loads(server.stdout.readline())["pid"]
+        if not select.select([server.stdout], [], [], timeout)[0]:
+            os.kill(pid, signal.SIGKILL)
+            server.stdout.readline()  # the server has waited for it
+            raise AssertionError(f"{command} ran over {timeout} s")
+        return json.loads(server.stdout.readline())["status"]
 
 
 def run_limited(*args: str, cwd: str | os.PathLike | None = None,
                 timeout: float = TIME_LIMIT, stdin: str | None = None) -> Outcome:
     """``plumbob *args`` in a fresh process with the time and memory limits; a hang
-    fails the calling test with the command line."""
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), OPENBLAS_NUM_THREADS="1",
-               OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    env.pop("PLUMBOB_DEBUG", None)
-    try:
-        done = subprocess.run([sys.executable, "-m", "plumbob", *map(str, args)], cwd=cwd,
-                              env=env, capture_output=True, text=True, timeout=timeout,
-                              input=stdin, preexec_fn=_limit_memory)
-    except subprocess.TimeoutExpired:
-        raise AssertionError(f"plumbob {' '.join(map(str, args))} ran over {timeout} s") from None
-    return Outcome(done.returncode, done.stdout, done.stderr)
+    fails the calling test with the command line.
+
+    The process is forked from a server that has loaded numpy and plumbob already
+    (``tests/_fork_server.py``): what ``python -m plumbob`` spends a third of a second
+    on, some 300 times in the suite, is done once; the child has the streams, the
+    warning filters and the limits of a command started afresh."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="plumbob-hostile-") as folder:
+        files = [os.path.join(folder, name) for name in ("stdin", "stdout", "stderr")]
+        for name, text in zip(files, (stdin or "", "", "")):
+            with open(name, "w", encoding="utf-8") as f:
+                f.write(text)
+        status = _Server.ask({"args": [str(a) for a in args],
+                              "cwd": None if cwd is None else os.fspath(cwd), "files": files},
+                             timeout, "plumbob " + " ".join(map(str, args)))
+        out, err = (open(name, encoding="utf-8", errors="replace").read() for name in files[1:])
+    return Outcome(status, out, err)
 
 
 def assert_bad_input(outcome: Outcome, *phrases: str) -> str:
