@@ -152,3 +152,22 @@ def test_nothing_covers_anything_in_mm_pictures_and_the_mass_and_lift_pictures(p
     else:
         fig = plot_lift(lift_energy(part), part, units=MM)
     assert _covered(fig) == [] and _cut_off(fig) == []
+
+
+def test_an_inch_part_has_its_ticks_at_round_inches(part):
+    """Ticks at round numbers of the unit drawn in, not at round metres relabelled
+    (0.787402 in): the ticks of the plan and the side view step by 1, 2, 2.5 or 5 times a
+    power of ten inches, from a multiple of the step, and the 3-D view's labels are
+    short."""
+    inch = ReportUnits("in", "lb")
+    fig = plot_check(check(part), part, units=inch)
+    for ax in (fig.axes[1], fig.axes[2]):
+        for axis in (ax.xaxis, ax.yaxis):
+            values = np.array(axis.get_major_locator()()) / 0.0254
+            step = float(np.diff(values).mean())
+            mantissa = step / 10 ** np.floor(np.log10(step))
+            assert len(values) >= 3 and min(abs(mantissa - m) for m in (1, 2, 2.5, 5)) < 1e-9
+            assert np.allclose(values / step, np.round(values / step)), values
+    labels = [fig.axes[0].xaxis.get_major_formatter()(v, 0)
+              for v in fig.axes[0].xaxis.get_major_locator()()]
+    assert all(len(label) <= 5 for label in labels), labels

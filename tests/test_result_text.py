@@ -67,6 +67,9 @@ def test_a_result_of_a_body_reads_in_si_and_every_repr_has_units():
     # 4000 kg at 2 m high, ballast m at the floor: 8000 / (4000 + m) = 0.5 / tan 20°
     assert repr(plumbob.balance(block, require_tilt_deg=20)).startswith(
         "BalanceResult(ballast_mass=1823.52 kg, ballast_point=[0.5, 0.5, 0] m")
+    plan = str(plumbob.balance(block, require_tilt_deg=20))  # balance's report, SI
+    assert plan.startswith("plumbob balance body (solid)\n")
+    assert "ballast  1823.52 kg centred at (0.5, 0.5, 0) m" in plan.splitlines()
     from plumbob.energy import crew_time
 
     assert repr(crew_time(1e6, 1e4, 3)).startswith("CrewTime(energy=1e+06 J, work_per_day=10000 J")

@@ -4,12 +4,12 @@ measured by plumbob's own check on the body plus the ballast (never taken from t
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..results import Key, Result, keyed, pick
+from ..results import Key, Result, Source, keyed, pick
 from ..stability.keys import VERDICT_KEYS
 from ..stability.verdict import Verdict, check
 from .ballast import ballast_body, plan_ballast
@@ -81,10 +81,24 @@ class BalanceResult(Result):
     toward: np.ndarray | None = None
     added_mass: float | None = None
     pocket: bool = False
+    source: Source | None = field(default=None, compare=False)
 
     _repr_units = {"ballast_mass": "kg", "ballast_point": "m", "ballast_volume": "m³"}
     _repr_fields = ("ballast_mass", "ballast_point", "ballast_volume", "ballast_shape",
                     "passes")
+
+    def text(self, units=None) -> str:
+        """The report ``plumbob balance`` prints (``str(result)``): the target, before, the
+        ballast, after; lengths, masses, volumes and densities in ``units`` (a
+        :class:`~plumbob.report.ReportUnits` or ``"mm,g"``; default the part's own, from
+        its :class:`~plumbob.results.Source`, else SI)."""
+        from ..report import units_for
+        from ..report.balance import balance_text
+
+        s = self.source or Source()
+        kind = s.kind or ("lamina" if len(self.down) == 2 else "solid")
+        return balance_text(self, s.path or "body", kind, list(s.notes),
+                            s.size or self.before.support.size, units_for(units, s.length_unit))
 
     @property
     def target_dict(self) -> dict[str, Any]:

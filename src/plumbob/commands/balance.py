@@ -203,7 +203,9 @@ def run(args) -> int:
             out["pose"] = best.pose
         print_json(out, reading, notes)
     else:
-        from ..report.balance import auto_pose_text, balance_text, hollow_text
+        from dataclasses import replace
+
+        from ..report.balance import auto_pose_text, hollow_text
         from ..stability.support import body_size
 
         scale = body_size(body)
@@ -211,5 +213,6 @@ def run(args) -> int:
             print(auto_pose_text(needs, best.pose, units))
         if carved is not None:
             print(hollow_text(carved, scale, units))
-        print(balance_text(result, args.path, kind, notes, scale, units))
+        source = replace(reading.source(props, scale), kind=kind, notes=tuple(notes))
+        print(result.described(source).text(units))  # str(result) with its file
     return 0 if result.passes else 1

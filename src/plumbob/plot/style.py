@@ -121,12 +121,31 @@ class _Millimetres(SIUnits):  # for the doctests: what plumbob.report.ReportUnit
 
 
 def scale_ticks(axis, factor: float) -> None:
-    """Tick labels of ``axis`` (drawn in metres) shown ``factor`` times larger: the axes
-    read in the report's length unit while the geometry stays in metres."""
+    """Ticks of ``axis`` (drawn in metres) at round numbers of the report's length unit,
+    ``factor`` per metre, and labelled in it: the axes read in mm or inches while the
+    geometry stays in metres (a lone tick at a short side's middle stays one, rounded).
+
+    >>> import matplotlib.pyplot as plt
+    >>> ax = plt.figure().add_subplot()
+    >>> _ = ax.set_xlim(0, 0.05)
+    >>> scale_ticks(ax.xaxis, 1 / 0.0254)
+    >>> [ax.xaxis.get_major_formatter()(v, 0) for v in ax.xaxis.get_major_locator()()]
+    ['0', '0.25', '0.5', '0.75', '1', '1.25', '1.5', '1.75', '2']
+    """
     if factor == 1.0:
         return
-    from matplotlib.ticker import FuncFormatter
+    from matplotlib.ticker import FixedLocator, FuncFormatter, MaxNLocator
 
+    class Scaled(MaxNLocator):
+        def tick_values(self, vmin, vmax):
+            return np.asarray(super().tick_values(vmin * factor, vmax * factor)) / factor
+
+    old = axis.get_major_locator()
+    if isinstance(old, FixedLocator) and len(old.locs) == 1:
+        axis.set_major_locator(FixedLocator([float(f"{old.locs[0] * factor:.3g}") / factor]))
+    else:
+        nbins = old._nbins if isinstance(old, MaxNLocator) else "auto"
+        axis.set_major_locator(Scaled(nbins=nbins, steps=[1, 2, 2.5, 5, 10]))
     axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v * factor:.6g}"))
 
 
