@@ -48,7 +48,7 @@ def case(request, tmp_path_factory):
     bound, what was written)."""
     kind, seed, size = request.param
     triangles = figurine_triangles(kind, seed, size, segments=40)
-    bound = voxel_bound(triangles, WALL, PITCH)
+    bound = voxel_bound(triangles, WALL, PITCH, samples=200_000)
     body = MeshSolid(triangles, RHO)
     hollowing = Hollowing.prepare(body, WALL)
     plan = hollowing.plan(target_for(body, margin=0.95 * bound))

@@ -49,19 +49,26 @@ class GridCells:
 
 def _slices(manifold, axis: int, planes: np.ndarray) -> list[tuple[int, object]]:
     """``manifold`` cut by the planes ``x[axis] = planes`` (ascending): the pieces between
-    them with their slot (0 below the first plane), empty ones dropped."""
+    them with their slot (0 below the first plane), empty ones dropped. Halved at the
+    middle plane, then each half again: each triangle is cut ~log₂(planes) times, not
+    once per plane below it."""
     normal = np.zeros(3)
     normal[axis] = 1.0
-    pieces, rest = [], manifold
-    for slot, plane in enumerate(planes):
-        if rest.is_empty():
-            return pieces
-        above, below = rest.split_by_plane(normal.tolist(), float(plane))
-        if not below.is_empty():
-            pieces.append((slot, below))
-        rest = above
-    if not rest.is_empty():
-        pieces.append((len(planes), rest))
+    pieces: list[tuple[int, object]] = []
+
+    def cut(part, first: int, last: int) -> None:
+        """``part`` lies between planes ``first − 1`` and ``last`` (slots first..last)."""
+        if part.is_empty():
+            return
+        if first == last:
+            pieces.append((first, part))
+            return
+        middle = (first + last) // 2  # plane ``middle`` parts slots ≤ middle from the rest
+        above, below = part.split_by_plane(normal.tolist(), float(planes[middle]))
+        cut(below, first, middle)
+        cut(above, middle + 1, last)
+
+    cut(manifold, 0, len(planes))
     return pieces
 
 
