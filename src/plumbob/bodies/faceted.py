@@ -104,7 +104,8 @@ class Faceted(Body):
 
     @property
     def is_polytope(self) -> bool:
-        return self.shape.is_polytope
+        # the facets of curved parts are chords of them, not the body's own corners
+        return self.exact and self.shape.is_polytope
 
     def densities(self) -> set:
         return {self.density}
