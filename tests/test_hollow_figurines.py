@@ -78,6 +78,17 @@ def test_95_percent_of_the_independent_bound_is_met_on_the_written_file(case, ca
     assert plan.bound.value == pytest.approx(bound, rel=0.05)
 
 
+def test_a_lesser_target_is_met_emptying_less(case):
+    """Every target up to 95 % of the bound is met: half of it too, with less emptied (the
+    plan empties the least that meets its target)."""
+    _, bound, hollowing, plan, _ = case
+    half = hollowing.plan(target_for(hollowing.body, margin=0.5 * bound))
+    assert half.target_met and half.cut is not None
+    slack = target_for(hollowing.body, margin=0.5 * bound).slack(half.after.center_of_mass)
+    assert np.min(slack) >= 0
+    assert 0 < half.removed_mass < plan.removed_mass
+
+
 def test_the_carved_file_is_closed_keeps_the_wall_and_agrees_with_trimesh(case):
     import trimesh
 
