@@ -80,3 +80,14 @@ def test_load_options_need_a_file():
         plumbob.check(P.box(1, 1, 1), units="mm")
     with pytest.raises(plumbob.PlumbobError, match="not 'g'"):
         plumbob.mass_properties(P.box(1, 1, 1), g=3)
+
+
+def test_round_off_is_not_shown_in_the_lift_report():
+    """Issue 22: "ground datum −6.939e-18 m" is 0 (the JSON keeps every digit)."""
+    import numpy as np
+
+    from plumbob.energy import LiftEnergy
+
+    lift = LiftEnergy(2.0, np.array([0.0, 0.0, 1.0]), -6.939e-18, 1.0, 19.62, 9.81)
+    assert "ground datum             0 m" in str(lift).splitlines()
+    assert lift.as_dict()["datum"] == -6.939e-18
