@@ -93,28 +93,55 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
     else:
         directions = np.array([[-down[1], down[0]], [down[1], -down[0]]])
     alpha = np.radians(np.arange(0.0, 180.0, ROLL_STEP_DEG))
+    pairs = _sweep_pairs(points @ down, directions @ points.T, alpha, eps, sweep_planes(directions))
     heights = np.empty((len(directions), len(alpha)))
     tilts = np.empty(len(directions))
-    pairs = _sweep_pairs(points @ down, directions @ points.T, alpha, eps, sweep_planes(directions))
-    for k, direction in enumerate(directions):  # a few dozen ways, each vectorised
-        u = np.cos(alpha)[:, None] * down + np.sin(alpha)[:, None] * direction
-        at, j = pairs[k]
-        reach = np.einsum("pd,pd->p", u[at], points[j])
-        top = np.full(len(alpha), -np.inf)
-        np.maximum.at(top, at, reach)
-        heights[k] = top
-        near = reach >= top[at] - eps
-        at, j = at[near], j[near]
-        contact = np.stack([np.bincount(at, weights=points[j, d], minlength=len(alpha))
-                            for d in range(dim)], axis=1)
-        contact /= np.bincount(at, minlength=len(alpha))[:, None]
-        cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
-        theta = np.arccos(np.clip(cosine, -1.0, 1.0))
-        peak = np.maximum.accumulate(theta)
-        # A fall well below the best so far ends the branch; smaller dips are the
-        # ripple of the sampled surface (a few degrees where the contact crosses the
-        # bottom).
-        fell = (theta < peak - np.maximum(np.radians(3.0), 0.5 * peak)) & (alpha >= np.radians(5.0))
-        end = int(np.argmax(fell)) if fell.any() else len(alpha) - 1
-        tilts[k] = np.degrees(peak[end])
+    for ways in _groups([len(at) for at, _ in pairs]):  # ways together, pairs bounded
+        heights[ways], tilts[ways] = _sweep(points, down, directions[ways], alpha, eps,
+                                            [pairs[k] for k in ways])
     return Rocking(down, directions, alpha, heights, tilts)
+
+
+_PAIRS = 1 << 18  # (angle, point) pairs swept together, at most (bounds the temporaries)
+
+
+def _groups(counts: list[int]) -> list[list[int]]:
+    """Consecutive ways whose pairs add up to at most ``_PAIRS`` (one way at least)."""
+    out: list[list[int]] = [[]]
+    total = 0
+    for k, count in enumerate(counts):
+        if out[-1] and total + count > _PAIRS:
+            out.append([])
+            total = 0
+        out[-1].append(k)
+        total += count
+    return out
+
+
+def _sweep(points: np.ndarray, down: np.ndarray, directions: np.ndarray, alpha: np.ndarray,
+           eps: float, pairs: list[tuple[np.ndarray, np.ndarray]]
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Heights (K, m) and tilts (K,) along ``directions`` (K, dim), every way at once
+    from its (angle, point) pairs: the support at each angle, the contact (the mean of
+    the points within ``eps`` of it) and the tilt the contact holds."""
+    K, m, dim = len(directions), len(alpha), len(down)
+    u = (np.cos(alpha)[None, :, None] * down
+         + np.sin(alpha)[None, :, None] * directions[:, None, :]).reshape(K * m, dim)
+    at = np.concatenate([k * m + a for k, (a, _) in enumerate(pairs)])
+    j = np.concatenate([b for _, b in pairs])
+    reach = np.einsum("pd,pd->p", u[at], points[j])
+    top = np.full(K * m, -np.inf)
+    np.maximum.at(top, at, reach)
+    near = reach >= top[at] - eps
+    at, j = at[near], j[near]
+    contact = np.stack([np.bincount(at, weights=points[j, d], minlength=K * m)
+                        for d in range(dim)], axis=1)
+    contact /= np.bincount(at, minlength=K * m)[:, None]
+    cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
+    theta = np.arccos(np.clip(cosine, -1.0, 1.0)).reshape(K, m)
+    peak = np.maximum.accumulate(theta, axis=1)
+    # A fall well below the best so far ends the branch; smaller dips are the ripple of
+    # the sampled surface (a few degrees where the contact crosses the bottom).
+    fell = (theta < peak - np.maximum(np.radians(3.0), 0.5 * peak)) & (alpha >= np.radians(5.0))
+    end = np.where(fell.any(axis=1), np.argmax(fell, axis=1), m - 1)
+    return top.reshape(K, m), np.degrees(peak[np.arange(K), end])
