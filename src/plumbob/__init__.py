@@ -27,6 +27,7 @@ from __future__ import annotations
 from importlib import import_module
 from typing import Any
 
+from .units import SEED_GRAVITY
 from .version import __version__  # noqa: F401 (the release: plumbob/version.py)
 
 __all__ = [
@@ -168,7 +169,7 @@ def _opened(body, options: dict):
     return body, None
 
 
-def check(body, *args, **options):
+def check(body, *args, g: float = SEED_GRAVITY, **options):
     """Will it stand on a horizontal plane?
 
     Parameters
@@ -195,6 +196,7 @@ def check(body, *args, **options):
     """
     from .stability import check as checked
 
+    options["g"] = g
     body, reading = _opened(body, options)
     if reading is None:
         return checked(body, *args, **options)
@@ -204,7 +206,7 @@ def check(body, *args, **options):
     return checked(body, *args, props=props, **options).described(reading.source(props))
 
 
-def poses(body, **options):
+def poses(body, *, g: float = SEED_GRAVITY, **options):
     """The stable resting poses and how likely a random drop lands in each.
 
     Parameters
@@ -229,6 +231,7 @@ def poses(body, **options):
     from .stability import resting_poses
     from .stability.support import body_size
 
+    options["g"] = g
     body, reading = _opened(body, options)
     if reading is None:
         return resting_poses(body, **options)
@@ -237,7 +240,7 @@ def poses(body, **options):
         reading.source(props, body_size(body)))
 
 
-def lift(body, **options):
+def lift(body, *, g: float = SEED_GRAVITY, **options):
     """The energy to raise a structure's material into place, M g z_G.
 
     Parameters
@@ -261,6 +264,7 @@ def lift(body, **options):
     """
     from .energy import lift_energy
 
+    options["g"] = g
     body, reading = _opened(body, options)
     if reading is None:
         return lift_energy(body, **options)
