@@ -10,7 +10,6 @@ from typing import Any
 import numpy as np
 
 from ..results import Key, Result, Source, keyed, pick
-from ..stability.keys import VERDICT_KEYS
 from ..stability.verdict import Verdict, check
 from .ballast import ballast_body, plan_ballast
 from .targets import Target, target_for
@@ -40,7 +39,7 @@ BALLAST_KEYS = (
     Key("depth", "m", "a lamina's thickness it fills", "a lamina's", attr="ballast_depth"),
 )
 #: the keys of its ``before`` and ``after``: of each verdict, in this order
-STATE_KEYS = pick(VERDICT_KEYS, ("verdict", "mass", "center_of_mass", "margin",
+STATE_KEYS = pick(Verdict.KEYS, ("verdict", "mass", "center_of_mass", "margin",
                                  "critical_tilt_deg", "critical_direction", "com_height"))
 
 

@@ -19,9 +19,9 @@ from typing import Any
 from ..bodies import measures as _mass
 from ..results import pick
 from ..stability.checks import SlopeCheck
-from ..stability.keys import VERDICT_KEYS
 from ..stability.loaded import LoadVerdict
 from ..stability.poses.result import Pose, Poses
+from ..stability.verdict import Verdict
 from .options import Options
 
 __all__ = ["Field", "result_fields", "pose_fields", "flatten", "unflatten", "flat_names",
@@ -72,12 +72,12 @@ MASS_KEYS = pick(_mass.MASS_KEYS, ("mass", "volume", "area", "center_of_mass", "
                                    "principal_moments", "principal_axes", "exact",
                                    "relative_error", "parts"))
 SIZE_KEYS = pick(_mass.MASS_KEYS, ("radii_of_gyration",))
-CHECK_KEYS = pick(VERDICT_KEYS, ("verdict", "stands", "margin", "critical_tilt_deg",
+CHECK_KEYS = pick(Verdict.KEYS, ("verdict", "stands", "margin", "critical_tilt_deg",
                                  "critical_direction", "energy_to_topple", "com_height", "down",
                                  "support_kind"))
 SLOPE_KEYS = pick(SlopeCheck.KEYS, ("verdict", "topples", "tipping_angle_deg"), "slope_",
                   via="slope")
-REQUIRE_KEYS = pick(VERDICT_KEYS, ("required_tilt_deg", "passes"))
+REQUIRE_KEYS = pick(Verdict.KEYS, ("required_tilt_deg", "passes"))
 LOAD_KEYS = (pick(LoadVerdict.KEYS, ("verdict",), "load_", via="loaded")
              + pick(LoadVerdict.KEYS, ("overturning_safety_factor", "resisting_moment",
                                        "overturning_moment"), via="loaded"))

@@ -1,7 +1,9 @@
 """The keys of ``plumbob check --json`` (:meth:`Verdict.as_dict
 <plumbob.stability.verdict.Verdict.as_dict>`), declared once: name, unit, when, meaning.
 
-``Verdict.KEYS`` is this tuple; ``docs/cli.md``'s check table is generated from it and
+``Verdict.KEYS`` is this tuple followed by each later criterion's own key, declared in
+the criterion's module beside its answer (``stability/loaded.py``'s ``VERDICT_KEY``):
+``docs/cli.md``'s check table is generated from ``Verdict.KEYS`` and
 ``tests/test_result_keys.py`` holds the verdict's JSON and the batch columns to it.
 """
 
@@ -52,6 +54,4 @@ VERDICT_KEYS = (
     Key("margin_passes", "", "whether it has it", "with `--margin M`", type="bool"),
     Key("settles", "", "where a solid set down on a point, a line or a sliver comes to "
                        "rest (see below)", "when set down so", attr="settling"),
-    Key("under_loads", "", "the verdict under applied loads (see below)", "with loads",
-        attr="loaded"),
 )

@@ -40,7 +40,12 @@ from .reach import corners_below, surface_facets
 from .requirement import Requirement
 from .support import Support
 
-__all__ = ["LoadMoment", "LoadVerdict", "EdgeMoments", "edge_moments", "under_loads"]
+__all__ = ["LoadMoment", "LoadVerdict", "EdgeMoments", "edge_moments", "under_loads",
+           "VERDICT_KEY"]
+
+#: how a check's verdict shows this criterion's answer (``Verdict.KEYS`` ends with it)
+VERDICT_KEY = Key("under_loads", "", "the verdict under applied loads (see below)",
+                  "with loads", attr="loaded")
 
 
 @dataclass(frozen=True, repr=False)

@@ -42,6 +42,7 @@ from ..tolerances import sampling_tolerance
 from ..units import SEED_GRAVITY
 from .checks import DesignCheck, SlopeCheck, slope_check, tipping_toward
 from .keys import VERDICT_KEYS
+from .loaded import VERDICT_KEY as LOADED_KEY
 from .loaded import LoadVerdict
 from .requirement import Requirement
 from .rocking import Rocking, rocking
@@ -296,9 +297,9 @@ class Verdict(Result):
                                     weakest.energy))
         return sorted(groups, key=lambda g: g.distance)
 
-    #: the keys of :meth:`as_dict`, in order, declared in :mod:`.keys` (docs/cli.md's
-    #: check table is made from them)
-    KEYS = VERDICT_KEYS
+    #: the keys of :meth:`as_dict`, in order: :mod:`.keys`', then each criterion's own
+    #: (declared beside its answer); docs/cli.md's check table is made from them
+    KEYS = VERDICT_KEYS + (LOADED_KEY,)
 
     @property
     def summary(self) -> str:
