@@ -353,11 +353,15 @@ def level_set_manifold(triangles: np.ndarray, t: float, step: float, *, surface=
     inv = 1.0 / step
     sy, sx = nz, ny * nz
 
+    hx, hy, hz = nx - 1.000001, ny - 1.000001, nz - 1.000001
+
     def sdf(x: float, y: float, z: float) -> float:
-        # trilinear interpolation of the grid (clamped to it: outside is outside)
-        fx = min(max((x - x0) * inv, 0.0), nx - 1.000001)
-        fy = min(max((y - y0) * inv, 0.0), ny - 1.000001)
-        fz = min(max((z - z0) * inv, 0.0), nz - 1.000001)
+        # trilinear interpolation of the grid (clamped to it: outside is outside); called
+        # once a sample point, so plain comparisons rather than min() and max()
+        fx, fy, fz = (x - x0) * inv, (y - y0) * inv, (z - z0) * inv
+        fx = 0.0 if fx < 0.0 else (hx if fx > hx else fx)
+        fy = 0.0 if fy < 0.0 else (hy if fy > hy else fy)
+        fz = 0.0 if fz < 0.0 else (hz if fz > hz else fz)
         i, j, k = int(fx), int(fy), int(fz)
         u, v, w = fx - i, fy - j, fz - k
         n = i * sx + j * sy + k
