@@ -13,6 +13,7 @@ from plumbob.balance.cells import grid_cells
 from plumbob.balance.hollow import hollow, write_hollow
 from plumbob.bodies.csg import union
 from plumbob.bodies.primitives import box, cylinder, sphere
+from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError, StabilityError
 from plumbob.formats.writers import stl_bytes
 from plumbob.massprops import rotation_matrix
@@ -229,3 +230,26 @@ def test_the_written_body_has_the_original_density_so_no_note_assumes_one(tmp_pa
     written = write_hollow(plan, str(tmp_path / "carved.stl"))
     assert DEFAULT_DENSITY_NOTE not in written.mass_properties.notes
     assert written.mass_properties.mass == pytest.approx(plan.after.mass, rel=1e-6)
+
+
+def test_unsettled_corners_fall_back_to_a_deeper_level_set_that_keeps_the_wall(monkeypatch):
+    """Should the interior's corners not settle on the exact offset, the level set is taken
+    deeper by what its grid can hide (2 steps): checked independently, no point sampled on
+    the interior's surface (or a corner of it) is nearer the figurine's surface than the
+    wall (trimesh's closest points), and all lie inside it."""
+    import trimesh
+
+    from plumbob.balance import interior as module
+    from plumbob.bodies.offset import manifold_triangles
+
+    triangles = figurine(48).shape.triangles
+    monkeypatch.setattr(module, "_projected", lambda *args: None)
+    offset, inner, _ = module.carving_interior(MeshSolid(triangles, RHO), 2 * MM, None, 0.1)
+    assert "deeper" in offset.method and offset.surface_error == 2 * offset.step
+    outer = trimesh.Trimesh(**trimesh.triangles.to_kwargs(triangles))
+    hole = trimesh.Trimesh(**trimesh.triangles.to_kwargs(manifold_triangles(inner)))
+    points, _ = trimesh.sample.sample_surface(hole, 1500, seed=3)
+    points = np.concatenate((points, hole.vertices[:: max(1, len(hole.vertices) // 500)]))
+    _, distance, _ = trimesh.proximity.closest_point(outer, points)
+    assert outer.contains(points).all()
+    assert distance.min() >= 2 * MM
