@@ -17,8 +17,10 @@ module it loads. All processes run with the same environment.
   of the float32 coordinates) and takes its convex hull (manifold3d's quickhull, the
   fastest hull measured here): what any pose method must at least do.
 
-It prints the ratios trimesh / plumbob and plumbob / floor, and each process's peak
-resident memory. Acceptance targets (issue 24): at 10k faces plumbob at least 5× faster
+It prints the ratios trimesh / plumbob and plumbob / floor, by wall time and by CPU
+time (user + system, which a process waiting for a core does not accrue: the measure a
+machine shared with other work distorts least), and each process's peak resident
+memory. Acceptance targets (issue 24): at 10k faces plumbob at least 5× faster
 than trimesh; at 100k-200k within 1.5× of the floor. ``--profile`` also prints where
 plumbob's time goes (cProfile of one in-process run, after the imports).
 
@@ -120,15 +122,18 @@ def _env() -> dict[str, str]:
 GNU_TIME = "/usr/bin/time"  # its child's peak memory starts afresh (see run_once)
 
 
-def run_once(args: list[str]) -> tuple[float, float]:
-    """Wall time (s) and peak resident memory (MB) of one whole process.
+def run_once(args: list[str]) -> tuple[float, float, float]:
+    """Wall time (s), peak resident memory (MB) and CPU time (user + system, s) of one
+    whole process.
 
     The peak is read by GNU time when there is one: a process started straight from
     this one would inherit this process's own high-water mark (Linux carries it over a
     fork and exec), so small processes would all read as this benchmark's size. Without
-    GNU time, the peak from ``wait4`` is an upper bound (NaN is printed for none)."""
+    GNU time, the peak from ``wait4`` is an upper bound (NaN is printed for none). The
+    CPU time is the least distorted measure on a machine shared with other work (a
+    process waiting for a core accrues none)."""
     with tempfile.NamedTemporaryFile("r", suffix=".peak") as peak_file:
-        wrapped = ([GNU_TIME, "-f", "%M", "-o", peak_file.name, *args]
+        wrapped = ([GNU_TIME, "-f", "%M %U %S", "-o", peak_file.name, *args]
                    if os.path.exists(GNU_TIME) else args)
         start = time.perf_counter()
         child = subprocess.Popen(wrapped, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
@@ -139,8 +144,10 @@ def run_once(args: list[str]) -> tuple[float, float]:
         if child.returncode != 0:
             raise SystemExit(f"{' '.join(args[:4])} … exited {child.returncode}")
         text = peak_file.read().strip().splitlines() if wrapped is not args else []
-    kb = float(text[-1]) if text and text[-1].isdigit() else usage.ru_maxrss
-    return seconds, kb / 1024
+    fields = text[-1].split() if text else []
+    if len(fields) == 3 and fields[0].isdigit():
+        return seconds, float(fields[0]) / 1024, float(fields[1]) + float(fields[2])
+    return seconds, usage.ru_maxrss / 1024, usage.ru_utime + usage.ru_stime
 
 
 def median_process(args: list[str], repeat: int) -> float:
@@ -149,19 +156,23 @@ def median_process(args: list[str], repeat: int) -> float:
 
 
 def interleaved_medians(commands: dict[str, list[str]], repeat: int
-                        ) -> tuple[dict[str, float], dict[str, float]]:
+                        ) -> tuple[dict[str, float], dict[str, float], dict[str, float]]:
     """Median wall time (s) of each command over ``repeat`` rounds, the commands taking
     turns within each round: a machine that slows down or speeds up during the run
     (other tenants, memory the host reclaims) moves every command's times alike, so the
-    ratios between them stay fair. Also each command's peak resident memory, MB."""
+    ratios between them stay fair. Also each command's peak resident memory, MB, and its
+    median CPU time, s."""
     times: dict[str, list[float]] = {name: [] for name in commands}
+    cpus: dict[str, list[float]] = {name: [] for name in commands}
     peaks: dict[str, float] = dict.fromkeys(commands, 0.0)
     for _ in range(repeat):
         for name, args in commands.items():
-            seconds, peak = run_once(args)
+            seconds, peak, cpu = run_once(args)
             times[name].append(seconds)
+            cpus[name].append(cpu)
             peaks[name] = max(peaks[name], peak)
-    return {name: statistics.median(ts) for name, ts in times.items()}, peaks
+    return ({name: statistics.median(ts) for name, ts in times.items()}, peaks,
+            {name: statistics.median(cs) for name, cs in cpus.items()})
 
 
 def profile(path: str, top: int = 14) -> None:
@@ -224,18 +235,20 @@ def run_case(name: str, path: str, faces: int, repeat: int, trimesh: bool,
                 "floor": [sys.executable, "-c", FLOOR, path]}
     if trimesh:
         commands["trimesh"] = [sys.executable, "-c", TRIMESH, path]
-    medians, peaks = interleaved_medians(commands, repeat)
+    medians, peaks, cpu = interleaved_medians(commands, repeat)
     plumbob, floor, tm = medians["plumbob"], medians["floor"], medians.get("trimesh")
     ratio_tm = f"{tm / plumbob:6.1f}×" if tm else "   —  "
     tm_text = f"{tm:7.2f}" if tm else "     — "
+    cpu_tm = f"{cpu['trimesh'] / cpu['plumbob']:5.1f}×" if tm else "   — "
     print(f"{name:<30}{faces:>8,}  {plumbob:7.2f}  {tm_text}  {floor:6.2f}   {ratio_tm}"
-          f"   {plumbob / floor:5.2f}×   {peaks['plumbob']:5.0f} MB {peaks['floor']:5.0f} MB",
-          flush=True)
+          f"   {plumbob / floor:5.2f}×   {peaks['plumbob']:5.0f} MB {peaks['floor']:5.0f} MB"
+          f"   {cpu_tm} {cpu['plumbob'] / cpu['floor']:5.2f}×", flush=True)
     if hulls:
         print(hull_times(path))
     if prof:
         profile(path)
-    return {"name": name, "faces": faces, "plumbob": plumbob, "trimesh": tm, "floor": floor}
+    return {"name": name, "faces": faces, "plumbob": plumbob, "trimesh": tm, "floor": floor,
+            "cpu": cpu}
 
 
 def cases(size: int, seeds: list[int], smoke: bool, legacy: bool = True
@@ -277,9 +290,12 @@ def main(argv: list[str] | None = None) -> int:
     else:
         compiled = compile_bytecode(os.path.join(ROOT, "src", "plumbob"))
     print(f"whole process, median of {args.repeat}, wall s; ratios trimesh/plumbob and "
-          f"plumbob/floor; peak resident memory of plumbob and of the floor; {compiled}")
+          "plumbob/floor (wall, and CPU user + system last: the least distorted on a "
+          "shared machine); "
+          f"peak resident memory of plumbob and of the floor; {compiled}")
     print(f"{'mesh':<30}{'faces':>8}  {'plumbob':>7}  {'trimesh':>7}  {'floor':>6}   "
-          f"{'vs trimesh':>7}  {'vs floor':>7}  {'peak plumbob, floor':>19}")
+          f"{'vs trimesh':>7}  {'vs floor':>7}  {'peak plumbob, floor':>19}"
+          f"   {'CPU: vs trimesh, vs floor':>25}")
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for size in sizes:
