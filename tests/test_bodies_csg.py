@@ -196,14 +196,3 @@ def test_a_boolean_near_the_largest_float_keeps_its_volume():
     exact = _lens_union_volume(1.0, 0.5)
     assert abs(props.measure - exact) / exact <= props.relative_error
 
-
-def test_a_faceted_boolean_is_a_polytope_only_when_no_curve_was_faceted():
-    """The facets of a union of spheres are chords of them: its hull points are not the
-    body's own corners (``is_polytope`` is what claims they are); a union of boxes keeps
-    its exact corners."""
-    from plumbob.bodies.primitives import box, sphere
-
-    spheres = union(sphere(1.0, density=1.0), sphere(1.0, density=1.0).translated([1, 0, 0]))
-    boxes = union(box(1, 1, 1), box(1, 1, 1).translated([0.5, 0, 0]))
-    assert type(spheres).__name__ == type(boxes).__name__ == "Faceted"
-    assert not spheres.is_polytope and boxes.is_polytope

@@ -161,8 +161,11 @@ def test_is_polytope(body, exact):
     assert with_density_field(P.box(1, 1, 1), lambda p: p[:, 0] + 1).is_polytope
 
 
-def test_faceted_results_are_polytopes():
-    assert union(P.sphere(1), P.sphere(1).translated([1, 0, 0])).is_polytope
+def test_faceted_results_are_polytopes_only_where_no_curve_was_faceted():
+    """The facets of a union of spheres are chords of them, not the body's own corners;
+    a union of boxes keeps its exact corners."""
+    assert not union(P.sphere(1), P.sphere(1).translated([1, 0, 0])).is_polytope
+    assert union(P.box(1, 1, 1), P.box(1, 1, 1).translated([0.5, 0, 0])).is_polytope
 
 
 # ------------------------------------------------------------------ density cells
