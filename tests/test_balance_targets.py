@@ -108,3 +108,20 @@ def test_tilt_toward_one_way_matches_the_slope_check(toward_deg):
     assert t.slack(c)[~tilt_rows].min() > 0  # and it stands on level ground
     steeper = float(np.degrees(limit + 1e-4))
     assert not target_for(body, require_tilt_deg=steeper, toward=slope.direction).met_by(c)
+
+
+def test_a_target_no_ballast_can_reach_is_a_failed_requirement(capsys, shapes_dir):
+    """docs/cli.md: exit status 1 when `balance` is not met (a design target the means
+    given cannot reach), 2 only for bad input; one line, nothing on standard output."""
+    import os
+
+    from plumbob.cli import main
+
+    path = os.path.join(shapes_dir, "block.toml")
+    status = main(["balance", path, "--require-tilt", "89", "--ballast-material", "steel"])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if not line.startswith("plumbob: note")]
+    assert status == 1 and out == "" and len(lines) == 1
+    assert "no ballast inside the body meets the target" in lines[0]
+    assert main(["balance", path, "--require-tilt", "10", "--ballast-material", "unobtainium"]
+                ) == 2  # bad input stays 2

@@ -28,7 +28,6 @@ CASES = {
                                         "--ballast-material", "pine"], ("not denser",)),
     "missing region": (["balance", BLOCK, "--require-tilt", "20", "--ballast-region",
                         "nowhere.stl"], ("nowhere.stl",)),
-    "unreachable margin": (["balance", BLOCK, "--margin", "0.6"], ("too narrow",)),
     "pose out of range": (["balance", BLOCK, "--margin", "0.1", "--target-pose", "99"],
                           ("--target-pose must be between 1 and",)),
     "point support": (["balance", BLOCK, "--margin", "0.1", "--down", "1,1,-1"],
@@ -49,6 +48,12 @@ CASES = {
 def test_bad_input(case, tmp_path):
     args, phrases = CASES[case]
     assert_bad_input(run_limited(*args, cwd=tmp_path), *phrases)
+
+
+def test_an_unreachable_margin_is_a_failed_requirement_in_one_line(tmp_path):
+    outcome = run_limited("balance", BLOCK, "--margin", "0.6", cwd=tmp_path)
+    assert outcome.status == 1 and outcome.stdout == "" and len(outcome.lines) == 1
+    assert "too narrow" in outcome.lines[0] and "Traceback" not in outcome.stderr
 
 
 def test_solve_for_on_a_mesh(tmp_path):

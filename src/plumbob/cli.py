@@ -4,7 +4,8 @@ Each subcommand lives in ``plumbob.commands.<name>`` and provides
 ``register(subparsers)`` (adding its parser, with ``func`` set to its runner)
 and a runner ``run(args) -> int``. Runners return the exit status and write
 their report to stdout; they never catch :class:`PlumbobError` themselves —
-this module turns it into one line on stderr and exit status 2.
+this module turns it into one line on stderr and exit status 2 (1 for a
+:class:`~plumbob.errors.TargetNotMet`: a design target the means given cannot reach).
 """
 
 from __future__ import annotations
@@ -184,7 +185,7 @@ def main(argv: list[str] | None = None) -> int:
         return status
     except PlumbobError as error:
         print(f"plumbob: {printable(error)}", file=sys.stderr)
-        return 2
+        return getattr(error, "exit_status", 2)  # 1 for a target not met (TargetNotMet)
     except RuntimeWarning as warning:
         if os.environ.get("PLUMBOB_DEBUG"):
             raise

@@ -82,6 +82,14 @@ class StabilityError(PlumbobError):
     mass lies outside its convex hull)."""
 
 
+class TargetNotMet(StabilityError):
+    """What was asked of a design (a margin, a tilt, a standard) cannot be reached by the
+    means given (ballast, a carve): a failed requirement, not bad input — the command
+    line exits with status 1, as ``check`` does when a requirement fails."""
+
+    exit_status = 1
+
+
 class DynamicsError(PlumbobError):
     """Bad input to a particle simulation or a collision."""
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import StabilityError
+from ..errors import StabilityError, TargetNotMet
 from ..limits import MAX_SAMPLES, check_count
 from ..tolerances import size_of
 from .targets import Target
@@ -252,7 +252,7 @@ def plan_ballast(region, target: Target, mass: float, center: np.ndarray, *,
 
     found = best(_grid(lo, hi, n))
     if found is None:
-        raise StabilityError(
+        raise TargetNotMet(
             "no ballast inside the body meets the target: its support is too narrow for it "
             "(the centre of mass would have to be beyond the support's edge"
             + (", or the ballast does not fit)" if density is not None else ")"))

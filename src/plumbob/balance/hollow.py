@@ -37,7 +37,7 @@ import numpy as np
 from ..bodies.base import Body
 from ..bodies.offset import InwardOffset, manifold_triangles
 from ..bodies.solid import MeshSolid
-from ..errors import GeometryError, StabilityError
+from ..errors import GeometryError, TargetNotMet
 from ..massprops import MassProperties
 from ..results import Key, Result
 from ..tolerances import size_of
@@ -415,7 +415,7 @@ class Hollowing:
         cut = self.problem.least(target, safety, lightest, best) if best.slack >= safety else None
         if cut is None:
             if not best_effort:
-                raise StabilityError(
+                raise TargetNotMet(
                     f"hollowing cannot meet the target: {bound.sentence()}; ask for less, give "
                     "thinner walls (--wall), or add ballast (--wall with --ballast-material "
                     "carves the best and ballasts the rest)")

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import StabilityError
+from ..errors import StabilityError, TargetNotMet
 from ..loads import Hang
 from ..results import Key, Result
 from ..stability.loaded import edge_moments
@@ -124,7 +124,7 @@ def balance_under_loads(body, requirement: Requirement, *,
             break
         plan = again
     else:
-        raise StabilityError("the ballast under these loads does not settle: the loads grow "
+        raise TargetNotMet("the ballast under these loads does not settle: the loads grow "
                              "with the weight as fast as the ballast steadies it")
     before = check(body, requirement=requirement.replace(loads=tuple(loads_for(props.mass))),
                    props=props)
@@ -170,5 +170,5 @@ def balance_standard(body, name: str, requirement: Requirement | None = None,
         if best is None or mass < best[0]:
             best = (mass, r)
     if best is None:
-        raise StabilityError(f"no ballast makes it pass {name}: " + "; ".join(failed))
+        raise TargetNotMet(f"no ballast makes it pass {name}: " + "; ".join(failed))
     return best[1]
