@@ -84,7 +84,8 @@ def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
 
 def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
     """Neighbouring triangles (i < j) whose corners all lie within ``eps`` of each other's
-    planes and that face the same way. A triangle's own corners lie on its plane to
+    planes and that face the same way, and each sliver (no wider than ``eps``) with the
+    triangle across its longest edge. A triangle's own corners lie on its plane to
     rounding error, so of the neighbour only the far corner can stray (``hm.beyond``)."""
     m = len(hm.tri)
     dev = np.abs(hm.level - hm.offsets[:, None])  # own corners off the own plane
@@ -96,7 +97,20 @@ def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
     cand = np.flatnonzero((i < j) & (stray <= eps) & (stray[hm.twins] <= eps))
     i, j = i[cand], j[cand]
     same = dot(hm.normals[i], hm.normals[j]) > 0
-    return i[same], j[same]
+    i, j = i[same], j[same]
+    # A sliver whose corners lie on one line (within eps: a hull of points on a grid
+    # can hold one) has no plane of its own: it joins the triangle across its longest
+    # edge, whose plane holds that line.
+    corners = hm.points[hm.tri]
+    sides = corners[:, [1, 2, 0]] - corners
+    lengths = np.sqrt(np.einsum("fkc,fkc->fk", sides, sides))
+    longest = np.argmax(lengths, axis=1)
+    sliver = np.flatnonzero(2 * hm.area <= eps * lengths[np.arange(m), longest])
+    if len(sliver):
+        other = hm.twins[3 * sliver + longest[sliver]] // 3
+        i = np.concatenate((i, np.minimum(sliver, other)))
+        j = np.concatenate((j, np.maximum(sliver, other)))
+    return i, j
 
 
 def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
