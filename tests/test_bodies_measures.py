@@ -23,7 +23,7 @@ CURVED = [
 ]
 
 
-@pytest.mark.parametrize("segments", [16, 64, 256, 1024])
+@pytest.mark.parametrize("segments", [16, 64, 256, 512])  # 512: a torus of 0.5M triangles
 @pytest.mark.parametrize(("body", "true"), CURVED, ids=["sphere", "cylinder", "cone", "torus"])
 def test_the_stated_bound_covers_the_faceting_of_curved_faces(body, true, segments):
     area = surface_area(body, segments)
