@@ -217,3 +217,21 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     allowed = np.degrees(np.minimum(slack / np.maximum(np.sin(theta), 1e-300),
                                     np.sqrt(2 * slack)))
     assert np.all(np.abs(fast.tilts_deg - slow.tilts_deg) <= allowed)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 3000), st.integers(1, 60), st.booleans())
+def test_group_max_is_numpys_maximum_at(seed, n, groups, ties):
+    """The rocker's group maxima (a power sum picks the few values that can be largest)
+    are np.maximum.at's, to the bit: negative values, ties, empty groups, values far
+    below the largest."""
+    from plumbob.stability.sweep import group_max
+
+    rng = np.random.default_rng(seed)
+    values = rng.normal(size=n) * 10.0 ** rng.integers(-3, 3, size=n)
+    if ties:
+        values = np.round(values, 1)
+    key = rng.integers(0, groups, size=n)
+    expected = np.full(groups, -np.inf)
+    np.maximum.at(expected, key, values)
+    assert np.array_equal(group_max(values, key, groups), expected)

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..arrays import expand
 
-__all__ = ["sweep_pairs", "sweep_planes"]
+__all__ = ["group_max", "sweep_pairs", "sweep_planes"]
 
 _LEVELS = (64, 8)  # angle steps per interval in the exact filter's two passes
 
@@ -131,8 +131,9 @@ def sweep_planes(directions: np.ndarray) -> list[tuple[int, int]]:
     return [(k, -1) for k in range(K)]
 
 
-def _bin_max(r: np.ndarray, key: np.ndarray, groups: int) -> np.ndarray:
-    """The largest of ``r`` (≥ 0) in each group of ``key`` (−inf for an empty group).
+def group_max(r: np.ndarray, key: np.ndarray, groups: int) -> np.ndarray:
+    """The largest of ``r`` in each group of ``key`` (−inf for an empty group), exactly
+    as ``np.maximum.at`` finds it.
 
     ``np.maximum.at`` over every point is slow; a power sum is not. The 1024-th root of
     the sum of (r / r_max)^1024 over a group lies between its largest value and that
@@ -214,7 +215,7 @@ def _farthest(a: np.ndarray, Bc: np.ndarray, step: float, bins: int
     fine = np.minimum((crest * (_FINE / step)).astype(np.int64), _FINE * bins - 1)
     del crest
     key = (fine + (np.arange(P) * (_FINE * bins))[:, None]).ravel()
-    far_fine = _bin_max(r.ravel(), key, P * _FINE * bins)
+    far_fine = group_max(r.ravel(), key, P * _FINE * bins)
     at = np.flatnonzero(r.ravel() >= far_fine[key])
     champion = np.full(P * _FINE * bins, -1, dtype=np.int64)
     champion[key[at]] = at
