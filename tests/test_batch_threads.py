@@ -79,3 +79,18 @@ def test_threads_per_job_asks_for_more(reports):
     report = reports["batch_two"]
     assert report["plumbob"] == 2
     assert set(_threads(report)) == {min(2, _cores())}
+
+
+def test_a_worker_that_cannot_start_stops_the_batch_once_with_its_reason(shapes_dir):
+    """A worker that fails before its first file (a broken installation: here a thread
+    count it cannot take) stops the batch with the worker's own reason, once — it is not
+    restarted for every file, each printing a traceback."""
+    from plumbob.batch.options import Options
+    from plumbob.batch.pool import WorkerStartError, run_pool, worker_threads
+
+    with pytest.raises(WorkerStartError, match="could not start: ValueError"):
+        worker_threads(threads="many")
+    block = os.path.join(shapes_dir, "block.toml")
+    tasks = [(k, block, "block.toml") for k in range(6)]
+    with pytest.raises(WorkerStartError, match="could not start"):
+        list(run_pool(tasks, Options(), jobs=2, threads="many"))

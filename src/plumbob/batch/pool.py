@@ -49,7 +49,11 @@ def _serve(conn, options: Options, threads: int) -> None:
     """A worker's life: measure each path it is sent until told to stop (the message
     ``("threads", imports)`` asks for its :func:`thread_report`)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
-    limit_threads(threads)  # the pool's processes share the cores already
+    try:
+        limit_threads(threads)  # the pool's processes share the cores already
+    except Exception as error:  # noqa: BLE001 - a worker that cannot start says why, once
+        conn.send(("failed", f"{type(error).__name__}: {error}"))
+        return
     while True:
         try:
             task = conn.recv()
@@ -71,6 +75,18 @@ def _context():
         context.set_forkserver_preload(["numpy", "plumbob.batch.rows", "plumbob.stability"])
         return context
     return multiprocessing.get_context("spawn")
+
+
+class WorkerStartError(RuntimeError):
+    """A pool worker could not start (a broken installation, not a bad file): the batch
+    stops at once with the worker's reason, rather than restart a worker per file."""
+
+
+def _answer(message):
+    """A worker's message, or :class:`WorkerStartError` when it reports it cannot start."""
+    if isinstance(message, tuple) and len(message) == 2 and message[0] == "failed":
+        raise WorkerStartError(f"a batch worker process could not start: {message[1]}")
+    return message
 
 
 class _Worker:
@@ -107,7 +123,7 @@ def worker_threads(threads: int = 1, imports: tuple[str, ...] = ()) -> dict:
     worker = _Worker(_context(), Options(), threads)
     try:
         worker.conn.send(("threads", tuple(imports)))
-        return worker.conn.recv()
+        return _answer(worker.conn.recv())
     finally:
         worker.stop()
 
@@ -162,7 +178,7 @@ def run_pool(tasks: list[Task], options: Options, jobs: int,
                 result = None
                 if w.conn in ready or w.process.sentinel in ready:
                     try:
-                        _, result = w.conn.recv()
+                        _, result = _answer(w.conn.recv())
                     except (EOFError, OSError):
                         w.process.join(1.0)
                         code = w.process.exitcode
