@@ -124,16 +124,8 @@ def inward_offset(body: Body, distance: float, *, step: float | None = None,
     >>> inward_offset(box(1, 1, 1), 0.5).empty
     True
     """
-    t = float(distance)
-    if not (np.isfinite(t) and t > 0):
-        raise GeometryError(f"an inward offset needs a positive distance, not {distance!r}")
-    if body.dim != 3 or body.kind not in ("solid",):
-        raise GeometryError(f"only a solid has an inward offset, not a {body.kind}")
-    closed = _closed_form(body, t)
-    if closed is not None:
-        inner, method = closed
-        return InwardOffset(inner, t, True, method)
-    return _level_set_offset(body, t, step, extra)
+    exact = closed_form_offset(body, distance)  # checks the distance and the body
+    return exact if exact is not None else _level_set_offset(body, float(distance), step, extra)
 
 
 # ------------------------------------------------------------ closed forms
