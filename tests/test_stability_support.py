@@ -150,3 +150,25 @@ def test_the_support_carries_the_body_size_whatever_the_tolerance():
         s = support_polygon(body, tolerance=tolerance)
         assert s.size == body_size(body)
     assert support_polygon(body, tolerance=1e-3).tolerance == 1e-3
+
+
+def test_a_union_of_curved_parts_touches_the_plane_where_its_parts_do():
+    """Two overlapping unit spheres, 1 m apart: the union is faceted for its volume, but
+    it touches a plane below it at the two spheres' own poles (not on the facets' flat
+    caps), and, its cross-section about the line through them being a circle, it rolls
+    freely about that line: a segment of contact and a neutral verdict. Turned and moved,
+    it keeps its exact contact."""
+    from plumbob import check
+
+    pair = union(sphere(1.0, density=1.0), sphere(1.0, density=1.0).translated([1, 0, 0]))
+    assert not pair.mass_properties().exact  # faceted: its volume is extrapolated
+    assert np.array_equal(pair.support_points(np.array([0, 0, -1.0]), 1e-9),
+                          [[0, 0, -1], [1, 0, -1]])
+    verdict = check(pair)
+    assert verdict.support.kind == "segment" and verdict.verdict == "neutral"
+    assert verdict.critical_tilt_deg == 0 and abs(verdict.margin) <= 1e-12
+    turn = rotation_matrix([0, 0, 1], np.radians(30))
+    moved = pair.transformed(turn, [5.0, -2.0, 3.0])
+    lowest = moved.support_points(np.array([0, 0, -1.0]), 1e-9)
+    expected = (turn @ np.array([[0, 0, -1], [1, 0, -1]]).T).T + [5.0, -2.0, 3.0]
+    assert np.allclose(np.sort(lowest, axis=0), np.sort(expected, axis=0), rtol=0, atol=1e-14)

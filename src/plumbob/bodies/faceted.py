@@ -39,6 +39,9 @@ class Faceted(Body):
     exact: True when no curve was faceted (a boolean of polytopes).
     origin: m, where ``unit_properties`` are measured from (None: the origin), so a
         result far away keeps its digits until the last step.
+    operands: the bodies a union was made of, placed as the result is (empty for a
+        difference or an intersection): where the union touches a plane below it is
+        where its lowest operands do, exactly, not on the facets' chords.
     """
 
     shape: Body
@@ -49,6 +52,7 @@ class Faceted(Body):
     name: str | None = None
     exact: bool = False
     origin: np.ndarray | None = None
+    operands: tuple[Body, ...] = ()
 
     @property
     def kind(self) -> str:  # type: ignore[override]
@@ -70,7 +74,15 @@ class Faceted(Body):
         return self.shape.hull_points(tolerance)
 
     def support_points(self, down: np.ndarray, tolerance: float) -> np.ndarray:
-        return self.shape.support_points(down, tolerance)
+        if self.exact or not self.operands:
+            return self.shape.support_points(down, tolerance)
+        # every operand lies in the union, so the union's lowest points are its lowest
+        # operands' own (a sphere's true pole, not the facets' flat cap around it)
+        found = [b.support_points(down, tolerance) for b in self.operands]
+        depths = [points @ down for points in found]
+        deepest = max(float(d.max()) for d in depths)
+        return np.unique(np.vstack([p[d >= deepest - tolerance] for p, d in zip(found, depths)])
+                         + 0.0, axis=0)
 
     def to_geometry(self, segments: int = 128):
         return self.shape.to_geometry(segments)
@@ -89,7 +101,8 @@ class Faceted(Body):
         origin = np.zeros(self.dim) if self.origin is None else self.origin
         return replace(self, shape=self.shape.transformed(matrix, offset),
                        unit_properties=self.unit_properties.transformed(matrix),
-                       origin=matrix @ origin + offset)
+                       origin=matrix @ origin + offset,
+                       operands=tuple(b.transformed(matrix, offset) for b in self.operands))
 
     def with_default_density(self, density: float) -> Body:
         return self if self.density is not None else replace(self, density=check_density(density))
@@ -185,4 +198,5 @@ def integrate_boolean(bodies: tuple[Body, ...], build, segments: int, what: str,
     unit = replace(unit, notes=(), parts=1, exact=True, relative_error=0.0)
     if origin is not None:
         shape = shape.translated(origin)
-    return Faceted(shape, unit, density, error, note, exact=exact, origin=origin)
+    return Faceted(shape, unit, density, error, note, exact=exact, origin=origin,
+                   operands=bodies if what == "union" else ())

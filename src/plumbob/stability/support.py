@@ -435,7 +435,7 @@ def support_polygon(body, down=None, *, tolerance: float | None = None,
     distances = _distances(starts, normals)
     if not is_polytope(body, size):  # sampled curved surfaces: their true contact
         exact = _remeasure(body, frame, com, normals, distances, tol, size)
-        if np.any(exact < distances):  # cut the sampling's widening away
+        if np.any(exact < distances - tol):  # cut the sampling's widening away (not round-off)
             kind, vertices = _clip(kind, vertices, normals, exact, dim, tol)
             starts, ends, normals = _edges(kind, vertices, dim)
             distances = _distances(starts, normals)
