@@ -39,8 +39,6 @@ CASES = {
     "solve for with two requirements": (["check", SCULPTURE, "--solve-for", "foot",
                                          "--margin", "0.1", "--require-tilt", "5"],
                                         ("one requirement",)),
-    "solve for a scale": (["check", BLOCK, "--require-tilt", "20", "--solve-for", "h"],
-                          ("stays short",)),
 }
 
 
@@ -50,10 +48,16 @@ def test_bad_input(case, tmp_path):
     assert_bad_input(run_limited(*args, cwd=tmp_path), *phrases)
 
 
-def test_an_unreachable_margin_is_a_failed_requirement_in_one_line(tmp_path):
-    outcome = run_limited("balance", BLOCK, "--margin", "0.6", cwd=tmp_path)
+@pytest.mark.parametrize(("args", "phrase"), [
+    (["balance", BLOCK, "--margin", "0.6"], "too narrow"),
+    (["check", BLOCK, "--require-tilt", "20", "--solve-for", "h"], "stays short")],
+    ids=["unreachable margin", "solve for a scale"])
+def test_a_target_nothing_reaches_is_a_failed_requirement_in_one_line(args, phrase, tmp_path):
+    """No ballast, no value of the parameter reaches it: exit status 1 (a requirement not
+    met, as a failed check is), never 2 (bad input); one line, nothing on stdout."""
+    outcome = run_limited(*args, cwd=tmp_path)
     assert outcome.status == 1 and outcome.stdout == "" and len(outcome.lines) == 1
-    assert "too narrow" in outcome.lines[0] and "Traceback" not in outcome.stderr
+    assert phrase in outcome.lines[0] and "Traceback" not in outcome.stderr
 
 
 def test_solve_for_on_a_mesh(tmp_path):
@@ -91,6 +95,8 @@ def test_solve_for_every_shipped_parameter(name, parameter, tmp_path):
                           "--solve-for", parameter, "--json", cwd=tmp_path, timeout=60)
     if outcome.status == 2:
         assert_bad_input(outcome)
+    elif outcome.status == 1 and not outcome.stdout:  # no value reaches it: one line
+        assert len(outcome.lines) == 1 and "meets the requirement" in outcome.lines[0]
     else:
         assert outcome.status in (0, 1), outcome.stderr[-2000:]
         assert '"solution"' in outcome.stdout

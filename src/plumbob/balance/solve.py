@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import PlumbobError, StabilityError
+from ..errors import PlumbobError, StabilityError, TargetNotMet
 from ..results import Key, Result
 
 __all__ = ["ParameterSolution", "solve_parameter", "spec_parameters_of", "solve_spec_parameter"]
@@ -103,7 +103,7 @@ def solve_parameter(name: str, start: float, evaluate: Callable[[float], float],
         if bracket is not None or not sides:
             break
     if bracket is None:
-        raise StabilityError(
+        raise TargetNotMet(
             f"no value of {name!r} near {start:g} meets the requirement ({measure} ≥ "
             f"{required:g}): it stays short however far {name} is changed either way")
     failing, passing = bracket
