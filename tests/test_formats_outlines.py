@@ -524,3 +524,27 @@ def test_a_region_from_shapely_has_each_polygons_oriented_rings_in_order(boxes):
     for ring, vertices in zip(got, want):
         assert np.array_equal(ring.vertices, vertices) and not ring.vertices.flags.writeable
         assert ring.bulges is None and ring.controls is None
+
+
+def test_many_regions_at_once_are_each_region_made_alone():
+    """A file of many polygons makes its regions in one vectorised pass
+    (Region.many_from_shapely): each must be the region from_shapely makes of its polygon
+    alone — the same rings, in the same order and orientation, to the bit."""
+    import shapely
+
+    from plumbob.bodies.region import Region
+
+    square = shapely.box(0, 0, 4, 4)
+    cases = [shapely.Polygon([(0, 0), (0, 1), (1, 1), (1, 0)]),  # clockwise as given
+             square.difference(shapely.box(1, 1, 2, 2)).difference(shapely.box(2.5, 2.5, 3, 3)),
+             shapely.MultiPolygon([shapely.box(10, 0, 11, 1), square]),
+             shapely.Point(0, 0).buffer(1.0, 16),
+             shapely.MultiPolygon([shapely.box(0, 0, 1, 1).difference(shapely.box(0.2, 0.2, 0.4, 0.4)),
+                                   shapely.box(3, 3, 5, 4)])]
+    together = Region.many_from_shapely(cases)
+    assert len(together) == len(cases)
+    for region, geometry in zip(together, cases):
+        alone = Region.from_shapely(geometry)
+        assert len(region.rings) == len(alone.rings)
+        for a, b in zip(region.rings, alone.rings):
+            assert np.array_equal(a.vertices, b.vertices)

@@ -294,15 +294,15 @@ def body_from_polygons(named: list[tuple[str, object]], *, path: str | None,
                             "number (NaN or infinity)", path=path)
     notices = check_extent(bounds[:, :2].min(axis=0), bounds[:, 2:].max(axis=0), path=path)
     names = unique_names([n for n, _ in named])
-    parts = []
     several = len(named) > 1
     doubtful = suspects(geometries)
-    for part_name, geometry, doubt in zip(names, geometries, doubtful):  # per polygon
-        label = f"polygon {part_name!r}" if several else "the polygon"
-        error = validity_error(geometry, label, path, scale) if doubt else None
+    empty = ~(shapely.area(np.asarray(geometries, dtype=object)) > 0)
+    for k in np.flatnonzero(doubtful | empty).tolist():  # only those flagged, for the message
+        label = f"polygon {names[k]!r}" if several else "the polygon"
+        error = validity_error(geometries[k], label, path, scale) if doubtful[k] else None
         if error is not None:
             raise error
-        if not geometry.area > 0:
-            raise GeometryError(f"{label} has zero area: it encloses nothing", path=path)
-        parts.append(Lamina(Region.from_shapely(geometry), name=part_name))
+        raise GeometryError(f"{label} has zero area: it encloses nothing", path=path)
+    parts = [Lamina(region, name=part_name)
+             for region, part_name in zip(Region.many_from_shapely(geometries), names)]
     return assemble(parts, stem(path) if path else None), notices
