@@ -36,10 +36,12 @@ def solid_points(body) -> tuple[np.ndarray, np.ndarray]:
     return X, (six_v[:, None] * (a + b + c)).sum(axis=0) / (4 * six_v.sum())
 
 
-def traced(X: np.ndarray, center: np.ndarray, monkeypatch, fans: bool
+def traced(X: np.ndarray, center: np.ndarray, monkeypatch, fans: bool, strips: bool | None = None
            ) -> tuple[np.ndarray, int]:
     """Basin areas of the hull of ``X`` about ``center``, and the number of Python-level
-    steps the trace took; ``fans`` False forces the step-by-step trace."""
+    steps the trace took; ``fans`` False forces the step-by-step trace (no runs around
+    rings, nor along strips unless ``strips`` says so)."""
+    strips = fans if strips is None else strips
     calls = []
     real = basins.step
 
@@ -51,6 +53,8 @@ def traced(X: np.ndarray, center: np.ndarray, monkeypatch, fans: bool
         patch.setattr(basins, "step", counting)
         if not fans:
             patch.setattr(basins, "FAN_CORNERS", 10**9)
+        if not strips:
+            patch.setattr(basins, "_STRIP_AFTER", 10**9)
         X = X - center
         size = float(np.linalg.norm(np.ptp(X, axis=0)))
         found = basins.basins3(build_hull3(X, 1e-12 * size), 1e-12 * size, None)
@@ -102,3 +106,40 @@ def test_runs_agree_with_single_steps_anywhere(segments, x, y, height):
         with_fans, _ = traced(X, center, monkeypatch, fans=True)
         single, _ = traced(X, center, monkeypatch, fans=False)
     assert np.allclose(with_fans, single, rtol=0, atol=1e-12 * 4 * np.pi)
+
+
+def tilted_cylinder_points(segments: int, tilt: float, turn: float, offset: tuple[float, float]
+                           ) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and centre of mass of a 40 × 30 × 20 box united with a Ø14 cylinder through
+    it, tilted ``tilt`` degrees from the vertical (bench/_shapes.py's smooth mesh): its
+    side is a strip of thin faces, not a ring."""
+    m3 = manifold3d.Manifold
+    cylinder = (m3.cylinder(44, 7, 7, segments, center=True)
+                .rotate([tilt, 0, turn]).translate([offset[0], offset[1], 6]))
+    return solid_points(m3.cube([40, 30, 20], center=True) + cylinder)
+
+
+def test_strip_runs_agree_with_single_steps(monkeypatch):
+    """Along the tilted cylinder's side the separatrices cross thin regions of few
+    corners: runs along the predicted strip, checked by the ordinary step, take most of
+    the steps out and leave the areas as they were."""
+    X, center = tilted_cylinder_points(600, 27.0, 40.0, (2.0, -1.0))
+    with_strips, steps = traced(X, center, monkeypatch, fans=True)
+    rings_only, ring_steps = traced(X, center, monkeypatch, fans=True, strips=False)
+    single, _ = traced(X, center, monkeypatch, fans=False)
+    assert np.allclose(with_strips, single, rtol=0, atol=1e-13 * 4 * np.pi)
+    assert np.allclose(rings_only, single, rtol=0, atol=1e-13 * 4 * np.pi)
+    assert abs(with_strips.sum() - 4 * np.pi) <= 1e-12 * 4 * np.pi
+    assert ring_steps > 150  # the strip: the rings' runs never start on it
+    assert steps < ring_steps / 3
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.integers(40, 400), st.floats(5.0, 60.0), st.floats(0.0, 360.0),
+       st.floats(-6.0, 6.0), st.floats(-6.0, 6.0))
+def test_strip_runs_agree_anywhere(segments, tilt, turn, x, y):
+    X, center = tilted_cylinder_points(segments, tilt, turn, (x, y))
+    with pytest.MonkeyPatch.context() as monkeypatch:  # no function fixture under given
+        with_strips, _ = traced(X, center, monkeypatch, fans=True)
+        single, _ = traced(X, center, monkeypatch, fans=False)
+    assert np.allclose(with_strips, single, rtol=0, atol=1e-12 * 4 * np.pi)

@@ -27,6 +27,10 @@ from .rolling import Edges3, Roller, edge_geometry, step
 __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 
 _AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
+_STRIP_AFTER = 32  # steps (at least) after which live traces also run along strips (:meth:`.Fans.strip`)
+_STRIP_TABLE = 64  # arcs predicted for about the cost of one step of the loop
+_STRIP_FEW = 8  # ... when no more traces than this are alive
+_STRIP_RETRY = 8  # steps before a trace whose strip run failed tries again
 _FLAT = 1e-12  # |t| below this: the centre's foot is at the edge's end (a balanced vertex)
 
 
@@ -76,7 +80,8 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     Every trace's path is kept as segments; each segment adds the signed spherical
     triangle from the left basin's face normal to the left basin and takes it from the
     right one, all summed in one pass at the end. Around a face of many corners the
-    traces move in runs (:mod:`.fans`), one vectorised move per run.
+    traces move in runs (:mod:`.fans`), one vectorised move per run; once the loop has
+    run long with few traces alive, along predicted strips of thin regions too.
 
     ``group`` (F,): per stable face, the face whose basin stands for its group (−1 for
     the others). Only the separatrices between groups are traced, each group's boundary
@@ -111,9 +116,13 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     last = np.full(len(v), -1, dtype=np.int64)  # the edge each trace crossed last
     no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
     seg_trace, seg_from, seg_to = [], [], []  # the path segments, kept for the areas
+    no_strip = np.full(len(v), -1, dtype=np.int64)  # the step a strip run may next start
+    # strips need a prediction per arc (one step over them all): worth it only once the
+    # loop has run about as long as that costs
+    strip_after = max(_STRIP_AFTER, np.count_nonzero(near) // _STRIP_TABLE)
     alive = np.arange(len(v))
     ok = True
-    for _ in range(len(h.X) + 8):
+    for count in range(len(h.X) + 8):
         if len(alive) == 0:
             break
         va, pa = v[alive], p[alive]
@@ -154,6 +163,18 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
             seg_trace.append(np.full(len(path) - 1, t))
             seg_from.append(path[:-1])
             seg_to.append(path[1:])
+        if count >= strip_after and len(d) <= _STRIP_FEW:
+            # a few long traces, each step mostly overhead: along strips of thin regions too
+            for t in d[~runs & (no_strip[d] <= count)].tolist():
+                moved = fans.strip(int(v[t]), p[t], int(last[t]))
+                if moved is None:
+                    no_strip[t] = count + _STRIP_RETRY
+                    continue
+                path, v[t], last[t] = moved
+                p[t], exclude[t] = path[-1], h.und[last[t]]
+                seg_trace.append(np.full(len(path) - 1, t))
+                seg_from.append(path[:-1])
+                seg_to.append(path[1:])
         alive = d
     else:
         ok = False

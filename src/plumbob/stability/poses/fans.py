@@ -19,6 +19,13 @@ to all of them together; the run is accepted up to the first point where the ste
 disagrees, and the ordinary loop carries on from there. So the answer is the
 step-by-step answer; only the number of Python iterations changes. Runs grow
 geometrically (64, 256, … crossings) so a ring left early costs little.
+
+The same runs go along *strips* of thin regions of few corners (a tilted cylinder's
+side, where no face has many corners): there the edge sequence is predicted by a
+table, per arc a trace may cross, of the arc a trace entering the next region from
+the arc's middle leaves by (one step over all such arcs, :meth:`Fans.strip`), and
+checked the same way. On a box united with a tilted cylinder (182k triangles) the
+loop's 1,555 steps fell to about 230.
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ __all__ = ["FAN_CORNERS", "prefix_products", "Fans"]
 
 FAN_CORNERS = 16  # faces with fewer corners are crossed by the ordinary step
 _FIRST_RUN = 64  # crossings predicted in a first run; each further run is 4× longer
+_STRIP_LONGEST = 4096  # crossings predicted along a strip at most
 _AGREE = 1e-9  # predicted and stepped points further apart than this (rad) end the run
 
 
@@ -67,6 +75,7 @@ class Fans:
         self.h, self.eg3, self.W, self.ismax, self.near = h, eg3, W, ismax, near
         self.corner_count = np.bincount(h.ef, minlength=len(h.normals))
         self._rings: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._exit_table: np.ndarray | None = None
 
     def ring(self, face: int) -> tuple[np.ndarray, np.ndarray]:
         """The corners of ``face`` counter-clockwise about its normal, and the directed
@@ -105,11 +114,64 @@ class Fans:
         at and the edge it last crossed; None when not one crossing was predicted
         right.
         """
-        h, eg3, W = self.h, self.eg3, self.W
         found = self.chain(entered, face)
         if found is None:
             return None
-        corners, crossed = found
+        return self.run(p, entered, *found)
+
+    def strip_chain(self, entered: int, longest: int) -> tuple[np.ndarray, np.ndarray] | None:
+        """After crossing the directed edge ``entered``, the corners and edges the trace is
+        predicted to meet next, each exit the one a trace from the middle of its entry arc
+        takes (:meth:`_exits`); at most ``longest``; None when none is predicted."""
+        exits = self._exits()
+        eb = self.h.eb
+        corners, crossed = [], []
+        k = entered
+        for _ in range(longest):
+            nxt = int(exits[k])
+            if nxt < 0:
+                break
+            corners.append(int(eb[k]))
+            crossed.append(nxt)
+            k = nxt
+        if not crossed:
+            return None
+        return np.array(corners, dtype=np.int64), np.array(crossed, dtype=np.int64)
+
+    def _exits(self) -> np.ndarray:
+        """(E,) per directed edge a trace may cross, the edge a trace entering the region
+        of its end from the middle of its arc leaves by (−1: none, or not such an edge):
+        the prediction a strip of thin regions (a cylinder's side) is run along with."""
+        if self._exit_table is None:
+            h, W = self.h, self.W
+            k = np.flatnonzero(self.near)
+            v = h.eb[k]
+            p = unit(h.normals[h.ef[k]] + h.normals[h.eg[k]])
+            w = W[v]
+            wp = dot(p, w)
+            tang = unit(w - wp[:, None] * p)
+            limit = np.arccos(np.clip(wp, -1.0, 1.0))
+            e, _ = step(h, self.eg3, v, p, tang, limit, h.und[k], self.near,
+                        np.full(len(k), -1))
+            table = np.full(len(h.ea), -1, dtype=np.int64)
+            table[k] = np.where(self.ismax[v], -1, e)
+            self._exit_table = table
+        return self._exit_table
+
+    def strip(self, v: int, p: np.ndarray, entered: int
+              ) -> tuple[np.ndarray, int, int] | None:
+        """As :meth:`advance`, along the predicted exits (:meth:`strip_chain`)."""
+        found = self.strip_chain(entered, _STRIP_LONGEST)
+        if found is None or found[0][0] != v:
+            return None
+        return self.run(p, entered, *found)
+
+    def run(self, p: np.ndarray, entered: int, corners: np.ndarray, crossed: np.ndarray
+            ) -> tuple[np.ndarray, int, int] | None:
+        """Run a trace at point ``p`` (come in over ``entered``) through the predicted
+        ``corners``, crossing ``crossed``, for as long as the ordinary step agrees (see
+        :meth:`advance`)."""
+        h, eg3, W = self.h, self.eg3, self.W
         path = [p[None, :]]
         done = 0
         size = _FIRST_RUN
