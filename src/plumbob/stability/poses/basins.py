@@ -29,7 +29,7 @@ __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 _AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
 _STRIP_AFTER = 32  # steps (at least) after which live traces also run along strips (:meth:`.Fans.strip`)
 _STRIP_TABLE = 64  # arcs predicted for about the cost of one step of the loop
-_STRIP_FEW = 8  # ... when no more traces than this are alive
+_STRIP_FEW = 16  # ... when no more traces than this are alive
 _STRIP_RETRY = 8  # steps before a trace whose strip run failed tries again
 _FLAT = 1e-12  # |t| below this: the centre's foot is at the edge's end (a balanced vertex)
 

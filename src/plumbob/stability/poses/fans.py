@@ -75,7 +75,7 @@ class Fans:
         self.h, self.eg3, self.W, self.ismax, self.near = h, eg3, W, ismax, near
         self.corner_count = np.bincount(h.ef, minlength=len(h.normals))
         self._rings: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-        self._exit_table: np.ndarray | None = None
+        self._exit_table: tuple[list[int], list[int]] | None = None
 
     def ring(self, face: int) -> tuple[np.ndarray, np.ndarray]:
         """The corners of ``face`` counter-clockwise about its normal, and the directed
@@ -123,25 +123,25 @@ class Fans:
         """After crossing the directed edge ``entered``, the corners and edges the trace is
         predicted to meet next, each exit the one a trace from the middle of its entry arc
         takes (:meth:`_exits`); at most ``longest``; None when none is predicted."""
-        exits = self._exits()
-        eb = self.h.eb
+        exits, eb = self._exits()
         corners, crossed = [], []
         k = entered
         for _ in range(longest):
-            nxt = int(exits[k])
+            nxt = exits[k]
             if nxt < 0:
                 break
-            corners.append(int(eb[k]))
+            corners.append(eb[k])
             crossed.append(nxt)
             k = nxt
         if not crossed:
             return None
         return np.array(corners, dtype=np.int64), np.array(crossed, dtype=np.int64)
 
-    def _exits(self) -> np.ndarray:
+    def _exits(self) -> tuple[list[int], list[int]]:
         """(E,) per directed edge a trace may cross, the edge a trace entering the region
         of its end from the middle of its arc leaves by (−1: none, or not such an edge):
-        the prediction a strip of thin regions (a cylinder's side) is run along with."""
+        the prediction a strip of thin regions (a cylinder's side) is run along with;
+        and (E,) the edges' ends."""
         if self._exit_table is None:
             h, W = self.h, self.W
             k = np.flatnonzero(self.near)
@@ -155,16 +155,32 @@ class Fans:
                         np.full(len(k), -1))
             table = np.full(len(h.ea), -1, dtype=np.int64)
             table[k] = np.where(self.ismax[v], -1, e)
-            self._exit_table = table
+            # as lists: the chains follow them one crossing at a time
+            self._exit_table = (table.tolist(), h.eb.tolist())
         return self._exit_table
 
     def strip(self, v: int, p: np.ndarray, entered: int
               ) -> tuple[np.ndarray, int, int] | None:
-        """As :meth:`advance`, along the predicted exits (:meth:`strip_chain`)."""
-        found = self.strip_chain(entered, _STRIP_LONGEST)
-        if found is None or found[0][0] != v:
+        """As :meth:`advance`, along the predicted exits (:meth:`strip_chain`), predicted
+        64, 256, … crossings at a time while every one is taken."""
+        paths = []
+        size = _FIRST_RUN
+        while True:
+            found = self.strip_chain(entered, size)
+            if found is None or found[0][0] != v:
+                break
+            moved = self.run(p, entered, *found)
+            if moved is None:
+                break
+            path, v, entered = moved
+            paths.append(path if not paths else path[1:])
+            p = path[-1]
+            if len(path) - 1 < len(found[1]) or size >= _STRIP_LONGEST:
+                break
+            size *= 4
+        if not paths:
             return None
-        return self.run(p, entered, *found)
+        return np.concatenate(paths), v, entered
 
     def run(self, p: np.ndarray, entered: int, corners: np.ndarray, crossed: np.ndarray
             ) -> tuple[np.ndarray, int, int] | None:
