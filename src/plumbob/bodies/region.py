@@ -332,31 +332,10 @@ class Region:
 
     @classmethod
     def from_shapely(cls, geometry) -> Region:
-        """A region from a shapely Polygon or MultiPolygon (orientation normalised).
-
-        Every polygon is oriented and every ring's coordinates are taken in one call
-        each (shapely's vectorised functions), so a drawing of 10⁵ polygons costs no
-        Python loop over them but the making of its rings.
-        """
-        import shapely
-
-        geometry = shapely.normalize(geometry)
-        found = list(getattr(geometry, "geoms", [geometry]))
-        polygons = np.empty(len(found), dtype=object)
-        polygons[:] = found
-        if len(polygons):
-            polygons = polygons[~shapely.is_empty(polygons)
-                                & (shapely.get_type_id(polygons) == shapely.GeometryType.POLYGON)]
-        if not len(polygons):
-            raise GeometryError("the geometry has no polygon with area")
-        polygons = _oriented(polygons)
-        # each polygon's exterior, then its interiors, as the rings of a Region run
-        xy, owner = shapely.get_coordinates(shapely.get_rings(polygons), return_index=True)
-        if not np.all(np.isfinite(xy)):
-            raise GeometryError("a ring has a coordinate that is not a finite number")
-        starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
-        ends = np.r_[starts[1:], len(owner)] - 1  # a ring repeats its first point last
-        return cls(tuple(Ring._checked(xy[a:b]) for a, b in zip(starts.tolist(), ends.tolist())))
+        """A region from a shapely Polygon or MultiPolygon (orientation normalised): its
+        polygons' exteriors, then each one's holes, as the rings of the region (see
+        :meth:`many_from_shapely`, which makes many at once)."""
+        return cls.many_from_shapely([geometry])[0]
 
 
 def _oriented(polygons: np.ndarray) -> np.ndarray:
