@@ -122,6 +122,15 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     strip_after = max(_STRIP_AFTER, np.count_nonzero(near) // _STRIP_TABLE)
     alive = np.arange(len(v))
     ok = True
+
+    def take(t: int, moved) -> None:
+        """Trace ``t`` runs along ``moved`` (a fan's or strip's path, last vertex, arc)."""
+        path, v[t], last[t] = moved
+        p[t], exclude[t] = path[-1], h.und[last[t]]
+        seg_trace.append(np.full(len(path) - 1, t))
+        seg_from.append(path[:-1])
+        seg_to.append(path[1:])
+
     for count in range(len(h.X) + 8):
         if len(alive) == 0:
             break
@@ -158,11 +167,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
             if moved is None:
                 no_fan[t] = face
                 continue
-            path, v[t], last[t] = moved
-            p[t], exclude[t] = path[-1], h.und[last[t]]
-            seg_trace.append(np.full(len(path) - 1, t))
-            seg_from.append(path[:-1])
-            seg_to.append(path[1:])
+            take(t, moved)
         if count >= strip_after and len(d) <= _STRIP_FEW:
             # a few long traces, each step mostly overhead: along strips of thin regions too
             for t in d[~runs & (no_strip[d] <= count)].tolist():
@@ -170,11 +175,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
                 if moved is None:
                     no_strip[t] = count + _STRIP_RETRY
                     continue
-                path, v[t], last[t] = moved
-                p[t], exclude[t] = path[-1], h.und[last[t]]
-                seg_trace.append(np.full(len(path) - 1, t))
-                seg_from.append(path[:-1])
-                seg_to.append(path[1:])
+                take(t, moved)
         alive = d
     else:
         ok = False
