@@ -32,12 +32,14 @@ RECYCLE = 100
 
 
 class ChildFailed(Exception):
-    """The child ended without answering: ``how`` (a signal or exit status), and the last
-    line it wrote on its standard error (may be empty)."""
+    """The child ended with ``status`` (a negative status: killed by that signal) without
+    answering: ``how`` it ended, and the last line of its standard error (may be empty)."""
 
-    def __init__(self, how: str, last_line: str) -> None:
-        super().__init__(how, last_line)
-        self.how, self.last_line = how, last_line
+    def __init__(self, status: int, errors: bytes) -> None:
+        lines = errors.decode("utf-8", "replace").strip().splitlines()
+        self.how = f"signal {-status}" if status < 0 else f"exit status {status}"
+        self.last_line = lines[-1] if lines else ""
+        super().__init__(self.how, self.last_line)
 
 
 class ChildTimedOut(Exception):
@@ -70,10 +72,9 @@ class _Child:
         if self.process.stdout.readline().strip() != "done":
             status = self.process.wait()
             self.errors.seek(0)
-            lines = self.errors.read().decode("utf-8", "replace").strip().splitlines()
+            errors = self.errors.read()
             self.close()
-            how = f"signal {-status}" if status < 0 else f"exit status {status}"
-            raise ChildFailed(how, lines[-1] if lines else "")
+            raise ChildFailed(status, errors)
 
     def close(self) -> None:
         """Stop the child (closing its input ends it; a hung one is killed)."""
@@ -86,8 +87,7 @@ class _Child:
         except subprocess.TimeoutExpired:
             self.process.kill()
             self.process.wait()
-        for pipe in (self.process.stdout,):
-            pipe.close()
+        self.process.stdout.close()
         self.errors.close()
 
 
@@ -141,7 +141,4 @@ def _one_shot(argv: list[str], env: dict, timeout: float,
     except subprocess.TimeoutExpired:
         raise ChildTimedOut from None
     if done.returncode != 0:
-        lines = done.stderr.decode("utf-8", "replace").strip().splitlines()
-        how = (f"signal {-done.returncode}" if done.returncode < 0
-               else f"exit status {done.returncode}")
-        raise ChildFailed(how, lines[-1] if lines else "")
+        raise ChildFailed(done.returncode, done.stderr)
