@@ -49,10 +49,11 @@ def _be_the_command(request: dict, memory: int) -> int:
         try:
             status = entry()
         except SystemExit as done:
-            code = done.code
-            if not isinstance(code, (int, type(None))):
-                print(code, file=sys.stderr)
-            status = 1 if not isinstance(code, (int, type(None))) else code
+            if isinstance(done.code, (int, type(None))):
+                status = done.code
+            else:  # sys.exit("message"): the message on standard error, status 1
+                print(done.code, file=sys.stderr)
+                status = 1
         status = 0 if status is None else int(status)
     except BaseException:  # noqa: BLE001 - what an uncaught exception does to a process
         traceback.print_exc()

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties, combine
-from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, check_density, density_words
+from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, check_density, density_words, lowest
 from .booleans import measure as geometry_measure
 from .bounds import change, faceting_moved, relative_bound, roundoff_moved
 
@@ -78,11 +78,8 @@ class Faceted(Body):
             return self.shape.support_points(down, tolerance)
         # every operand lies in the union, so the union's lowest points are its lowest
         # operands' own (a sphere's true pole, not the facets' flat cap around it)
-        found = [b.support_points(down, tolerance) for b in self.operands]
-        depths = [points @ down for points in found]
-        deepest = max(float(d.max()) for d in depths)
-        return np.unique(np.vstack([p[d >= deepest - tolerance] for p, d in zip(found, depths)])
-                         + 0.0, axis=0)
+        return lowest(np.vstack([b.support_points(down, tolerance) for b in self.operands]),
+                      down, tolerance)
 
     def to_geometry(self, segments: int = 128):
         return self.shape.to_geometry(segments)
