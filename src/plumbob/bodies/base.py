@@ -285,14 +285,6 @@ class Body(ABC):
         [True, True, False]
         """
 
-    def _points(self, points: np.ndarray) -> np.ndarray:
-        """``points`` as an (m, dim) float array, checked."""
-        pts = np.atleast_2d(np.asarray(points, dtype=float))
-        if pts.ndim != 2 or pts.shape[1] != self.dim:
-            raise GeometryError(f"a {self.dim}D body takes points with {self.dim} coordinates, "
-                                f"not an array of shape {np.shape(points)}")
-        return pts
-
     def _contains_tolerance(self, tolerance: float | None) -> float:
         """The tolerance of :meth:`contains`, m: the one given, else 1e-6 of the size."""
         return contact_tolerance(self.size, tolerance)
@@ -511,7 +503,7 @@ class Transformed(Body):
         return [r[::-1] for r in rings] if np.linalg.det(self.matrix) < 0 else rings
 
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
-        return self.body.contains((self._points(points) - self.offset) @ self.matrix, tolerance)
+        return self.body.contains((points - self.offset) @ self.matrix, tolerance)
 
     @property
     def is_polytope(self) -> bool:

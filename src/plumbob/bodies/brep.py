@@ -87,7 +87,7 @@ class BRepSolid(_UniformSolid):
         from .containment import mesh_contains
 
         tol = self._contains_tolerance(tolerance)
-        return mesh_contains(self._mesh.triangles, self._points(points),
+        return mesh_contains(self._mesh.triangles, points,
                              tol + self.deviation if tol >= 0 else tol - self.deviation)
 
     @property

@@ -117,7 +117,7 @@ class Composite(_OfParts):
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         """In an added part (within ``tolerance``) and not inside a hole (by more than
         ``tolerance``): a hole's rim stays on the body."""
-        pts = self._points(points)
+        pts = points
         inside = np.zeros(len(pts), dtype=bool)
         for part in self._added():
             inside |= part.contains(pts, tolerance)
@@ -197,7 +197,7 @@ class Assembly(_OfParts):
     # ------------------------------------------------------------ questions
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         """In any part; a lamina in a solid assembly lies in z = 0 (within its tolerance)."""
-        pts = self._points(points)
+        pts = points
         inside = np.zeros(len(pts), dtype=bool)
         for part in self.parts:
             tol = part._contains_tolerance(tolerance)

@@ -132,7 +132,7 @@ class Lamina(Body):
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         from .containment import region_contains
 
-        return region_contains(self.region, self._points(points), self._contains_tolerance(tolerance))
+        return region_contains(self.region, points, self._contains_tolerance(tolerance))
 
     def _contains_tolerance(self, tolerance: float | None) -> float:
         return contact_tolerance(self.region.size, tolerance)

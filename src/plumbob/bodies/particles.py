@@ -163,7 +163,7 @@ class ParticleSystem(Body):
         >>> ParticleSystem([1.0, 2.0], [[0, 0], [1, 0]]).contains([[1, 0], [0.5, 0]]).tolist()
         [True, False]
         """
-        pts = self._points(points)
+        pts = points
         tol = self._contains_tolerance(tolerance)
         inside = np.zeros(len(pts), dtype=bool)
         step = max(1, (1 << 16) // len(pts))  # particles per pass

@@ -210,7 +210,7 @@ class MeshSolid(_UniformSolid):
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         from .containment import mesh_contains
 
-        return mesh_contains(self.triangles, self._points(points), self._contains_tolerance(tolerance))
+        return mesh_contains(self.triangles, points, self._contains_tolerance(tolerance))
 
     @property
     def is_polytope(self) -> bool:
@@ -298,7 +298,7 @@ class Extrusion(_UniformSolid):
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         from .containment import region_contains
 
-        pts = self._points(points)
+        pts = points
         tol = self._contains_tolerance(tolerance)
         z = pts[:, 2]
         return region_contains(self.profile, pts, tol) & (z >= -tol) & (z <= self.height + tol)
@@ -408,7 +408,7 @@ class Revolution(_UniformSolid):
     def contains(self, points: np.ndarray, tolerance: float | None = None) -> np.ndarray:
         from .containment import region_contains
 
-        pts = self._points(points)
+        pts = points
         rz = np.stack((np.hypot(pts[:, 0], pts[:, 1]), pts[:, 2]), axis=1)
         return region_contains(self.profile, rz, self._contains_tolerance(tolerance))
 
