@@ -4,6 +4,7 @@ import os
 import sys
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -43,3 +44,52 @@ def test_signed_zero_merges():
     tri[tri == 0] = -0.0  # the same points, negative zeros
     tri[:6][tri[:6] == 0] = 0.0
     assert len(mesh_topology(tri).vertices) == 8
+
+
+def _pairs(triangles):
+    """The face pairs sharing an edge, and whether they run it the same way."""
+    from plumbob.mesh.topology import _pair_edges
+    from plumbob.mesh.weld import merge_vertices
+
+    vertices, index = merge_vertices(triangles.reshape(-1, 3))
+    p = _pair_edges(index.reshape(-1, 3).astype(np.int64), len(vertices))
+    at = p.starts[p.counts == 2]
+    h1, h2 = p.order[at], p.order[at + 1]
+    return p.owner[h1], p.owner[h2], p.half[h1, 0] == p.half[h2, 0]
+
+
+def test_a_consistently_wound_mesh_skips_the_winding_components():
+    """mesh_topology turns nothing without building the two-node graph when no shared
+    edge runs the same way in both faces: what that graph's rule gives there too."""
+    from plumbob.mesh.topology import _winding
+
+    tri = np.concatenate((cube(3), cube(2) + 5.0))  # two shells
+    f1, f2, same = _pairs(tri)
+    assert not same.any()
+    flip, orientable = _winding(len(tri), f1, f2, same)
+    assert orientable and not flip.any()
+    turned = tri.copy()
+    turned[[3, 40]] = turned[[3, 40], ::-1]
+    topo = mesh_topology(turned)
+    assert topo.flip.nonzero()[0].tolist() == [3, 40] and topo.orientable
+
+
+@pytest.mark.parametrize("n", [2048, 5001])
+@pytest.mark.parametrize("span", [1, 2**16 - 1, 2**16, 2**32 + 7, 2**48 - 1, 2**48, 2**62])
+def test_sorts_by_digits_are_stable_argsorts(n, span):
+    """From RADIX_MIN keys stable_order sorts by 16-bit digits and unique_first by the top
+    48 bits: the same orders as numpy's stable argsort and unique, keys alike in their
+    top bits included."""
+    from plumbob.arrays import RADIX_MIN, stable_order
+    from plumbob.mesh.weld import unique_first
+
+    assert n >= RADIX_MIN
+    rng = np.random.default_rng(span % 1000 + n)
+    keys = rng.integers(-3, span, n, dtype=np.int64)
+    assert np.array_equal(stable_order(keys), np.argsort(keys, kind="stable"))
+    hashes = rng.integers(0, 2**64 - 1, max(n // 7, 1), dtype=np.uint64, endpoint=True)
+    for words in (hashes, (hashes >> np.uint64(20)) << np.uint64(20)):  # ties in the top bits
+        words = words[rng.integers(0, len(words), n)] | rng.integers(0, 3, n).astype(np.uint64)
+        _, first, inverse = np.unique(words, return_index=True, return_inverse=True)
+        mine = unique_first(words)
+        assert np.array_equal(mine[0], first) and np.array_equal(mine[1], inverse.reshape(-1))

@@ -50,8 +50,21 @@ def unite_shells(vertices: np.ndarray, faces: np.ndarray, shell: np.ndarray,
     return float(union.volume()), verts[tris]
 
 
+def _shell_measures(vertices: np.ndarray, faces: np.ndarray, shell: np.ndarray, shells: int
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Each shell's signed volume (m³) and area (m²), (shells,) each."""
+    tri = vertices[faces]
+    origin = vertices.mean(axis=0)
+    a, b, c = tri[:, 0] - origin, tri[:, 1] - origin, tri[:, 2] - origin
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))
+    volume = np.bincount(shell, det, shells) / 6
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    area = np.bincount(shell, np.linalg.norm(normal, axis=1), shells) / 2
+    return volume, area
+
+
 def resolve_shells(vertices: np.ndarray, faces: np.ndarray, shell: np.ndarray, shells: int,
-                   *, label: str = ""
+                   *, label: str = "", totals: tuple[float, float] | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, list[str]]:
     """Classify shells as solids, voids or inside out; unite overlapping ones.
 
@@ -67,6 +80,10 @@ def resolve_shells(vertices: np.ndarray, faces: np.ndarray, shell: np.ndarray, s
         How many shells.
     label : str
         Prefix naming the body in messages, or ``""``.
+    totals : (float, float), optional
+        The signed volume (m³) and area (m²) of the surface ``vertices[faces]``, when
+        already summed (:func:`~plumbob.mesh.closure.surface_summary`): with one shell
+        they are that shell's, and its faces are not summed again.
 
     Returns
     -------
@@ -100,13 +117,10 @@ def resolve_shells(vertices: np.ndarray, faces: np.ndarray, shell: np.ndarray, s
     ['shells: 2 shells overlap; united with manifold3d (volume 1.125 → 1 m³)']
     """
     notices: list[str] = []
-    tri = vertices[faces]
-    origin = vertices.mean(axis=0)
-    a, b, c = tri[:, 0] - origin, tri[:, 1] - origin, tri[:, 2] - origin
-    det = np.einsum("ij,ij->i", a, np.cross(b, c))
-    volume = np.bincount(shell, det, shells) / 6
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    area = np.bincount(shell, np.linalg.norm(normal, axis=1), shells) / 2
+    if totals is not None and shells == 1:
+        volume, area = np.array([totals[0]], dtype=float), np.array([totals[1]], dtype=float)
+    else:
+        volume, area = _shell_measures(vertices, faces, shell, shells)
     flat = np.abs(volume) <= ZERO_VOLUME * area ** 1.5
     if flat.all():
         raise GeometryError(f"{label}encloses no volume: the surface is flat or its faces cancel")

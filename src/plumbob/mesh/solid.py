@@ -158,7 +158,10 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     if topo.nonmanifold:
         notices.append(f"{prefix}{topo.nonmanifold} edges are shared by more than two triangles")
     before = faces
-    faces, shell, united, more = resolve_shells(vertices, faces, shell, shells, label=prefix)
+    # unturned, unwelded, unrepaired: vertices[faces] are the triangles summed above
+    totals = None if changed or topo.welded else (summary.volume, summary.area)
+    faces, shell, united, more = resolve_shells(vertices, faces, shell, shells, label=prefix,
+                                                totals=totals)
     notices.extend(more)
     if found.loops and not surface_summary(united if united is not None
                                            else vertices[faces]).closed:

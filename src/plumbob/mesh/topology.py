@@ -11,7 +11,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..arrays import connected_components
+from ..arrays import connected_components, stable_order
 from .weld import merge_vertices, weld_near
 
 __all__ = ["connected_components", "Topology", "mesh_topology"]
@@ -102,15 +102,10 @@ def mesh_topology(triangles: np.ndarray, tolerance: float = 0.0) -> Topology:
     h1, h2 = order[pairs], order[pairs + 1]
     f1, f2 = owner[h1], owner[h2]
     same_direction = half[h1, 0] == half[h2, 0]  # the two faces disagree on winding
-    # Each face is two nodes, f (as wound) and f + n (turned); a shared edge joins
-    # the nodes that agree. A shell is then two components, one per orientation.
-    a = np.where(same_direction, f2 + n, f2)
-    b = np.where(same_direction, f2, f2 + n)
-    labels = connected_components(2 * n, np.r_[f1, f1 + n], np.r_[a, b])
-    plus, minus = labels[:n], labels[n:]
-    orientable = not bool(np.any(plus == minus))
-    weight = np.bincount(plus, minlength=2 * n)
-    flip = (weight[plus] < weight[minus]) | ((weight[plus] == weight[minus]) & (plus > minus))
+    if same_direction.any():
+        flip, orientable = _winding(n, f1, f2, same_direction)
+    else:  # wound consistently already (the common case): nothing to turn
+        flip, orientable = np.zeros(n, dtype=bool), True
     # Shells: faces joined through any shared edge (also where more than two meet, as
     # when two cubes share a face), so a shell is a closed surface on its own.
     same_edge = np.flatnonzero(skey[1:] == skey[:-1])
@@ -130,6 +125,29 @@ def mesh_topology(triangles: np.ndarray, tolerance: float = 0.0) -> Topology:
     return Topology(vertices, faces, flip, shell, int(shell.max()) + 1 if n else 0,
                     boundary, boundary_face, int(np.count_nonzero(counts > 2)), orientable,
                     welded, moved)
+
+
+def _winding(n: int, f1: np.ndarray, f2: np.ndarray, same_direction: np.ndarray
+             ) -> tuple[np.ndarray, bool]:
+    """Which of ``n`` faces to turn so that each shell is wound one way, and whether that
+    is possible, given the face pairs ``f1``–``f2`` sharing an edge and whether the two
+    run that edge the same way.
+
+    Each face is two nodes, f (as wound) and f + n (turned); a shared edge joins the
+    nodes that agree. A shell is then two components, one per orientation; a face is
+    turned when fewer of its shell's faces lie, as wound, in the component of its turned
+    node than in that of its own (on a tie, the later labelled is turned). Where no pair
+    runs an edge the same way no face as wound shares a component with a turned node,
+    and nothing is turned.
+    """
+    a = np.where(same_direction, f2 + n, f2)
+    b = np.where(same_direction, f2, f2 + n)
+    labels = connected_components(2 * n, np.r_[f1, f1 + n], np.r_[a, b])
+    plus, minus = labels[:n], labels[n:]
+    orientable = not bool(np.any(plus == minus))
+    weight = np.bincount(plus, minlength=2 * n)
+    flip = (weight[plus] < weight[minus]) | ((weight[plus] == weight[minus]) & (plus > minus))
+    return flip, orientable
 
 
 class _Pairing(NamedTuple):
@@ -157,7 +175,7 @@ def _pair_edges(faces: np.ndarray, nv: int) -> _Pairing:
     half = faces[proper][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     owner = np.repeat(np.arange(n)[proper], 3)
     key = np.minimum(half[:, 0], half[:, 1]) * nv + np.maximum(half[:, 0], half[:, 1])
-    order = np.argsort(key, kind="stable")
+    order = stable_order(key)
     skey = key[order]
     starts = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]]) if len(skey) else \
         np.zeros(0, dtype=np.int64)
