@@ -304,3 +304,32 @@ def test_a_vertex_pushed_inside_the_others_hull_is_refused(seed, n, depth):
     with pytest.MonkeyPatch.context() as m:  # the full certificate alone refuses it too
         m.setattr(convex, "may_be_own_hull", lambda *args: True)
         assert not certified(V, F, com)
+
+
+def test_a_convex_surface_split_along_concave_diagonals_is_refused_at_once():
+    """An ellipsoid on a lat-long grid with twisted longitudes: every quad bends, and
+    each is split along its concave diagonal, so the mesh is not its own hull though
+    every point is on the hull. The sampled pairs of consecutive triangles see it alone
+    (each rises over the other's plane), and the full certificate refuses it too."""
+    theta = np.linspace(0, np.pi, 26)[1:-1]
+    t, p = np.meshgrid(theta, np.linspace(0, 2 * np.pi, 48, endpoint=False), indexing="ij")
+    p = p + 0.8 * t
+    V = np.stack((np.sin(t) * np.cos(p), 0.6 * np.sin(t) * np.sin(p), 0.8 * np.cos(t)), -1)
+    idx = np.arange(V.shape[0] * V.shape[1]).reshape(V.shape[:2])
+    a, b = idx[:-1], idx[1:]
+    a2, b2 = np.roll(a, -1, axis=1), np.roll(b, -1, axis=1)
+    ring = np.roll(idx, -1, axis=1)
+    F = np.concatenate([np.stack((a, b, b2), -1).reshape(-1, 3),
+                        np.stack((a, b2, a2), -1).reshape(-1, 3),
+                        np.stack((np.full(48, idx.size), idx[0], ring[0]), 1),
+                        np.stack((np.full(48, idx.size + 1), ring[-1], idx[-1]), 1)])
+    X = np.vstack((V.reshape(-1, 3), [[0.0, 0.0, 0.8], [0.0, 0.0, -0.8]]))
+    assert len(ConvexHull(X).vertices) == len(X)  # every point on the hull: only the cut
+    corners = X[convex.sample_triangles(F)]
+    pairs = corners[-2 * convex.SAMPLE_PAIRS:]
+    tn, off, _ = convex._corner_planes(pairs)
+    assert not convex._pairs_below(pairs, tn, off, 1e-12)
+    assert not convex.may_be_own_hull(X, corners, 1e-12)
+    with pytest.MonkeyPatch.context() as m:  # the full certificate refuses it alone
+        m.setattr(convex, "may_be_own_hull", lambda *args: True)
+        assert convex.own_hull(X, F, 1e-12) is None
