@@ -258,3 +258,37 @@ def test_parquet_columns_have_real_types(tmp_path, corpus):
     notes = [n for n in pq.read_table(out).column("notes").to_pylist() if n]
     assert notes and all(isinstance(n, list) and all(isinstance(x, str) for x in n)
                          for n in notes)
+
+
+def test_a_row_sweeps_the_rocker_of_its_first_pose_only(tmp_path):
+    """A row shows the first pose only, so only its rocker is swept
+    (``resting_poses(critical_tilts=1)``): the row is the one the full poses give, and
+    the pose table still gets every rocking pose's critical tilt."""
+    import math
+
+    import numpy as np
+    import trimesh
+
+    from plumbob.batch.options import Options
+    from plumbob.batch.rows import process_file
+    from plumbob.bodies.solid import MeshSolid
+    from plumbob.stability import resting_poses
+
+    mesh = trimesh.creation.icosphere(subdivisions=2)  # four rocking poses
+    mesh.apply_scale((3.0, 2.2, 1.3))
+    mesh.vertices[:, 0] += 0.1 * mesh.vertices[:, 1] ** 2
+    body = MeshSolid(np.asarray(mesh.triangles, dtype=float))
+    every, first = resting_poses(body), resting_poses(body, critical_tilts=1)
+    assert [p.kind for p in every] == ["rocking"] * 4
+    assert first[0].critical_tilt_deg == every[0].critical_tilt_deg > 0
+    assert all(math.isnan(p.critical_tilt_deg) for p in first.poses[1:])
+    for a, b in zip(every, first):
+        assert a.probability == b.probability and np.array_equal(a.down, b.down)
+        assert a.energy_barrier == b.energy_barrier and a.com_height == b.com_height
+    path = str(tmp_path / "egg.stl")
+    mesh.export(path)
+    row = process_file(path, Options(poses=True))
+    table = process_file(path, Options(pose_table=True))
+    assert row.row == table.row and row.row["pose_critical_tilt_deg"] > 0
+    assert len(table.pose_rows) == 4
+    assert all(r["critical_tilt_deg"] > 0 for r in table.pose_rows)

@@ -93,9 +93,12 @@ def check_row(reading, props, options: Options) -> dict[str, Any]:
 
 
 def _resting_poses(reading, props, options: Options):
+    """The file's poses; a row shows the first only, so only the first gets a rocking
+    pose's critical tilt (its rocker swept), unless the pose table shows them all."""
     from ..stability import resting_poses
 
-    return resting_poses(reading.body, g=options.g, props=props)
+    return resting_poses(reading.body, g=options.g, props=props,
+                         critical_tilts=None if options.pose_table else 1)
 
 
 def poses_row(result) -> dict[str, Any]:

@@ -14,7 +14,7 @@ from functools import partial
 
 import numpy as np
 
-from ...arguments import answering, finite_result, instance, non_negative, optional, positive
+from ...arguments import answering, count, finite_result, instance, non_negative, optional, positive
 from ...errors import GeometryError, StabilityError
 from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
@@ -47,20 +47,24 @@ def _exits(land: Landscape, fam: Families) -> np.ndarray:
 
 
 def assemble(land: Landscape, com: np.ndarray, mass: float, g: float,
-             roll_angle_deg: float, neutral_height: float, notes: list[str]) -> Poses:
+             roll_angle_deg: float, neutral_height: float, notes: list[str],
+             critical_tilts: int | None = None) -> Poses:
     """The poses of a landscape: candidates joined into families (:mod:`.families`), each
     with its probability, critical tilt, energy barrier and placement, most probable
     first.
 
     com: (dim,) the centre of mass, m (the landscape is relative to it). notes: appended
-    to.
+    to. critical_tilts: how many of the most probable poses get a rocking pose's critical
+    tilt (its rocker swept, the costly part on a curved part); a rocking pose after
+    them has NaN. None: every pose.
     """
-    return assemble_indexed(land, com, mass, g, roll_angle_deg, neutral_height, notes)[0]
+    return assemble_indexed(land, com, mass, g, roll_angle_deg, neutral_height, notes,
+                            critical_tilts)[0]
 
 
 def assemble_indexed(land: Landscape, com: np.ndarray, mass: float, g: float,
-                     roll_angle_deg: float, neutral_height: float, notes: list[str]
-                     ) -> tuple[Poses, np.ndarray]:
+                     roll_angle_deg: float, neutral_height: float, notes: list[str],
+                     critical_tilts: int | None = None) -> tuple[Poses, np.ndarray]:
     """:func:`assemble`, and per candidate of ``land`` the index (0-based) of the pose it
     belongs to: which pose a roll that ends on a candidate's face has come to rest in."""
     fam = families(land, roll_angle_deg, neutral_height)
@@ -72,12 +76,14 @@ def assemble_indexed(land: Landscape, com: np.ndarray, mass: float, g: float,
     order = np.lexsort((land.heights[fam.rep], -prob))
     size = size_of(land.points)
     poses = []
-    for f in order.tolist():
+    for k, f in enumerate(order.tolist()):
         r = int(fam.rep[f])
         down, height = land.normals[r].copy(), float(land.heights[r])
         t = tipping_angle_deg(max(float(land.margin[r]), 0.0), height)
         if fam.kind[f] == "rolling":
             t = 0.0
+        elif fam.kind[f] == "rocking" and critical_tilts is not None and k >= critical_tilts:
+            t = math.nan  # not asked for: its rocker is not swept
         elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
             from ..rocking import rocking  # only a bowl's bottom needs it
 
@@ -139,7 +145,8 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                       g: float = SEED_GRAVITY, tolerance: float | None = None,
                       roll_angle_deg: float = ROLL_ANGLE_DEG, neutral_height: float = 0.0,
                       samples: int = FALLBACK_SAMPLES,
-                      notes: tuple[str, ...] = (), surface=None) -> Poses:
+                      notes: tuple[str, ...] = (), surface=None,
+                      critical_tilts: int | None = None) -> Poses:
     """Resting poses of the convex hull of a set of points.
 
     The basins are traced on the exact hull; faces coplanar within ``tolerance`` of a
@@ -180,6 +187,11 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
         it find the mesh convex (:func:`~.convex.own_hull`), its triangles are the
         hull's and no hull is computed (on a finely tessellated capsule the hull is
         most of the time); otherwise, and for a lamina, it changes nothing.
+    critical_tilts : int, optional
+        How many of the most probable poses get a rocking pose's critical tilt, whose
+        rocker sweep is most of the time on a curved part; a rocking pose after them has
+        ``critical_tilt_deg`` NaN (not computed). None (the default): every pose. A
+        batch row shows the first pose only (``plumbob batch --poses``: 1).
 
     Returns
     -------
@@ -226,7 +238,7 @@ def poses_from_points(points, center_of_mass, *, mass: float = 1.0,
                                  roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
                                  samples=samples, surface=surface)
     return assemble(land, com, float(mass), float(g), float(roll_angle_deg),
-                    float(neutral_height), list(notes))
+                    float(neutral_height), list(notes), critical_tilts)
 
 
 def points_landscape(points, center_of_mass, *, tolerance: float | None,
@@ -265,7 +277,7 @@ def points_landscape(points, center_of_mass, *, tolerance: float | None,
 def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = None,
                   sampling_tolerance: float | None = None,
                   roll_angle_deg: float = ROLL_ANGLE_DEG,
-                  props=None) -> Poses:
+                  props=None, critical_tilts: int | None = None) -> Poses:
     """All stable resting poses of a body and how likely a random drop lands in each.
 
     The quasi-static model of Baktash, Sharp, Zhou, Crane and Jacobson (2025): a pose's
@@ -292,6 +304,9 @@ def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = No
         nothing.
     props : MassProperties, optional
         The body's mass properties, when already computed.
+    critical_tilts : int, optional
+        How many of the most probable poses get a rocking pose's critical tilt (see
+        :func:`poses_from_points`); the others' rocking poses have NaN. None: every pose.
 
     Returns
     -------
@@ -328,12 +343,14 @@ def resting_poses(body, *, g: float = SEED_GRAVITY, tolerance: float | None = No
     sampling_tolerance = optional(positive, sampling_tolerance, "sampling_tolerance",
                                   error=StabilityError)
     roll_angle_deg = non_negative(roll_angle_deg, "roll_angle_deg", error=StabilityError)
+    critical_tilts = optional(count, critical_tilts, "critical_tilts", math.inf,
+                              error=StabilityError)
     props = body.mass_properties() if props is None else instance(props, "props", MassProperties)
     finite_result(props.mass * g, "the weight M g", error=StabilityError)
     pts, com, neutral_height, surface = body_points(body, props, sampling_tolerance)
     return poses_from_points(pts, com, mass=props.mass, g=g, tolerance=tolerance,
                              roll_angle_deg=roll_angle_deg, neutral_height=neutral_height,
-                             surface=surface)
+                             surface=surface, critical_tilts=critical_tilts)
 
 
 def body_points(body, props: MassProperties, sampling_tolerance: float | None
