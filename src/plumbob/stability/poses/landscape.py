@@ -81,6 +81,14 @@ def _between(label: np.ndarray, fa: np.ndarray, fb: np.ndarray, sh: np.ndarray
     return a[keep], b[keep], sh[keep]
 
 
+def _saddle_ends(h: Hull3, roller: Roller, sad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The stable faces the rolls from both faces of each saddle edge ``sad`` end on, in
+    one :meth:`~.rolling.Roller.sinks` call: one loop as long as the longest roll, not
+    two."""
+    ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
+    return ends[:len(sad)], ends[len(sad):]
+
+
 def _candidates(h: Hull3, sinks: np.ndarray, area: np.ndarray, fa: np.ndarray, fb: np.ndarray,
                 sheight: np.ndarray, tol: float, method: str, error: float) -> Landscape:
     """The landscape over the stable faces ``sinks`` of ``h``, their basin areas ``area``,
@@ -125,9 +133,9 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
 
     def grouping(h: Hull3, roller: Roller, eg3: Edges3, sad: np.ndarray) -> np.ndarray:
         stable = np.flatnonzero(roller.stable)
-        fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
-        land = _candidates(h, stable, np.zeros(len(stable)), fa, fb, eg3.sheight[eg3.saddle_rows(sad)], tol,
-                           "exact", 0.0)
+        fa, fb = _saddle_ends(h, roller, sad)
+        land = _candidates(h, stable, np.zeros(len(stable)), fa, fb,
+                           eg3.sheight[eg3.saddle_rows(sad)], tol, "exact", 0.0)
         provisional.append(land)
         fam = families_of(land)
         group = np.full(len(h.normals), -1, dtype=np.int64)
@@ -155,7 +163,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
         stable = np.flatnonzero(roller.stable)
         return provisional[-1]._replace(area=area[stable], error=error, hull=h0)
     stable = roller.stable
-    fa, fb = roller.sinks(h.ef[sad]), roller.sinks(h.eg[sad])
+    fa, fb = _saddle_ends(h, roller, sad)
     if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:
         true = Roller(h0, edge_geometry(h0), unit(h0.X), eps)  # roll it on from there
         try:
