@@ -57,7 +57,10 @@ class _Server:
         server.stdin.flush()
         pid = json.loads(server.stdout.readline())["pid"]
         if not select.select([server.stdout], [], [], timeout)[0]:
-            os.kill(pid, signal.SIGKILL)
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:  # it ended at the limit itself: not a hang
+                return json.loads(server.stdout.readline())["status"]
             server.stdout.readline()  # the server has waited for it
             raise AssertionError(f"{command} ran over {timeout} s")
         return json.loads(server.stdout.readline())["status"]

@@ -186,12 +186,12 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
         X += [0.05, -0.1, 0.1]
     down = rng.normal(size=3)
     down /= np.linalg.norm(down)
-    threshold = sweep_module._BINNED
+    threshold = sweep_module.BINNED
     try:
-        sweep_module._BINNED = 0 if binned else 10**9
+        sweep_module.BINNED = 0 if binned else 10**9
         fast = rocking_module.rocking(X, down, eps, azimuths=6)
     finally:
-        sweep_module._BINNED = threshold
+        sweep_module.BINNED = threshold
     keep = rocking_module._sweep_pairs
     try:  # every point at every angle of the sweep
         rocking_module._sweep_pairs = lambda a, B, alpha, eps, planes=None: [(
@@ -217,6 +217,66 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     allowed = np.degrees(np.minimum(slack / np.maximum(np.sin(theta), 1e-300),
                                     np.sqrt(2 * slack)))
     assert np.all(np.abs(fast.tilts_deg - slow.tilts_deg) <= allowed)
+
+
+def _rocker_points(seed: int, flat: bool, n: int = 700) -> tuple[np.ndarray, np.ndarray]:
+    """A lumpy rim of ``n`` points about a centre off their middle (or, ``flat``, points
+    on a box's faces) and a random ``down``: the rocker's test inputs."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(n, 3))
+    X /= np.linalg.norm(X, axis=1)[:, None]
+    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
+    if flat:
+        half, rows = np.array([1.0, 0.7, 0.4]), np.arange(len(X))
+        axis = rng.integers(0, 3, len(X))
+        X = rng.uniform(-1.0, 1.0, size=X.shape) * half
+        X[rows, axis] = np.where(rng.random(len(X)) < 0.5, -1.0, 1.0) * half[axis]
+        X += [0.05, -0.1, 0.1]
+    down = rng.normal(size=3)
+    return X, down / np.linalg.norm(down)
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(), st.booleans(),
+       st.sampled_from([np.inf, np.nan, 3.0, 15.0]))
+def test_the_least_tilt_is_the_whole_sweeps(seed, eps, flat, binned, cap):
+    """least_tilt() sweeps a way only while it can still lower the least tilt, and only
+    the points that can reach the support on its arcs: min(cap, the whole sweep's least
+    tilt) all the same, whichever filter sweeps the first angles."""
+    import plumbob.stability.rocking as rocking_module
+    import plumbob.stability.sweep as sweep_module
+
+    X, down = _rocker_points(seed, flat)
+    threshold = sweep_module.BINNED
+    try:
+        sweep_module.BINNED = 0 if binned else 10**9
+        fast = rocking_module.least_tilt(X, down, eps, cap_deg=cap)
+    finally:
+        sweep_module.BINNED = threshold
+    whole = rocking_module.rocking(X, down, eps)
+    expected = min(float(whole.tilts_deg.min()), cap)  # a NaN cap: no cap, as min() reads it
+    # The same points reach the support at every angle swept; the contact's mean may be
+    # summed in another order, so its cosine may differ by γ_(len(X)+8) |p|max / |c|
+    # (as in the filter's test above), the tilt by that over sin(θ), or sqrt(2 d) at 0.
+    ulp = np.finfo(float).eps
+    slack = ((len(X) + 8) * ulp * float(np.linalg.norm(X, axis=1).max())
+             / (float(whole.heights.min()) - eps))
+    theta = np.radians(expected)
+    allowed = np.degrees(min(slack / max(np.sin(theta), 1e-300), np.sqrt(2 * slack)))
+    assert abs(fast - expected) <= allowed
+
+
+def test_the_least_tilt_of_a_plane_rocker():
+    """A lamina rocks two ways: least_tilt() is the least of rocking()'s two tilts."""
+    from plumbob.stability.rocking import least_tilt, rocking
+
+    t = np.linspace(0.0, 2 * np.pi, 400, endpoint=False)
+    X = np.stack([1.3 * np.cos(t), np.sin(t) + 0.4 * np.cos(2 * t)], axis=1) - [0.1, 0.2]
+    down = np.array([0.0, -1.0])
+    whole = float(rocking(X, down, 1e-3).tilts_deg.min())
+    assert 0.0 < whole < 90.0
+    assert least_tilt(X, down, 1e-3) == pytest.approx(whole, rel=1e-12)
+    assert least_tilt(X, down, 1e-3, cap_deg=whole / 2) == whole / 2
 
 
 @settings(max_examples=30, deadline=None)

@@ -22,10 +22,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import sweep as sweeps
+from .sweep import interval_pairs, sweep_planes
 from .sweep import sweep_pairs as _sweep_pairs
-from .sweep import sweep_planes
 
-__all__ = ["Rocking", "rocking"]
+__all__ = ["Rocking", "least_tilt", "rocking"]
 
 ROLL_STEP_DEG = 0.25
 PROBE_DEG = 8.0  # how far u turns to judge curvature: past the sampling's ripple
@@ -82,17 +83,8 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
     ``eps`` m. The contact P(u) is the mean of the points within ``eps`` of the support
     plane, which follows a smooth surface far more closely than any single sample."""
     down = np.asarray(down, dtype=float)
-    dim = len(down)
-    if dim == 3:
-        helper = np.eye(3)[np.argmin(np.abs(down))]
-        t1 = np.cross(down, helper)
-        t1 /= np.linalg.norm(t1)
-        t2 = np.cross(down, t1)
-        phi = 2 * np.pi * np.arange(azimuths) / azimuths
-        directions = np.cos(phi)[:, None] * t1 + np.sin(phi)[:, None] * t2
-    else:
-        directions = np.array([[-down[1], down[0]], [down[1], -down[0]]])
-    alpha = np.radians(np.arange(0.0, 180.0, ROLL_STEP_DEG))
+    directions = _directions(down, azimuths)
+    alpha = _angles()
     pairs = _sweep_pairs(points @ down, directions @ points.T, alpha, eps, sweep_planes(directions))
     heights = np.empty((len(directions), len(alpha)))
     tilts = np.empty(len(directions))
@@ -100,6 +92,24 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
         heights[ways], tilts[ways] = _sweep(points, down, directions[ways], alpha, eps,
                                             [pairs[k] for k in ways])
     return Rocking(down, directions, alpha, heights, tilts)
+
+
+def _directions(down: np.ndarray, azimuths: int) -> np.ndarray:
+    """The ways the contact direction is turned: ``azimuths`` unit vectors perpendicular
+    to ``down`` (3D), or the two of a plane."""
+    if len(down) == 3:
+        helper = np.eye(3)[np.argmin(np.abs(down))]
+        t1 = np.cross(down, helper)
+        t1 /= np.linalg.norm(t1)
+        t2 = np.cross(down, t1)
+        phi = 2 * np.pi * np.arange(azimuths) / azimuths
+        return np.cos(phi)[:, None] * t1 + np.sin(phi)[:, None] * t2
+    return np.array([[-down[1], down[0]], [down[1], -down[0]]])
+
+
+def _angles() -> np.ndarray:
+    """The angles α the contact direction is turned through, radians."""
+    return np.radians(np.arange(0.0, 180.0, ROLL_STEP_DEG))
 
 
 _PAIRS = 1 << 18  # (angle, point) pairs swept together, at most (bounds the temporaries)
@@ -124,6 +134,18 @@ def _sweep(points: np.ndarray, down: np.ndarray, directions: np.ndarray, alpha: 
     """Heights (K, m) and tilts (K,) along ``directions`` (K, dim), every way at once
     from its (angle, point) pairs: the support at each angle, the contact (the mean of
     the points within ``eps`` of it) and the tilt the contact holds."""
+    top, theta = _contact_angles(points, down, directions, alpha, eps, pairs)
+    peak, end, _ = _ends(theta, alpha, np.full(len(directions), -np.inf))
+    K, m = theta.shape
+    end = np.where(end < 0, m - 1, end)
+    return top, np.degrees(peak[np.arange(K), end])
+
+
+def _contact_angles(points: np.ndarray, down: np.ndarray, directions: np.ndarray,
+                    alpha: np.ndarray, eps: float, pairs: list[tuple[np.ndarray, np.ndarray]]
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Heights (K, m), m, and the angle θ (K, m), radians, between each contact direction
+    and its contact, from each way's (angle, point) pairs."""
     K, m, dim = len(directions), len(alpha), len(down)
     u = (np.cos(alpha)[None, :, None] * down
          + np.sin(alpha)[None, :, None] * directions[:, None, :]).reshape(K * m, dim)
@@ -139,9 +161,119 @@ def _sweep(points: np.ndarray, down: np.ndarray, directions: np.ndarray, alpha: 
     contact /= np.bincount(at, minlength=K * m)[:, None]
     cosine = np.einsum("sd,sd->s", u, contact) / np.linalg.norm(contact, axis=1)
     theta = np.arccos(np.clip(cosine, -1.0, 1.0)).reshape(K, m)
-    peak = np.maximum.accumulate(theta, axis=1)
+    return top.reshape(K, m), theta
+
+
+def _ends(theta: np.ndarray, alpha: np.ndarray, before: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The running peak of θ (K, m) over the angles ``alpha`` (m,), each way's peak
+    ``before`` them (K,) included, where each way's branch ends (the first angle of a
+    fall, −1 where none) and its tilt there, degrees (NaN where none)."""
+    peak = np.maximum(np.maximum.accumulate(theta, axis=1), before[:, None])
     # A fall well below the best so far ends the branch; smaller dips are the ripple of
     # the sampled surface (a few degrees where the contact crosses the bottom).
     fell = (theta < peak - np.maximum(np.radians(3.0), 0.5 * peak)) & (alpha >= np.radians(5.0))
-    end = np.where(fell.any(axis=1), np.argmax(fell, axis=1), m - 1)
-    return top.reshape(K, m), np.degrees(peak[np.arange(K), end])
+    end = np.where(fell.any(axis=1), np.argmax(fell, axis=1), -1)
+    tilt = np.where(end >= 0, np.degrees(peak[np.arange(len(theta)), np.maximum(end, 0)]),
+                    np.nan)
+    return peak, end, tilt
+
+
+_FIRST = 64  # angles every way is swept through before the least tilt is sought
+_LEAST_BLOCK = 128  # angles the way of least peak is swept on by, at a time
+_BLOCK = 64  # and the others
+
+
+def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float = np.inf,
+               azimuths: int = 24) -> float:
+    """``min(cap_deg, rocking(points, down, eps, azimuths).tilts_deg.min())``, degrees:
+    the steepest tilt the rocker holds whichever way it is tilted, found without
+    sweeping every way through every angle.
+
+    A way's tilt is the peak of its θ up to where its branch ends, so its peak so far
+    is a lower bound of it: once that reaches the least tilt found yet (or
+    ``cap_deg``), the way cannot lower the answer and is swept no further. Every way is
+    swept through the first :data:`_FIRST` angles; then, over and over, the way of
+    least peak is swept on to its end (most often near the least tilt) or until its
+    peak passes the least tilt so far, and the other ways still below it by a block.
+    Each sweep takes only the points that can come within ``eps`` of the support on
+    its arcs (:func:`_on_arcs`). The angles a way is swept through give the θ the whole
+    sweep gives there (the same points reach the support; the contact's sum may be
+    taken in another order: round-off), so the answer is the whole sweep's.
+    """
+    down = np.asarray(down, dtype=float)
+    directions = _directions(down, azimuths)
+    alpha = _angles()
+    K, m = len(directions), len(alpha)
+    a, B = points @ down, directions @ points.T
+    scale = float(np.max(np.abs(points))) if len(points) else 0.0
+    bound = float(cap_deg) if cap_deg < np.inf else np.inf  # NaN: no cap
+    peak = np.full(K, -np.inf)
+    at = np.zeros(K, dtype=np.int64)  # each way has been swept through the angles before
+    ended = np.zeros(K, dtype=bool)
+
+    def sweep(ways: np.ndarray, stop: int) -> None:
+        """Sweep ``ways`` (all at one angle) on to the angle before ``stop``."""
+        nonlocal bound
+        first = int(at[ways[0]])
+        arc = alpha[first:stop]
+        some = _on_arcs(points, a, B[ways], arc, eps + 1e-9 * scale)
+        if first == 0 and len(ways) == K and len(some) >= sweeps.BINNED:
+            pairs = _sweep_pairs(a[some], B[:, some], arc, eps, sweep_planes(directions))
+        else:
+            pairs = interval_pairs(a[some], B[ways][:, some], arc, eps)
+        pairs = [(i, some[j]) for i, j in pairs]
+        _, theta = _contact_angles(points, down, directions[ways], arc, eps, pairs)
+        running, end, tilt = _ends(theta, arc, peak[ways])
+        peak[ways], at[ways] = running[:, -1], stop
+        if stop == m:  # a branch that never fell ends at the last angle
+            tilt = np.where(end < 0, np.degrees(running[:, -1]), tilt)
+        done = ~np.isnan(tilt)
+        ended[ways[done]] = True
+        if done.any():
+            bound = min(bound, float(tilt[done].min()))
+
+    def live() -> np.ndarray:
+        return np.flatnonzero(~ended & ~(np.degrees(peak) >= bound))
+
+    sweep(np.arange(K), min(_FIRST, m))
+    while len(ways := live()):
+        least = ways[np.argmin(peak[ways])]
+        while not ended[least] and not np.degrees(peak[least]) >= bound:
+            sweep(np.array([least]), min(int(at[least]) + _LEAST_BLOCK, m))
+        for start in np.unique(at[ways := live()]):  # the others, by where they are
+            group = ways[at[ways] == start]
+            sweep(group, min(int(start) + _BLOCK, m))
+    return bound
+
+
+def _on_arcs(points: np.ndarray, a: np.ndarray, B: np.ndarray, arc: np.ndarray,
+             reach: float) -> np.ndarray:
+    """Indices of the points that can come within ``reach`` of the support along any
+    of the arcs of contact directions ``cos α down + sin α direction`` (α in ``arc``,
+    a direction per row of ``B``: the points' coordinates along it; ``a`` along down).
+
+    An arc of half-width A about its middle direction c lies in the cone of directions
+    within A of c. If q is the support point of c, every direction u of the cone has
+    support at least u·q, so a point p comes within ``reach`` of it only if
+    u·(p − q) ≥ −reach for some u in the cone: with v = p − q (v·c ≤ 0, its angle
+    from c is past 90° ≥ A), (v·c) cos A + |v × c| sin A ≥ −reach. The support point of
+    every direction passes the test, and on a smooth surface few others do. Arcs that
+    all start at down lie in one cone about down as wide as the longest (one test for
+    all the ways, where a cone each costs a pass over the points each)."""
+    if arc[0] == 0.0 and len(B) > 2:  # arcs from down, many: one cone about down
+        half, along = float(arc[-1]), a[None, :]
+    else:
+        mid = 0.5 * (arc[0] + arc[-1])
+        half = 0.5 * (arc[-1] - arc[0])
+        along = np.cos(mid) * a + np.sin(mid) * B  # (ways, n): each point along each c
+    top = np.argmax(along, axis=1)
+    rows = np.arange(len(along))
+    depth = along - along[rows, top][:, None]  # v·c ≤ 0
+    # |v|² = |p|² − 2 p·q + |q|², p·q from the points' own coordinates
+    q = points[top]
+    square = (np.einsum("nd,nd->n", points, points)[None, :] - 2.0 * (q @ points.T)
+              + np.einsum("kd,kd->k", q, q)[:, None])
+    side = np.sqrt(np.maximum(square - depth * depth, 0.0))  # |v × c|
+    near = depth * np.cos(half) + side * np.sin(half) >= -reach
+    return np.flatnonzero(near.any(axis=0))

@@ -5,7 +5,7 @@ Points ``p`` are projected to ``(a, b)`` in the plane of a sweep; at angle α a 
 reaches ``a cos α + b sin α``, and the support is the greatest reach. The sweep needs,
 at each of its angles, every point within ``eps`` of the support, and those pairs
 alone are worth computing in full. Two filters find a superset of them, exactly (no
-pair that matters is dropped): by intervals of angles (:func:`_interval_pairs`, for
+pair that matters is dropped): by intervals of angles (:func:`interval_pairs`, for
 few points) and by bins of the points' crest angles (:func:`sweep_pairs`).
 """
 
@@ -15,7 +15,7 @@ import numpy as np
 
 from ..arrays import expand
 
-__all__ = ["group_max", "sweep_pairs", "sweep_planes"]
+__all__ = ["BINNED", "group_max", "interval_pairs", "sweep_pairs", "sweep_planes"]
 
 _LEVELS = (64, 8)  # angle steps per interval in the exact filter's two passes
 
@@ -65,11 +65,12 @@ def _keep(a: np.ndarray, b: np.ndarray, polar: tuple[np.ndarray, np.ndarray],
     return best >= worst[k] - eps
 
 
-def _interval_pairs(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, eps: float
-                    ) -> tuple[np.ndarray, np.ndarray]:
-    """(angle index, point index) pairs holding, at every angle of the sweep, every point
-    whose reach ``a cos α + b sin α`` comes within ``eps`` of the support there (the
-    points projected to ``(a, b)`` in the plane of the sweep).
+def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
+                    ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per row ``b`` of ``B`` (K, n): (angle index, point index) pairs holding, at every
+    angle of the sweep, every point whose reach ``a cos α + b sin α`` comes within
+    ``eps`` of the support there (the points projected to ``(a, b)`` in the plane of
+    the sweep).
 
     Exact (no pair that matters is dropped): a fixed point's reach is a sinusoid, whose
     extremes over an interval of angles are at its ends or its crest (trough) inside
@@ -77,40 +78,55 @@ def _interval_pairs(a: np.ndarray, b: np.ndarray, alpha: np.ndarray, eps: float
     start. The filter runs interval by interval, coarse then fine, each pass on the
     pairs the last one kept: on a smooth surface an interval's own candidates are the
     few points near the part of the rim it sweeps, where one candidate list for the
-    whole sweep would hold the whole rim at every angle.
+    whole sweep would hold the whole rim at every angle. Every direction's sweep runs
+    in the same passes (direction q's point j is point ``q n + j`` of one flat array,
+    its intervals are intervals ``q I …``), each direction's pairs in the order of its
+    own sweep.
     """
+    K, n = B.shape
     m = len(alpha)
+    a, b = np.tile(a, K), B.ravel()
     r, crest = np.hypot(a, b), np.mod(np.arctan2(b, a), 2 * np.pi)
     # the first pass over every point at once: the reach at each interval's two ends
     lo, hi = _intervals(m, _LEVELS[0])
+    count = len(lo)
     ends = alpha[np.append(lo, hi[-1])]
     reach = np.cos(ends)[:, None] * a + np.sin(ends)[:, None] * b
     best = np.maximum(reach[:-1], reach[1:])
     inside = np.searchsorted(ends, crest, side="right") - 1
-    inside[crest == ends[-1]] = len(lo) - 1
-    has = np.flatnonzero((inside >= 0) & (inside < len(lo)))
+    inside[crest == ends[-1]] = count - 1
+    has = np.flatnonzero((inside >= 0) & (inside < count))
     best[inside[has], has] = r[has]
-    s = np.argmax(reach[:-1], axis=1)  # the support at each interval's start
-    rows = np.arange(len(lo))
+    # the support at each interval's start, per direction, and the least it reaches
+    start = reach[:-1].reshape(count, K, n)
+    s = np.argmax(start, axis=2) + np.arange(K) * n  # (intervals, K), flat point ids
+    rows = np.arange(count)[:, None]
     worst = np.minimum(reach[:-1][rows, s], reach[1:][rows, s])
     trough = np.mod(crest[s] + np.pi, 2 * np.pi)
-    worst = np.where((trough >= alpha[lo]) & (trough <= alpha[hi]), -r[s], worst)
-    k, j = np.nonzero(best >= (worst - eps)[:, None])
+    in_lo = (trough >= alpha[lo][:, None]) & (trough <= alpha[hi][:, None])
+    worst = np.where(in_lo, -r[s], worst)
+    near = best.reshape(count, K, n) >= (worst - eps)[:, :, None]
+    q, k, j = np.nonzero(near.transpose(1, 0, 2))  # each direction's pairs together
+    j += q * n
     for level, coarse in enumerate(_LEVELS[1:], start=1):
         # each kept interval's pairs, split into the finer intervals inside it
         per = _LEVELS[level - 1] // coarse
         lo, hi = _intervals(m, coarse)
-        count = np.minimum((k + 1) * per, len(lo)) - k * per
-        j = np.repeat(j, count)
-        k = _expand(k * per, count)
-        keep = _keep(a, b, (r, crest), alpha, eps, lo, hi, k, j)
-        k, j = k[keep], j[keep]
+        count = len(lo)
+        split = np.minimum((k + 1) * per, count) - k * per
+        j, q = np.repeat(j, split), np.repeat(q, split)
+        k = _expand(k * per, split)
+        keep = _keep(a, b, (r, crest), alpha, eps, np.tile(lo, K), np.tile(hi, K),
+                     q * count + k, j)
+        k, j, q = k[keep], j[keep], q[keep]
     stop = np.where(k == len(lo) - 1, m, hi[k])  # the last interval holds the last angle
-    count = stop - lo[k]
-    return _expand(lo[k], count), np.repeat(j, count)
+    span = stop - lo[k]
+    angle, point = _expand(lo[k], span), np.repeat(j - q * n, span)
+    bounds = np.searchsorted(np.repeat(q, span), np.arange(K + 1))
+    return [(angle[bounds[d]:bounds[d + 1]], point[bounds[d]:bounds[d + 1]]) for d in range(K)]
 
 
-_BINNED = 5_000  # from this many points on, the crest-angle bins' filter
+BINNED = 5_000  # from this many points on, the crest-angle bins' filter
 _MANY = 20_000  # past this many points, narrower windows pay for more passes
 _CHUNK = 1_000_000  # points × planes filtered together (bounds the temporaries)
 _FINE = 4  # finer bins per bin for the farthest points that bound the support
@@ -285,8 +301,8 @@ def sweep_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float,
     only if its radius reaches the least of ``(L − eps) / cos d`` over all angles (a
     thin band along the rim). Each point left is tried at each angle of its bin's
     window: on a smooth surface, the few points near the part of the rim each angle
-    sweeps, found in a few passes over the points. Below ``_BINNED`` points the
-    interval filter (:func:`_interval_pairs`) runs instead: its passes over all the
+    sweeps, found in a few passes over the points. Below ``BINNED`` points the
+    interval filter (:func:`interval_pairs`) runs instead: its passes over all the
     points cost less there than the bins' fixed work over every angle.
     """
     m, n, K = len(alpha), len(a), len(B)
@@ -303,8 +319,8 @@ def sweep_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float,
     # cos of the angular distance d between an angle and a bin's crests, less one bin
     # (a crest rounded into the next bin); d = 0 is the bin's own two ends
     cos_d = np.cos(np.maximum(np.arange(bins // 4 + 1) - 1, 0) * step)
-    if n < _BINNED:  # few points: the interval filter's fewer passes cost less
-        return [_interval_pairs(a, b, alpha, eps) for b in B]
+    if n < BINNED:  # few points: the interval filter's fewer passes cost less
+        return interval_pairs(a, np.asarray(B), alpha, eps)
     out: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, np.int64),) * 2] * K
     planes = [(k, -1) for k in range(K)] if planes is None else planes
     size = max(1, _CHUNK // n)

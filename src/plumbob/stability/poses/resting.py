@@ -85,13 +85,13 @@ def assemble_indexed(land: Landscape, com: np.ndarray, mass: float, g: float,
         elif fam.kind[f] == "rocking" and critical_tilts is not None and k >= critical_tilts:
             t = math.nan  # not asked for: its rocker is not swept
         elif fam.kind[f] == "rocking":  # where the rocker's equilibrium ends
-            from ..rocking import rocking  # only a bowl's bottom needs it
+            from ..rocking import least_tilt  # only a bowl's bottom needs it
 
             eps = 2.0 * max(float(fam.ripple[f]), HULL_SAMPLING * size)
-            rocks = float(rocking(land.points, down, eps).tilts_deg.min())
             # no rocker holds a tilt steeper than the one rolling it over its lowest exit
             exit_tilt = math.degrees(math.acos(min(1.0, height / float(exit_height[f]))))
-            t = max(t, min(rocks, exit_tilt))  # and never less than its own face's
+            rocks = least_tilt(land.points, down, eps, cap_deg=exit_tilt)
+            t = max(t, rocks)  # and never less than its own face's
         axis = None if np.isnan(fam.axis[f, 0]) else fam.axis[f].copy()
         poses.append(Pose(down, height, float(prob[f]), t,
                           None if np.isnan(barrier[f]) else float(barrier[f]),
