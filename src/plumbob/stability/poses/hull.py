@@ -92,22 +92,28 @@ def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
     # how far the triangle across each half-edge strays from this one's plane
     stray = np.maximum(np.abs(hm.beyond).reshape(m, 3), np.maximum(dev, dev[:, [1, 2, 0]]))
     stray = stray.ravel()
-    i = np.arange(3 * m) // 3
-    j = hm.twins // 3
-    cand = np.flatnonzero((i < j) & (stray <= eps) & (stray[hm.twins] <= eps))
-    i, j = i[cand], j[cand]
+    cand = np.flatnonzero(stray <= eps)  # few: only the hull's split flat facets
+    twin = hm.twins[cand]
+    i, j = cand // 3, twin // 3
+    keep = (i < j) & (stray[twin] <= eps)
+    i, j = i[keep], j[keep]
     same = dot(hm.normals[i], hm.normals[j]) > 0
     i, j = i[same], j[same]
     # A sliver whose corners lie on one line (within eps: a hull of points on a grid
     # can hold one) has no plane of its own: it joins the triangle across its longest
-    # edge, whose plane holds that line.
-    corners = hm.points[hm.tri]
+    # edge, whose plane holds that line. No side is longer than 2 max|P| (4 max|P| with
+    # room for round-off), so only triangles of twice their area under eps · 4 max|P|
+    # can be slivers: their sides alone are measured.
+    reach = 4.0 * float(np.sqrt(dot(hm.points, hm.points)).max())
+    small = np.flatnonzero(2 * hm.area <= eps * reach)
+    corners = hm.points[hm.tri[small]]
     sides = corners[:, [1, 2, 0]] - corners
     lengths = np.sqrt(np.einsum("fkc,fkc->fk", sides, sides))
     longest = np.argmax(lengths, axis=1)
-    sliver = np.flatnonzero(2 * hm.area <= eps * lengths[np.arange(m), longest])
+    thin = 2 * hm.area[small] <= eps * lengths[np.arange(len(small)), longest]
+    sliver, longest = small[thin], longest[thin]
     if len(sliver):
-        other = hm.twins[3 * sliver + longest[sliver]] // 3
+        other = hm.twins[3 * sliver + longest] // 3
         i = np.concatenate((i, np.minimum(sliver, other)))
         j = np.concatenate((j, np.maximum(sliver, other)))
     return i, j
