@@ -43,6 +43,37 @@ def test_normal_order_is_the_lexsort_of_rounded_normals(seed, n, quantum):
     assert np.array_equal(_normal_order(tn), want)
 
 
+@given(st.integers(0, 2**32 - 1), st.integers(1, 400), st.sampled_from([0.0, 0.5, 1e-9]))
+def test_normal_order_with_ties_is_the_lexsort_of_rounded_normals_then_ties(seed, n, quantum):
+    """Equal rounded normals in ascending order of ``ties`` (a hull's triangles by their
+    points): one sort of x and y packed, the ties settled apart."""
+    rng = np.random.default_rng(seed)
+    tn = _unit_rows(rng, n, quantum)
+    ties = rng.permutation(n).astype(np.int64) * 3 + 1
+    key = np.round(tn, 9)
+    want = np.lexsort((ties, -key[:, 2], -key[:, 1], -key[:, 0]))
+    assert np.array_equal(_normal_order(tn, ties), want)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 60))
+def test_manifold_hull_order_is_by_normal_then_canonical(seed, n):
+    """The hull's triangles as sorting them by their points first (:func:`_canonical`),
+    then stably by normal, would leave them: the points' own order whatever order the
+    library gave, without the first sort."""
+    import manifold3d
+
+    from plumbob.stability.poses.convex import _canonical, _planes, _rotated
+
+    X = np.random.default_rng(seed).normal(size=(n, 3))
+    X[: n // 2, 2] = 0.0  # a flat facet: many equal normals
+    hm = hull_mesh(X - X.mean(axis=0), 1e-12)
+    mesh = manifold3d.Manifold.hull_points(X - X.mean(axis=0)).to_mesh64()
+    tri = _canonical(np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3))
+    tn = _planes(np.asarray(mesh.vert_properties)[:, :3], tri)[0]
+    assert np.array_equal(hm.tri, tri[_normal_order(tn)])
+    assert np.array_equal(_rotated(tri), tri)
+
+
 def _closed_surface(rng: np.random.Generator, n: int) -> np.ndarray:
     """A random convex hull's triangles (a closed 2-manifold, wound outward), vertices
     renumbered."""

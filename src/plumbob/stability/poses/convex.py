@@ -20,9 +20,10 @@ faces are merged, so no pose can change.
 
 On large inputs manifold3d builds the hull in parallel: the same triangles (through
 the same points, in the same order) come back in another order, each starting at
-another of its corners, from run to run. :func:`_canonical` makes both the points'
-own: each triangle starts at its least point and the triangles are in ascending
-order of their points, before :func:`_normal_order` orders them by normal. Every
+another of its corners, from run to run. Each triangle is made to start at its least
+point (:func:`_rotated`) and :func:`_normal_order` orders them by normal, equal
+normals in ascending order of their points (:func:`_point_keys`; the order
+:func:`_canonical` sorts them in): an order of the points' own. Every
 cross product and every sum then runs the same way in every run, so the answers are
 the same to the bit (they varied by round-off before, 1e-13 relative in a small
 pose's probability).
@@ -113,16 +114,43 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
     return _twins_by_search(tri, n)
 
 
-def _normal_order(normals: np.ndarray) -> np.ndarray:
+def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.ndarray:
     """The triangles ordered by their normals rounded to 1e-9, largest x first, then y,
     then z, then as given: ``np.lexsort`` of the rounded components, as three stable
     integer sorts (:func:`~plumbob.arrays.lex_order`) instead of three float ones.
 
     ``np.round(x, 9)`` is ``rint(x · 1e9) / 1e9``, so the integers ``rint(x · 1e9)``
     (|·| ≤ 1e9) sort the same way.
+
+    ``ties`` (F,) distinct integers, optional: equal rounded normals in ascending order
+    of ``ties`` rather than as given (:func:`_point_keys`, a hull's triangles in the
+    order of their points). Then x and y, 31 bits each, are one key sorted once, and
+    only the triangles that tie on it (a split flat facet's) are sorted further.
     """
     q = (1e9 - np.rint(normals * 1e9)).astype(np.int64)  # 0 ..= 2e9: descending components
-    return lex_order([q[:, 2], q[:, 1], q[:, 0]])
+    if ties is None:
+        return lex_order([q[:, 2], q[:, 1], q[:, 0]])
+    key = q[:, 0] << 31
+    key |= q[:, 1]
+    order = np.argsort(key)  # not stable: every tie is settled below
+    ranked = key[order]
+    same = ranked[1:] == ranked[:-1]
+    if same.any():
+        tied = np.flatnonzero(np.concatenate((same, [False])) | np.concatenate(([False], same)))
+        run = np.cumsum(np.concatenate(([0], ~same)))[tied]  # ascending along ``tied``
+        sub = order[tied]
+        order[tied] = sub[np.lexsort((sub, ties[sub], q[sub, 2], run))]
+    return order
+
+
+def _rotated(tri: np.ndarray) -> np.ndarray:
+    """The triangles ``tri`` (F, 3) each starting at its least point, the winding kept.
+
+    >>> _rotated(np.array([[5, 2, 7], [3, 1, 4]])).tolist()
+    [[2, 7, 5], [1, 4, 3]]
+    """
+    start = np.argmin(tri, axis=1)
+    return np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
 
 
 def _canonical(tri: np.ndarray) -> np.ndarray:
@@ -133,9 +161,28 @@ def _canonical(tri: np.ndarray) -> np.ndarray:
     >>> _canonical(np.array([[5, 2, 7], [3, 1, 4], [2, 9, 6]])).tolist()
     [[1, 4, 3], [2, 7, 5], [2, 9, 6]]
     """
-    start = np.argmin(tri, axis=1)
-    tri = np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
+    tri = _rotated(tri)
     return np.take(tri, lex_order([tri[:, 2], tri[:, 1], tri[:, 0]]), axis=0)
+
+
+_POINT_BITS = 21  # three point indices below 2²¹ pack into one int64 (:func:`_point_keys`)
+
+
+def _point_keys(tri: np.ndarray, n: int) -> np.ndarray | None:
+    """Per triangle of ``tri`` (:func:`_rotated`, indices below ``n``) one int64 in the
+    order :func:`_canonical` sorts them by (first, second, third point), or None for
+    ``n`` of 2²¹ points or more.
+
+    >>> _point_keys(np.array([[1, 4, 3], [2, 7, 5]]), 10).tolist() == [
+    ...     (1 << 42) + (4 << 21) + 3, (2 << 42) + (7 << 21) + 5]
+    True
+    """
+    if n >= 1 << _POINT_BITS:
+        return None
+    key = tri[:, 0] << 2 * _POINT_BITS
+    key |= tri[:, 1] << _POINT_BITS
+    key |= tri[:, 2]
+    return key
 
 
 def _planes(P: np.ndarray, tri: np.ndarray, solid_angles: bool = False
@@ -189,12 +236,12 @@ def _beyond(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
 
 
 def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
-            area: np.ndarray) -> HullMesh | None:
-    """The triangles in an order of their own geometry (by normal), not the hull
-    library's — so faces, and poses of equal probability, come out in the same order
-    from either library — with their twins, heights and corner levels; None when not
-    closed."""
-    order = _normal_order(tn)
+            area: np.ndarray, ties: np.ndarray | None = None) -> HullMesh | None:
+    """The triangles in an order of their own geometry (by normal, then as given or by
+    ``ties``: :func:`_normal_order`), not the hull library's — so faces, and poses of
+    equal probability, come out in the same order from either library — with their
+    twins, heights and corner levels; None when not closed."""
+    order = _normal_order(tn, ties)
     tri, tn, off, area = (np.take(a, order, axis=0) for a in (tri, tn, off, area))
     twin = half_edge_twins(tri, len(P))
     if twin is None:
@@ -326,18 +373,23 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
 
     mesh = manifold3d.Manifold.hull_points(np.ascontiguousarray(X, dtype=np.float64)).to_mesh64()
     P = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    tri = _canonical(np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3))
+    tri = _rotated(np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3))
+    ties = _point_keys(tri, len(P))  # the order of the points, settled with the normals'
+    if ties is None:
+        tri = _canonical(tri)  # more points than the keys hold: sorted by them first
     if len(tri) < 4 or len(P) < 4:
         return None
     tn, off, norm = _planes(P, tri)
     if not np.all(np.isfinite(tn)):
         return None  # a degenerate triangle has no plane
-    area = 0.5 * norm
-    if not float(np.dot(off, area)) / 3 > eps * area.sum():
+    found = _finish(P, tri, tn, off, 0.5 * norm, ties)
+    if found is None:
+        return None
+    # summed in the triangles' own order (the library's varies from run to run)
+    if not float(np.dot(found.offsets, found.area)) / 3 > eps * found.area.sum():
         return None  # no volume: flat points make a two-sided polygon, not a solid
-    found = _finish(P, tri, tn, off, area)
     # every edge convex: the far corner of the triangle across it lies under this one's plane
-    if found is None or np.max(found.beyond) > eps:
+    if np.max(found.beyond) > eps:
         return None
     return found
 
