@@ -73,6 +73,18 @@ def _member(keys: np.ndarray, known: np.ndarray) -> np.ndarray:
     return (known[pos] == keys) if len(known) else np.zeros(len(keys), dtype=bool)
 
 
+def _mean_corners(h: Hull3, order: np.ndarray, start: np.ndarray, count: np.ndarray,
+                  faces: np.ndarray) -> np.ndarray:
+    """(k, 3) the mean corner of each of ``faces``, m (:func:`_face_edges`' ``order``,
+    ``start``, ``count``): each face's corners summed in the order of its edges, as
+    ``np.add.at`` over all edges would, for these faces alone."""
+    rows, idx = expand(count[faces], start[faces])
+    corners = np.take(h.X, np.take(h.ea, np.take(order, idx)), axis=0)
+    total = np.stack([np.bincount(rows, weights=corners[:, k], minlength=len(faces))
+                      for k in range(3)], axis=1)
+    return total / np.maximum(count[faces], 1)[:, None]
+
+
 def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
     """The physical face of each of ``sinks`` (exact face ids): the exact faces reached
     through neighbours whose corners all lie within ``tol`` (m) of the sink's plane."""
@@ -80,12 +92,6 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
     sinks = np.asarray(sinks, dtype=np.int64)
     order, start, count = _face_edges(h)
     n_s, h_s = h.normals[sinks], h.heights[sinks]
-    # each face's mean corner: its offset from a plane is the mean of its corners' offsets,
-    # never more than the largest, so a face whose mean lies over 2·tol off is out without
-    # looking at its corners (a cylinder's end cap, 4096 corners, next to 8192 side faces)
-    mean_corner = np.zeros((nF, 3))
-    np.add.at(mean_corner, h.ef, h.X[h.ea])
-    mean_corner /= np.maximum(count, 1)[:, None]
     owner = np.arange(len(sinks), dtype=np.int64)
     known = owner * nF + sinks  # sorted: owner-major keys of (owner, face)
     f_owner, f_face = owner, sinks
@@ -94,7 +100,12 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
         key = _distinct(f_owner[rows] * nF + h.eg[order[idx]])
         key = key[~_member(key, known)]
         o, g = key // nF, key % nF
-        near = (h_s[o] - dot(mean_corner[g], n_s[o]) <= 2 * tol) & (dot(h.normals[g], n_s[o]) > 0)
+        # a face's mean corner: its offset from a plane is the mean of its corners' offsets,
+        # never more than the largest, so a face whose mean lies over 2·tol off is out
+        # without looking at its corners (a cylinder's end cap, 4096 corners, next to 8192
+        # side faces)
+        mean_corner = _mean_corners(h, order, start, count, g)
+        near = (h_s[o] - dot(mean_corner, n_s[o]) <= 2 * tol) & (dot(h.normals[g], n_s[o]) > 0)
         key, o, g = key[near], o[near], g[near]
         rows, idx = expand(count[g], start[g])
         corner = h.ea[order[idx]]
