@@ -258,22 +258,27 @@ def _on_arcs(points: np.ndarray, a: np.ndarray, B: np.ndarray, arc: np.ndarray,
     support at least u·q, so a point p comes within ``reach`` of it only if
     u·(p − q) ≥ −reach for some u in the cone: with v = p − q (v·c ≤ 0, its angle
     from c is past 90° ≥ A), (v·c) cos A + |v × c| sin A ≥ −reach. The support point of
-    every direction passes the test, and on a smooth surface few others do. Arcs that
-    all start at down lie in one cone about down as wide as the longest (one test for
-    all the ways, where a cone each costs a pass over the points each)."""
+    every direction passes the test, and on a smooth surface few others do. An arc's
+    directions lie in its way's plane, where u·v is u·v' with v' the part of v in the
+    plane: the test holds with |v' × c|, no more than |v × c|, one coordinate of v'.
+    Arcs that all start at down lie in one cone about down as wide as the longest (one
+    test for all the ways, in space, where a cone each costs a pass over the points
+    each)."""
     if arc[0] == 0.0 and len(B) > 2:  # arcs from down, many: one cone about down
-        half, along = float(arc[-1]), a[None, :]
-    else:
-        mid = 0.5 * (arc[0] + arc[-1])
-        half = 0.5 * (arc[-1] - arc[0])
-        along = np.cos(mid) * a + np.sin(mid) * B  # (ways, n): each point along each c
+        half = float(arc[-1])
+        top = int(np.argmax(a))
+        depth = a - a[top]  # v·c ≤ 0
+        v = points - points[top]
+        side = np.sqrt(np.maximum(np.einsum("nd,nd->n", v, v) - depth * depth, 0.0))
+        near = depth * np.cos(half) + side * np.sin(half) >= -reach
+        return np.flatnonzero(near)
+    mid = 0.5 * (arc[0] + arc[-1])
+    half = 0.5 * (arc[-1] - arc[0])
+    along = np.cos(mid) * a + np.sin(mid) * B  # (ways, n): each point along each c
+    across = np.cos(mid) * B - np.sin(mid) * a  # and across it, in the way's plane
     top = np.argmax(along, axis=1)
-    rows = np.arange(len(along))
+    rows = np.arange(len(B))
     depth = along - along[rows, top][:, None]  # v·c ≤ 0
-    # |v|² = |p|² − 2 p·q + |q|², p·q from the points' own coordinates
-    q = points[top]
-    square = (np.einsum("nd,nd->n", points, points)[None, :] - 2.0 * (q @ points.T)
-              + np.einsum("kd,kd->k", q, q)[:, None])
-    side = np.sqrt(np.maximum(square - depth * depth, 0.0))  # |v × c|
+    side = np.abs(across - across[rows, top][:, None])  # |v' × c|
     near = depth * np.cos(half) + side * np.sin(half) >= -reach
     return np.flatnonzero(near.any(axis=0))
