@@ -94,3 +94,32 @@ def test_a_worker_that_cannot_start_stops_the_batch_once_with_its_reason(shapes_
     tasks = [(k, block, "block.toml") for k in range(6)]
     with pytest.raises(WorkerStartError, match="could not start"):
         list(run_pool(tasks, Options(), jobs=2, threads="many"))
+
+
+COMMAND = """
+import contextlib, io, json, sys
+import threadpoolctl
+from plumbob.blockwise import workers
+from plumbob.cli import main
+
+with contextlib.redirect_stdout(io.StringIO()):
+    status = main(["mass", sys.argv[1]])
+print(json.dumps({"status": status, "plumbob": workers(),
+                  "libraries": threadpoolctl.threadpool_info()}))
+"""
+
+
+def test_a_command_runs_blas_on_one_thread_and_its_blocks_on_every_core(shapes_dir):
+    """A command's products are thin (n × 3 by 3 × k), where BLAS threads only spin: it
+    runs BLAS on one thread whatever the environment asks, and its own row-wise blocks
+    on the threads it was given (PLUMBOB_THREADS)."""
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), PLUMBOB_THREADS="3",
+               OPENBLAS_NUM_THREADS="8")
+    out = subprocess.run([sys.executable, "-c", COMMAND,
+                          os.path.join(shapes_dir, "sculpture.toml")],
+                         env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    report = json.loads(out.stdout)
+    assert report["status"] == 0 and report["plumbob"] == 3
+    blas = [lib for lib in report["libraries"] if lib["user_api"] == "blas"]
+    assert blas and all(lib["num_threads"] == 1 for lib in blas)

@@ -28,8 +28,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["BLOCK_ROWS", "MIN_THREADED_ROWS", "THREAD_VARIABLES", "blockwise", "limit_threads",
-           "set_workers", "workers"]
+__all__ = ["BLOCK_ROWS", "MIN_THREADED_ROWS", "THREAD_VARIABLES", "blas_on_one_thread",
+           "blockwise", "limit_threads", "set_workers", "workers"]
 
 #: rows per block: a block's (rows, 3) float64 temporaries (384 KB) fit in a core's cache
 BLOCK_ROWS = 16_384
@@ -74,6 +74,21 @@ def set_workers(count: int | None) -> None:
 #: count when they are loaded
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
                     "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
+
+
+def blas_on_one_thread() -> None:
+    """Run the BLAS libraries in this process on one thread from now on (through
+    ``threadpoolctl``), leaving plumbob's own blocks (:func:`workers`) as they are.
+
+    For a command: plumbob's matrix products are thin (n × 3 by 3 × k: points by a
+    frame, by normals, by a few directions), where a BLAS library's threads have too
+    little to do and spin while they wait for it, costing cores the row-wise work and
+    other processes could use. ``plumbob poses`` on a 200k-triangle egg took 1.9 s of
+    processor time with OpenBLAS's default threads and 1.4 s on one, and was no slower
+    by the clock (2026-11-27, this project's 2-core machine)."""
+    import threadpoolctl
+
+    threadpoolctl.threadpool_limits(limits=1, user_api="blas")
 
 
 def limit_threads(count: int) -> None:

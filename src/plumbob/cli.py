@@ -175,8 +175,10 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    from .blockwise import blas_on_one_thread
     from .commands._notices import flush_notices
 
+    blas_on_one_thread()  # thin products: BLAS threads would only spin (blockwise.py)
     succeeded = False
     try:
         with _escaped_output(), _warnings_caught():
