@@ -8,10 +8,10 @@ The corpus: ``--files`` (default 10,000) small closed potatoes written as binary
 * ``plumbob batch CORPUS --poses --out t.csv --jobs N --quiet`` as a whole process:
   wall time, files/s, and the peak resident memory (VmHWM) of each worker process,
   read from /proc while the run goes on;
-* an interruption late in a run: the table cut to its first 95 % of rows (as a run
-  killed then leaves it), ``--resume`` interrupted again by SIGINT (as Ctrl-C) half-way
-  through the rest, and ``--resume`` to the end: its wall time, the rows it kept and
-  the files it measured; and ``--resume`` of the finished table (nothing left to
+* a real interruption late in a run: the same command on a fresh table sent SIGINT
+  (as Ctrl-C) once 95 % of its rows are on disk, then ``--resume`` to the end: its
+  wall time, the rows it kept and the files it measured, and whether the table is
+  the uninterrupted run's; and ``--resume`` of the finished table (nothing left to
   measure: what a resume costs by itself);
 * ``plumbob.batch.run(..., scheduler=...)`` on a ``distributed.LocalCluster`` of N
   single-threaded worker processes (start-up not timed), with each worker's peak
@@ -140,6 +140,14 @@ def batch(corpus: str, out: str, jobs: int, *extra: str, stop_at: int | None = N
     return seconds, child.returncode, peaks
 
 
+def _table(path: str) -> list[str]:
+    """A table's lines, header first and the rows sorted (a resumed table keeps the
+    order its rows were written in)."""
+    with open(path) as handle:
+        lines = handle.read().splitlines()
+    return lines[:1] + sorted(lines[1:])
+
+
 def _memory(peaks: tuple[float, list[float], float]) -> str:
     own, workers, _ = peaks
     if not workers:
@@ -198,24 +206,22 @@ def main(argv: list[str] | None = None) -> int:
                   f"exit {status}, {_rows(full):,} rows; {_memory(peaks)}; the command's own "
                   f"CPU {1e3 * peaks[2] / n:.2f} ms per file", flush=True)
 
-        # An interruption late in a run: the table as a run killed with 95 % of its rows
-        # written leaves it (a prefix of the rows), resumed; that resume interrupted
-        # again (SIGINT, as Ctrl-C) half-way through what is left, and resumed to the end.
-        cut = os.path.join(folder, "cut.csv")
-        with open(full) as source, open(cut, "w") as target:
-            lines = source.readlines()
-            target.writelines(lines[: 1 + int(0.95 * n)])
-        kept = _rows(cut)
-        seconds, status, _ = batch(corpus, cut, args.jobs, "--resume",
-                                   stop_at=kept + (n - kept) // 2)
-        print(f"--resume from {kept:,} rows, interrupted (SIGINT) after {seconds:.1f} s with "
-              f"{_rows(cut):,} rows on disk, exit {status}", flush=True)
-        kept = _rows(cut)
-        seconds, status, peaks = batch(corpus, cut, args.jobs, "--resume")
+        # A real interruption late in a run: the same command on a fresh table, sent
+        # SIGINT (as Ctrl-C) once 95 % of its rows are on disk; then --resume to the end,
+        # which must give the uninterrupted run's table, and --resume of the finished
+        # table (nothing left to measure: what a resume costs by itself).
+        live = os.path.join(folder, "interrupted.csv")
+        seconds, status, _ = batch(corpus, live, args.jobs, stop_at=int(0.95 * n))
+        kept = _rows(live)
+        print(f"the same run sent SIGINT at 95 %: {kept:,} rows on disk after {seconds:.1f} s, "
+              f"exit {status}", flush=True)
+        seconds, status, peaks = batch(corpus, live, args.jobs, "--resume")
+        same = _table(live) == _table(full)
         print(f"--resume: {seconds:.1f} s to keep {kept:,} rows and measure the "
-              f"{n - kept:,} files left, exit {status}, {_rows(cut):,} rows; the command's "
-              f"own CPU {peaks[2]:.2f} s", flush=True)
-        seconds, status, peaks = batch(corpus, cut, args.jobs, "--resume")
+              f"{n - kept:,} files left, exit {status}, {_rows(live):,} rows, "
+              f"{'the same table as the uninterrupted run' if same else 'NOT the same table'}"
+              f"; the command's own CPU {peaks[2]:.2f} s", flush=True)
+        seconds, status, peaks = batch(corpus, live, args.jobs, "--resume")
         print(f"--resume of the finished table (nothing to measure): {seconds:.2f} s, its "
               f"own CPU {peaks[2]:.2f} s", flush=True)
         if not args.skip_dask:
