@@ -1,6 +1,8 @@
 """Poses a person can use: physical faces that float32 noise never splits, rolling
 families of tessellated surfaces of revolution, and monotone tolerances (issue 11)."""
 
+import os
+
 import numpy as np
 import pytest
 import trimesh
@@ -295,3 +297,27 @@ def test_group_max_is_numpys_maximum_at(seed, n, groups, ties):
     expected = np.full(groups, -np.inf)
     np.maximum.at(expected, key, values)
     assert np.array_equal(group_max(values, key, groups), expected)
+
+
+def test_the_least_tilt_loads_no_more_of_numpy():
+    """least_tilt() runs in `plumbob poses`, whose start-up is held to what it uses
+    (tests/test_startup.py): sweeping every way on a lumpy rim leaves numpy.ma (which
+    np.unique imports) unloaded."""
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+
+    code = ("import sys, numpy as np\n"
+            "from plumbob.stability.rocking import least_tilt\n"
+            "rng = np.random.default_rng(0)\n"
+            "X = rng.normal(size=(700, 3))\n"
+            "X /= np.linalg.norm(X, axis=1)[:, None]\n"
+            "X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.05\n"
+            "tilt = least_tilt(X, np.array([0.0, 0.0, -1.0]), 0.01)\n"
+            "print(tilt, 'numpy.ma' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=60, env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
+    assert out.returncode == 0, out.stderr
+    tilt, loaded = out.stdout.split()
+    assert 0.0 < float(tilt) < 90.0 and loaded == "False"

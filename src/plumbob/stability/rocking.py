@@ -241,7 +241,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         least = ways[np.argmin(peak[ways])]
         while not ended[least] and not np.degrees(peak[least]) >= bound:
             sweep(np.array([least]), min(int(at[least]) + _LEAST_BLOCK, m))
-        for start in np.unique(at[ways := live()]):  # the others, by where they are
+        for start in sorted(set(at[ways := live()].tolist())):  # the others, where they are
             group = ways[at[ways] == start]
             sweep(group, min(int(start) + _BLOCK, m))
     return bound
