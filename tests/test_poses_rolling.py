@@ -27,6 +27,10 @@ def test_first_least_sorted_is_group_first(pairs):
     # group_first gives an all-infinite group its first member; here such a group has none
     finite = np.array([np.isfinite(values[rows == g]).any() for g in range(7)])
     assert np.array_equal(got, np.where(finite, want, -1))
+    lone = values[rows == 0]  # one group alone (a lone trace: its own path)
+    got = first_least_sorted(np.zeros(len(lone), dtype=np.int64), lone, 1)
+    assert np.array_equal(got, first_least_sorted(np.zeros(len(lone), dtype=np.int64),
+                                                  lone, 2)[:1])
 
 
 def test_a_roll_through_a_face_normal_lands_on_that_face():

@@ -22,6 +22,7 @@ import numpy as np
 from ...arrays import cross, dot, expand, group_first, unique, unit
 from ...blockwise import blockwise
 from ...errors import StabilityError
+from .ahead import predict
 from .hull import Hull3
 
 __all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step", "Roller"]
@@ -29,6 +30,12 @@ __all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step",
 _THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are its own arc
 _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
 _CORNER = 5e-19  # 1 − cos of the angle (1e-9 rad) within which a roll is at an arc's end
+_RUN_AFTER = 4  # loop steps after which rolls in regions also run ahead (:meth:`Roller.ahead`)
+_RUN_FEW = 8  # ... when no more rolls than this are in regions
+_RUN_FIRST = 32  # crossings predicted in a first run; each further one is 4× longer
+_RUN_LONGEST = 2048  # crossings predicted in one run at most
+_RUN_RETRY = 8  # loop steps before a roll whose run failed tries again
+_AGREE = 1e-9  # predicted and stepped points further apart than this (rad) end a run
 
 
 class Edges3(NamedTuple):
@@ -165,9 +172,15 @@ def first_least_sorted(rows: np.ndarray, values: np.ndarray, n: int) -> np.ndarr
     out = np.full(n, -1, dtype=np.int64)
     if len(rows) == 0:
         return out
-    starts = np.flatnonzero(np.concatenate(([True], rows[1:] != rows[:-1])))
+    if n == 1:  # one group (a lone trace): argmin is the first least, NaN and inf are none
+        first = int(np.argmin(values))
+        if np.isfinite(values[first]):
+            out[0] = first
+        return out
+    new = np.concatenate(([True], rows[1:] != rows[:-1]))
+    starts = np.flatnonzero(new)
     least = np.minimum.reduceat(values, starts)
-    segment = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(rows))))
+    segment = np.cumsum(new) - 1
     at = np.where(values == least[segment], np.arange(len(rows)), len(rows))
     first = np.minimum.reduceat(at, starts)
     finite = np.isfinite(least)
@@ -269,7 +282,8 @@ class Roller:
         result = np.full(k, -1, dtype=np.int64)
         alive = np.ones(k, dtype=bool)
         far = eg3.t > 0
-        for _ in range(4 * len(h.normals) + 16):
+        no_run = np.zeros(k, dtype=np.int64)  # the loop step a run ahead may next start
+        for count in range(4 * len(h.normals) + 16):
             at_face = np.flatnonzero(alive & ~in_region)
             if len(at_face):
                 f = self.lands[cur[at_face]]  # over edges, as far as that goes
@@ -323,8 +337,54 @@ class Roller:
             cr = rolling[crossing]
             v[cr], p[cr], exclude[cr] = h.eb[e[crossing]], q[crossing], h.und[e[crossing]]
             start_face[rolling[~lost]] = -1
+            if count >= _RUN_AFTER and len(rolling) <= _RUN_FEW:
+                # a few long rolls, each step mostly overhead: run them ahead
+                for t in cr[no_run[cr] <= count].tolist():
+                    moved = self.ahead(int(v[t]), p[t], int(exclude[t]), far)
+                    if moved is None:
+                        no_run[t] = count + _RUN_RETRY
+                        continue
+                    v[t], p[t], exclude[t] = moved
         raise StabilityError("the resting poses could not be resolved: a roll never ends "
                              "(a degenerate hull?)")
+
+    def ahead(self, v: int, p: np.ndarray, exclude: int, far: np.ndarray
+              ) -> tuple[int, np.ndarray, int] | None:
+        """A roll in the region of ``v`` at ``p`` (having last crossed the undirected edge
+        ``exclude``; ``far``: the arcs a roll may cross) run on across regions for as long
+        as :func:`step` agrees with the crossings :func:`.ahead.predict` predicts: all of
+        a run's predicted points are stepped from at once, and the run is taken up to the
+        first where the step crosses another arc, lands or slides, or meets it more than
+        1e-9 rad from the prediction. Runs of 32, 128, … crossings while every one is
+        taken. Returns the roll's new (vertex, point, excluded edge), as the loop would
+        have left it after those crossings; None when not one was taken."""
+        h, eg3, W = self.h, self.eg3, self.W
+        size, moved = _RUN_FIRST, None
+        while True:
+            verts, edges, points = predict(h, eg3, W, far, v, p, exclude, size)
+            if not edges:
+                return moved
+            vs, es, predicted = np.array(verts), np.array(edges), np.array(points)
+            starts = np.concatenate((p[None, :], predicted[:-1]))
+            w = W[vs]
+            tang = unit(dot(w, starts)[:, None] * starts - w)
+            before = np.concatenate(([exclude], h.und[es[:-1]]))
+            e, q = step(h, eg3, vs, starts, tang, np.full(len(vs), np.pi), before, far,
+                        np.full(len(vs), -1))
+            good = (e == es) & (eg3.t[es] >= 1)
+            good &= np.sqrt(dot(q - predicted, q - predicted)) <= _AGREE
+            good &= 1.0 - dot(q, h.normals[h.ef[es]]) > _CORNER
+            good &= 1.0 - dot(q, h.normals[h.eg[es]]) > _CORNER
+            bad = np.flatnonzero(~good)
+            take = int(bad[0]) if len(bad) else len(es)
+            if take == 0:
+                return moved
+            last = int(es[take - 1])
+            v, p, exclude = int(h.eb[last]), q[take - 1], int(h.und[last])
+            moved = (v, p, exclude)
+            if take < size or size >= _RUN_LONGEST:
+                return moved
+            size *= 4
 
     def sinks(self, faces: np.ndarray) -> np.ndarray:
         """The stable face each of ``faces`` ends up on (remembered once rolled)."""
