@@ -110,8 +110,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     side = dot(cross(p, W[v]), h.normals[h.ef[edge]]) > 0
     left, right = np.where(side, f, g), np.where(side, g, f)
     near = eg3.t < -_FLAT  # arcs a region's flow leaves: traced back through them
-    ismax = np.ones(len(h.X), dtype=bool)  # balanced on the tip: no region flows into it
-    np.logical_and.at(ismax, h.ea, ~near)
+    ismax = np.bincount(h.ea[near], minlength=len(h.X)) == 0  # on the tip: nothing flows in
     fans = Fans(h, eg3, W, ismax, near)
     last = np.full(len(v), -1, dtype=np.int64)  # the edge each trace crossed last
     no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
