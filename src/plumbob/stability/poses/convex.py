@@ -54,10 +54,10 @@ class HullMesh(NamedTuple):
     :func:`~.hull.build_hull3` need not measure it again).
 
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
-    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. level: (F, 3)
-    each corner's height along its own triangle's normal. beyond: (3F,) per half-edge,
-    the height of the far corner of the triangle across it over this triangle's plane
-    (≤ 0 to rounding error on a convex hull).
+    :func:`hull_triangles` returns them. area: (F,) the triangles' areas. beyond: (3F,)
+    per half-edge, the height of the far corner of the triangle across it over this
+    triangle's plane (≤ 0 to rounding error on a convex hull). The corners' heights
+    along their own triangle's normal are :func:`corner_levels`', measured where needed.
     """
 
     points: np.ndarray
@@ -66,7 +66,6 @@ class HullMesh(NamedTuple):
     offsets: np.ndarray
     twins: np.ndarray
     area: np.ndarray
-    level: np.ndarray
     beyond: np.ndarray
 
 
@@ -240,14 +239,14 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     """The triangles in an order of their own geometry (by normal, then as given or by
     ``ties``: :func:`_normal_order`), not the hull library's — so faces, and poses of
     equal probability, come out in the same order from either library — with their
-    twins, heights and corner levels; None when not closed."""
+    twins and the heights across them; None when not closed."""
     order = _normal_order(tn, ties)
     tri, tn, off, area = (np.take(a, order, axis=0) for a in (tri, tn, off, area))
     twin = half_edge_twins(tri, len(P))
     if twin is None:
         return None
     beyond = _beyond(P, tri, tn, off, twin)
-    return HullMesh(P, tri, tn, off, twin, area, corner_levels(P, tri, tn), beyond)
+    return HullMesh(P, tri, tn, off, twin, area, beyond)
 
 
 SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries

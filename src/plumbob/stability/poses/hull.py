@@ -87,15 +87,20 @@ def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
     planes and that face the same way, and each sliver (no wider than ``eps``) with the
     triangle across its longest edge. A triangle's own corners lie on its plane to
     rounding error, so of the neighbour only the far corner can stray (``hm.beyond``)."""
-    m = len(hm.tri)
-    dev = np.abs(hm.level - hm.offsets[:, None])  # own corners off the own plane
-    # how far the triangle across each half-edge strays from this one's plane
-    stray = np.maximum(np.abs(hm.beyond).reshape(m, 3), np.maximum(dev, dev[:, [1, 2, 0]]))
-    stray = stray.ravel()
-    cand = np.flatnonzero(stray <= eps)  # few: only the hull's split flat facets
+    # how far the triangle across each half-edge strays from this one's plane: the far
+    # corner (``beyond``) or an own corner off the own plane; few are within eps (the
+    # hull's split flat facets), and the own corners are measured for those alone
+    cand = np.flatnonzero(np.abs(hm.beyond) <= eps)
     twin = hm.twins[cand]
+    both = np.concatenate((cand, twin))
+    t, k = both // 3, both % 3
+    dev = np.abs(corner_levels(hm.points, np.take(hm.tri, t, axis=0),
+                               np.take(hm.normals, t, axis=0)) - hm.offsets[t][:, None])
+    rows = np.arange(len(both))
+    stray = np.maximum(np.abs(hm.beyond[both]),
+                       np.maximum(dev[rows, k], dev[rows, (k + 1) % 3]))
     i, j = cand // 3, twin // 3
-    keep = (i < j) & (stray[twin] <= eps)
+    keep = (i < j) & (stray[:len(cand)] <= eps) & (stray[len(cand):] <= eps)
     i, j = i[keep], j[keep]
     same = dot(hm.normals[i], hm.normals[j]) > 0
     i, j = i[same], j[same]
@@ -133,8 +138,9 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
     und = np.minimum(np.arange(len(ea)), etwin)
-    return Hull3(hm.points, hm.normals, row_max(hm.level), area, ea, eb, ef, eg, start,
-                 degree, etwin, und)
+    heights = row_max(corner_levels(hm.points, tri, hm.normals))
+    return Hull3(hm.points, hm.normals, heights, area, ea, eb, ef, eg, start, degree, etwin,
+                 und)
 
 
 def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, bnd: np.ndarray,
