@@ -390,6 +390,12 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
     # every edge convex: the far corner of the triangle across it lies under this one's plane
     if np.max(found.beyond) > eps:
         return None
+    # and no fold: on points of a grid manifold3d can leave a flat fin, two coplanar
+    # triangles facing opposite ways across an edge (a convex solid has no such edge)
+    flat = np.flatnonzero(np.abs(found.beyond) <= eps)
+    if len(flat) and np.any(dot(found.normals[flat // 3],
+                                found.normals[found.twins[flat] // 3]) < 0):
+        return None
     return found
 
 
