@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["CONTACT", "HULL_ROUND_OFF", "HULL_SAMPLING", "SLIVER", "TEXT_ROUND_OFF", "WELD",
+__all__ = ["CONTACT", "HULL_LEFT_OUT", "HULL_ROUND_OFF", "HULL_SAMPLING", "SLIVER", "TEXT_ROUND_OFF", "WELD",
            "contact_tolerance", "sampling_tolerance", "size_of", "weld_tolerance"]
 
 #: Points within this fraction of the body's size of the lowest level touch the
@@ -31,6 +31,11 @@ HULL_SAMPLING = 1e-4
 #: coplanar within it is one face, concave by less is convex (float64 round-off of
 #: the hull's own arithmetic, far below the contact tolerance).
 HULL_ROUND_OFF = 1e-12
+
+#: manifold3d's quickhull leaves out points within its epsilon (1e-7 of the largest
+#: coordinate) of a facet; a hull that leaves a point further out than this fraction of
+#: the size is wrong and is not used (``stability/poses/holds.py``).
+HULL_LEFT_OUT = 1e-7
 
 #: A support polygon narrower than this fraction of the body's size is a *sliver*: a
 #: facet of a fine tessellation (a scan's curved bottom: an icosphere's facets are 1.6–2.1 %

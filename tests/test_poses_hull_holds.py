@@ -1,0 +1,104 @@
+"""A hull library's hull is used only when it holds every input point
+(:mod:`plumbob.stability.poses.holds`): manifold3d's quickhull leaves grid points out."""
+
+from __future__ import annotations
+
+import manifold3d
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from plumbob.arrays import dot
+from plumbob.stability.poses import holds as holds_module
+from plumbob.stability.poses.convex import _manifold_hull, hull_mesh
+from plumbob.stability.poses.holds import _degree, degenerate, holds
+from plumbob.stability.poses.hull import build_hull3
+
+
+def _grid_points(seed: int) -> np.ndarray:
+    """The recipe of ``test_build_hull3_faces_are_the_plain_ones`` on a grid."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(int(rng.integers(8, 200)), 3))
+    X = np.round(X * 2) / 2
+    return X - X.mean(axis=0)
+
+
+def test_the_grid_points_manifold3d_leaves_out_get_qhulls_hull():
+    X = _grid_points(500044)
+    eps = 1e-12 * float(np.ptp(X))
+    wrong = manifold3d.Manifold.hull_points(X).volume()
+    assert wrong == pytest.approx(51.25, rel=1e-12)  # the library's answer misses points
+    assert _manifold_hull(X, eps) is None  # refused
+    hm = hull_mesh(X, eps)
+    assert float(np.dot(hm.offsets, hm.area)) / 3 == pytest.approx(53.5625, rel=1e-12)
+    h = build_hull3(X, eps)
+    assert float((X @ h.normals.T - h.heights).max()) <= 10 * eps
+
+
+def _sphere_case(seed: int, n: int, near: int):
+    """A hull of ``n`` points on a unit sphere (manifold3d's), and ``near`` points just
+    inside it: on random triangles of it, drawn in towards the centre by 1e-6."""
+    rng = np.random.default_rng(seed)
+    S = rng.normal(size=(n, 3))
+    S /= np.sqrt(dot(S, S))[:, None]
+    hm = _manifold_hull(S, 1e-12)
+    t = rng.integers(len(hm.tri), size=near)
+    w = rng.dirichlet(np.ones(3), size=near)
+    inside = np.einsum("kc,kcd->kd", w, hm.points[hm.tri[t]]) * (1 - 1e-6)
+    return S, hm, inside
+
+
+def _truth(X: np.ndarray, hm, tol: float) -> bool:
+    return bool((X @ hm.normals.T - hm.offsets).max() <= tol)
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.booleans(), st.booleans())
+def test_holds_is_every_point_under_every_plane(seed, out, walk):
+    S, hm, near = _sphere_case(seed, 400, 3000)
+    X = np.vstack((S, near))
+    if out:  # one point just outside a random triangle's plane, far beyond round-off
+        t = int(np.random.default_rng(seed).integers(len(hm.tri)))
+        corner = hm.points[hm.tri[t]].mean(axis=0)
+        X = np.vstack((X, corner + 1e-5 * hm.normals[t]))
+    args = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins, hm.area, 1e-7
+    saved = holds_module.EXHAUSTIVE
+    holds_module.EXHAUSTIVE = 0 if walk else saved  # located by walks, or compared
+    try:
+        assert holds(X, *args) is _truth(X, hm, 1e-7) is (not out)
+    finally:
+        holds_module.EXHAUSTIVE = saved
+
+
+def test_holds_leaves_undecided_what_it_cannot_afford():
+    S, hm, near = _sphere_case(11, 400, 3000)
+    args = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins, hm.area, 1e-7
+    saved = holds_module.EXHAUSTIVE, holds_module.WALKERS
+    holds_module.EXHAUSTIVE, holds_module.WALKERS = 0, 100
+    try:
+        assert holds(np.vstack((S, near)), *args) is None
+    finally:
+        holds_module.EXHAUSTIVE, holds_module.WALKERS = saved
+
+
+def test_holds_refuses_a_hull_that_leaves_out_a_vertex():
+    S, hm, _ = _sphere_case(7, 300, 0)
+    T = S[:-1]  # the hull of all but the last point: a point out, by up to its height
+    part = _manifold_hull(T, 1e-12)
+    args = part.points, part.tri, part.normals, part.offsets, part.twins, part.area, 1e-7
+    assert holds(T, *args) and not holds(S, *args)
+
+
+def test_degree_counts_the_windings_about_the_centre():
+    _, hm, _ = _sphere_case(3, 200, 0)
+    assert _degree(hm.points, hm.tri) == 1
+    assert _degree(hm.points, np.vstack((hm.tri, hm.tri))) == 2  # wound twice
+
+
+def test_degenerate_marks_coplanar_neighbours_and_slivers():
+    cube = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+    hm = hull_mesh(cube, 1e-12)  # each square face is two coplanar triangles
+    assert degenerate(hm.area, hm.beyond, hm.points, 1e-12)
+    _, sphere, _ = _sphere_case(5, 200, 0)
+    assert not degenerate(sphere.area, sphere.beyond, sphere.points, 1e-12)
