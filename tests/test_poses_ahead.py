@@ -96,3 +96,38 @@ def test_runs_end_where_single_steps_end_anywhere(segments, tilt, turn, seed):
     ahead, _ = rolled(X, center, 20, runs=True, seed=seed)
     single, _ = rolled(X, center, 20, runs=False, seed=seed)
     assert np.array_equal(ahead, single)
+
+
+def traced(X: np.ndarray, center: np.ndarray, ahead: bool) -> tuple[np.ndarray, int]:
+    """Basin areas of the hull of ``X`` about ``center`` and the trace's loop steps, with
+    lone separatrices run ahead or not (strips and fans as they are)."""
+    from plumbob.stability.poses import basins
+
+    X = X - center
+    eps = 1e-12 * float(np.linalg.norm(np.ptp(X, axis=0)))
+    calls = []
+    real = basins.step
+
+    def counting(*args):
+        calls.append(1)
+        return real(*args)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(basins, "step", counting)
+        patch.setattr(basins, "_AHEAD_FEW", basins._AHEAD_FEW if ahead else -1)
+        found = basins.basins3(build_hull3(X, eps), eps, None)
+    assert found is not None, "the exact trace failed"
+    return found.area, len(calls)
+
+
+@pytest.mark.parametrize("make", [lambda: lumpy(160, 2), lambda: tilted_cylinder(600, 45.0, 200.0)],
+                         ids=["lumpy blob", "box + tilted cylinder"])
+def test_lone_separatrices_run_ahead_to_the_same_areas(make):
+    """One or two separatrices left: their crossings predicted in plain Python and checked
+    by the ordinary step (Fans.ahead_chain), the same basin areas to round-off."""
+    X, center = make()
+    ahead, steps = traced(X, center, ahead=True)
+    single, single_steps = traced(X, center, ahead=False)
+    assert np.allclose(ahead, single, rtol=0, atol=1e-13 * 4 * np.pi)
+    assert abs(ahead.sum() - 4 * np.pi) <= 1e-12 * 4 * np.pi
+    assert steps < single_steps

@@ -32,7 +32,8 @@ _RELAXED_SCORE = 10.0  # step scores an arc met only within its relaxed toleranc
 
 
 def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.ndarray,
-            exclude: int, longest: int) -> tuple[list[int], list[int], list[list[float]]]:
+            exclude: int, longest: int, ismax: np.ndarray | None = None
+            ) -> tuple[list[int], list[int], list[list[float]]]:
     """Up to ``longest`` crossings of a roll at vertex ``v``, at the unit point ``p``,
     having last crossed the undirected edge ``exclude`` (``eg3``: the hull's
     :class:`~.rolling.Edges3`; ``W``: the unit directions of its points; ``far``: the
@@ -44,6 +45,11 @@ def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.nd
     (least angle θ, the first on ties) at ``cos θ p + sin θ t``. The walk stops before a
     move that meets no arc cleanly (only outside it by more than 1e-12), slides (the
     arc holds the centre's foot: ``t < 1``) or lands on a face's normal.
+
+    With ``ismax`` (per point: nothing flows into it) the walk is a separatrix's, traced
+    uphill as :func:`.basins.trace_basins` steps it (``far``: the arcs it may cross):
+    toward ``W[v]``, no further than ``W[v]`` itself, and it stops at a maximum; it
+    never slides nor lands.
     """
     start, degree, und, ef, eg, eb = h.start, h.degree, h.und, h.ef, h.eg, h.eb
     normals, pole, foot = h.normals, eg3.pole, eg3.t
@@ -55,7 +61,14 @@ def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.nd
         s, d = int(start[v]), int(degree[v])
         wx, wy, wz = W[v].tolist()
         wp = wx * px + wy * py + wz * pz
-        tx, ty, tz = wp * px - wx, wp * py - wy, wp * pz - wz
+        limit = math.pi
+        if ismax is None:
+            tx, ty, tz = wp * px - wx, wp * py - wy, wp * pz - wz
+        else:
+            if ismax[v] or wp >= 1.0 - 1e-24:
+                break  # at its maximum: the trace ends there
+            tx, ty, tz = wx - wp * px, wy - wp * py, wz - wp * pz
+            limit = math.acos(min(1.0, max(-1.0, wp)))
         norm = math.sqrt(tx * tx + ty * ty + tz * tz)
         if norm > 0:
             tx, ty, tz = tx / norm, ty / norm, tz / norm
@@ -70,7 +83,7 @@ def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.nd
             theta = math.atan2(-(px * kx + py * ky + pz * kz), tx * kx + ty * ky + tz * kz)
             if theta <= _THETA_EPS:
                 theta += math.pi
-            if not (theta > _THETA_EPS and theta <= math.pi + 1e-12):
+            if not (theta > _THETA_EPS and theta <= limit + 1e-12):
                 continue  # not met on this side of the antipode: infinite score
             c, sn = math.cos(theta), math.sin(theta)
             qx, qy, qz = c * px + sn * tx, c * py + sn * ty, c * pz + sn * tz
@@ -84,14 +97,16 @@ def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.nd
             score = theta if miss <= 1e-12 else _RELAXED_SCORE + miss
             if score < best_score:
                 best, best_score, best_q = s + i, score, (qx, qy, qz)
-        if best < 0 or best_score >= _RELAXED_SCORE or float(foot[best]) < 1:
-            break  # met only loosely (or not at all), or the roll slides along the arc
+        if best < 0 or best_score >= _RELAXED_SCORE:
+            break  # met only loosely, or not at all
+        if ismax is None and float(foot[best]) < 1:
+            break  # the roll slides along the arc
         qx, qy, qz = best_q
         norm = math.sqrt(qx * qx + qy * qy + qz * qz)
         qx, qy, qz = qx / norm, qy / norm, qz / norm
         nf, ng = normals[ef[best]].tolist(), normals[eg[best]].tolist()
-        if (1.0 - (qx * nf[0] + qy * nf[1] + qz * nf[2]) <= _CORNER
-                or 1.0 - (qx * ng[0] + qy * ng[1] + qz * ng[2]) <= _CORNER):
+        if ismax is None and (1.0 - (qx * nf[0] + qy * nf[1] + qz * nf[2]) <= _CORNER
+                              or 1.0 - (qx * ng[0] + qy * ng[1] + qz * ng[2]) <= _CORNER):
             break  # lands on a face: the roller's loop takes it there
         verts.append(v)
         edges.append(best)

@@ -31,6 +31,8 @@ _STRIP_AFTER = 32  # steps (at least) after which live traces also run along str
 _STRIP_TABLE = 64  # arcs predicted for about the cost of one step of the loop
 _STRIP_FEW = 16  # ... when no more traces than this are alive
 _STRIP_RETRY = 8  # steps before a trace whose strip run failed tries again
+_AHEAD_FEW = 2  # traces alive at most for runs ahead (:meth:`.Fans.ahead_chain`)
+_AHEAD_AFTER = 8  # steps (at least) after which they start
 _FLAT = 1e-12  # |t| below this: the centre's foot is at the edge's end (a balanced vertex)
 
 
@@ -116,8 +118,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
     seg_trace, seg_from, seg_to = [], [], []  # the path segments, kept for the areas
     no_strip = np.full(len(v), -1, dtype=np.int64)  # the step a strip run may next start
-    # strips need a prediction per arc (one step over them all): worth it only once the
-    # loop has run about as long as that costs
+    # strips need a prediction per arc (one step over them all): worth it once that long
     strip_after = max(_STRIP_AFTER, np.count_nonzero(near) // _STRIP_TABLE)
     alive = np.arange(len(v))
     ok = True
@@ -141,8 +142,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
             seg_trace.append(alive[done])
             seg_from.append(pa[done])
             seg_to.append(w[done])
-            keep = ~done
-            alive, va, pa, w, wp = alive[keep], va[keep], pa[keep], w[keep], wp[keep]
+            alive, va, pa, w, wp = alive[~done], va[~done], pa[~done], w[~done], wp[~done]
             if len(alive) == 0:
                 break
         tang = unit(w - wp[:, None] * pa)
@@ -167,10 +167,13 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
                 no_fan[t] = face
                 continue
             take(t, moved)
-        if count >= strip_after and len(d) <= _STRIP_FEW:
-            # a few long traces, each step mostly overhead: along strips of thin regions too
+        few = count >= strip_after and len(d) <= _STRIP_FEW
+        lone = count >= _AHEAD_AFTER and len(d) <= _AHEAD_FEW
+        if few or lone:
+            # a few long traces, each step mostly overhead: along strips of thin regions, or
+            # (one or two alive) along crossings predicted in plain Python
             for t in d[~runs & (no_strip[d] <= count)].tolist():
-                moved = fans.strip(int(v[t]), p[t], int(last[t]))
+                moved = fans.strip(int(v[t]), p[t], int(last[t]), few, lone)
                 if moved is None:
                     no_strip[t] = count + _STRIP_RETRY
                     continue

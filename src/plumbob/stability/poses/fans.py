@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...arrays import around, dot, unit
+from .ahead import predict
 from .hull import Hull3
 from .rolling import Edges3, arc_sides, step
 
@@ -159,17 +160,33 @@ class Fans:
             self._exit_table = (table.tolist(), h.eb.tolist())
         return self._exit_table
 
-    def strip(self, v: int, p: np.ndarray, entered: int
-              ) -> tuple[np.ndarray, int, int] | None:
-        """As :meth:`advance`, along the predicted exits (:meth:`strip_chain`), predicted
-        64, 256, … crossings at a time while every one is taken."""
+    def ahead_chain(self, v: int, p: np.ndarray, entered: int, longest: int
+                    ) -> tuple[np.ndarray, np.ndarray] | None:
+        """As :meth:`strip_chain`, the crossings a trace at ``v`` (at ``p``, having crossed
+        ``entered``) is predicted to make, stepped one by one in plain Python floats
+        (:func:`.ahead.predict`) instead of read from a table built for every arc."""
+        h = self.h
+        corners, crossed, _ = predict(h, self.eg3, self.W, self.near, v, p,
+                                      int(h.und[entered]), longest, self.ismax)
+        if not crossed:
+            return None
+        return np.array(corners, dtype=np.int64), np.array(crossed, dtype=np.int64)
+
+    def strip(self, v: int, p: np.ndarray, entered: int, table: bool = True,
+              ahead: bool = False) -> tuple[np.ndarray, int, int] | None:
+        """As :meth:`advance`, along the predicted exits (:meth:`strip_chain`, with
+        ``table``) or, where those are not taken, with ``ahead``, along the crossings
+        :meth:`ahead_chain` predicts; 64, 256, … crossings at a time while every one is
+        taken."""
         paths = []
         size = _FIRST_RUN
         while True:
-            found = self.strip_chain(entered, size)
-            if found is None or found[0][0] != v:
-                break
-            moved = self.run(p, entered, *found)
+            found, moved = self.strip_chain(entered, size) if table else None, None
+            if found is not None and found[0][0] == v:
+                moved = self.run(p, entered, *found)
+            if moved is None and ahead:
+                found = self.ahead_chain(v, p, entered, size)
+                moved = None if found is None else self.run(p, entered, *found)
             if moved is None:
                 break
             path, v, entered = moved
