@@ -165,6 +165,23 @@ def test_a_fine_sphere_is_fast_and_rolls():
     assert len(ps) == 1 and ps[0].kind == "rolling" and ps[0].members > 80_000
 
 
+def _rocker_points(seed: int, flat: bool, n: int = 700) -> tuple[np.ndarray, np.ndarray]:
+    """A lumpy rim of ``n`` points about a centre off their middle (or, ``flat``, points
+    on a box's faces) and a random ``down``: the rocker's test inputs."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(n, 3))
+    X /= np.linalg.norm(X, axis=1)[:, None]
+    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
+    if flat:
+        half, rows = np.array([1.0, 0.7, 0.4]), np.arange(len(X))
+        axis = rng.integers(0, 3, len(X))
+        X = rng.uniform(-1.0, 1.0, size=X.shape) * half
+        X[rows, axis] = np.where(rng.random(len(X)) < 0.5, -1.0, 1.0) * half[axis]
+        X += [0.05, -0.1, 0.1]
+    down = rng.normal(size=3)
+    return X, down / np.linalg.norm(down)
+
+
 @settings(max_examples=8, deadline=None)
 @given(st.integers(0, 10_000), st.floats(1e-5, 1e-1), st.booleans(), st.booleans())
 def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
@@ -176,18 +193,7 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     import plumbob.stability.rocking as rocking_module
     import plumbob.stability.sweep as sweep_module
 
-    rng = np.random.default_rng(seed)
-    X = rng.normal(size=(700, 3))  # a rim of some hundred points the filter must keep
-    X /= np.linalg.norm(X, axis=1)[:, None]
-    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
-    if flat:  # points on the faces of a box, snapped to them
-        half, rows = np.array([1.0, 0.7, 0.4]), np.arange(len(X))
-        axis = rng.integers(0, 3, len(X))
-        X = rng.uniform(-1.0, 1.0, size=X.shape) * half
-        X[rows, axis] = np.where(rng.random(len(X)) < 0.5, -1.0, 1.0) * half[axis]
-        X += [0.05, -0.1, 0.1]
-    down = rng.normal(size=3)
-    down /= np.linalg.norm(down)
+    X, down = _rocker_points(seed, flat)  # a rim of some hundred points to keep
     threshold = sweep_module.BINNED
     try:
         sweep_module.BINNED = 0 if binned else 10**9
@@ -219,23 +225,6 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     allowed = np.degrees(np.minimum(slack / np.maximum(np.sin(theta), 1e-300),
                                     np.sqrt(2 * slack)))
     assert np.all(np.abs(fast.tilts_deg - slow.tilts_deg) <= allowed)
-
-
-def _rocker_points(seed: int, flat: bool, n: int = 700) -> tuple[np.ndarray, np.ndarray]:
-    """A lumpy rim of ``n`` points about a centre off their middle (or, ``flat``, points
-    on a box's faces) and a random ``down``: the rocker's test inputs."""
-    rng = np.random.default_rng(seed)
-    X = rng.normal(size=(n, 3))
-    X /= np.linalg.norm(X, axis=1)[:, None]
-    X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.01
-    if flat:
-        half, rows = np.array([1.0, 0.7, 0.4]), np.arange(len(X))
-        axis = rng.integers(0, 3, len(X))
-        X = rng.uniform(-1.0, 1.0, size=X.shape) * half
-        X[rows, axis] = np.where(rng.random(len(X)) < 0.5, -1.0, 1.0) * half[axis]
-        X += [0.05, -0.1, 0.1]
-    down = rng.normal(size=3)
-    return X, down / np.linalg.norm(down)
 
 
 @settings(max_examples=12, deadline=None)
