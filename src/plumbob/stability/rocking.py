@@ -217,7 +217,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         nonlocal bound
         first = int(at[ways[0]])
         arc = alpha[first:stop]
-        some = _on_arcs(points, a, B[ways], arc, eps + 1e-9 * scale)
+        some = _on_arcs(points, down, a, B[ways], arc, eps + 1e-9 * scale)
         if first == 0 and len(ways) == K and len(some) >= sweeps.BINNED:
             pairs = _sweep_pairs(a[some], B[:, some], arc, eps, sweep_planes(directions))
         else:
@@ -247,11 +247,12 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
     return bound
 
 
-def _on_arcs(points: np.ndarray, a: np.ndarray, B: np.ndarray, arc: np.ndarray,
-             reach: float) -> np.ndarray:
+def _on_arcs(points: np.ndarray, down: np.ndarray, a: np.ndarray, B: np.ndarray,
+             arc: np.ndarray, reach: float) -> np.ndarray:
     """Indices of the points that can come within ``reach`` of the support along any
     of the arcs of contact directions ``cos α down + sin α direction`` (α in ``arc``,
-    a direction per row of ``B``: the points' coordinates along it; ``a`` along down).
+    a direction per row of ``B``: the points' coordinates along it; ``a`` along
+    ``down``).
 
     An arc of half-width A about its middle direction c lies in the cone of directions
     within A of c. If q is the support point of c, every direction u of the cone has
@@ -268,8 +269,9 @@ def _on_arcs(points: np.ndarray, a: np.ndarray, B: np.ndarray, arc: np.ndarray,
         half = float(arc[-1])
         top = int(np.argmax(a))
         depth = a - a[top]  # v·c ≤ 0
-        v = points - points[top]
-        side = np.sqrt(np.maximum(np.einsum("nd,nd->n", v, v) - depth * depth, 0.0))
+        # |v × c| from v's part across c, not from |v|² − (v·c)², which cancels near c
+        across = (points - points[top]) - depth[:, None] * down
+        side = np.sqrt(np.einsum("nd,nd->n", across, across))
         near = depth * np.cos(half) + side * np.sin(half) >= -reach
         return np.flatnonzero(near)
     mid = 0.5 * (arc[0] + arc[-1])
