@@ -178,10 +178,10 @@ def main(argv: list[str] | None = None) -> int:
     from .blockwise import blas_on_one_thread
     from .commands._notices import flush_notices
 
-    blas_on_one_thread()  # thin products: BLAS threads would only spin (blockwise.py)
     succeeded = False
     try:
         with _escaped_output(), _warnings_caught():
+            blas_on_one_thread()  # thin products: BLAS threads would only spin (blockwise.py)
             status = int(args.func(args) or 0)
         succeeded = True
         return status
