@@ -61,3 +61,23 @@ def test_poses_top_says_once_what_it_left_out(capsys):
     shown = sum(p["probability"] for p in result["poses"])
     assert shown + result["more"]["probability"] == pytest.approx(1.0, abs=1e-12)
     assert not any("more pose" in n for n in result.get("notes", []))
+
+
+@pytest.mark.parametrize("columns", ["40", "120", ""])
+def test_help_wraps_as_argparse_would(monkeypatch, columns):
+    """plumbob finds the terminal's width without importing shutil (a command's start-up):
+    the help it prints is argparse's own, at any width."""
+    import argparse
+
+    from plumbob.cli import build_parser
+
+    monkeypatch.setenv("COLUMNS", columns)
+    for name in ("poses", None):
+        top = build_parser(name)
+        parser = top._subcommand(name) if name else top
+        ours = parser.format_help()
+        monkeypatch.setattr(type(parser), "_get_formatter",
+                            argparse.ArgumentParser._get_formatter)
+        assert parser.format_help() == ours
+        monkeypatch.undo()
+        monkeypatch.setenv("COLUMNS", columns)

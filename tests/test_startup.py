@@ -28,7 +28,7 @@ from plumbob.bodies.primitives import box, pyramid
 
 #: Never needed by a command on a mesh: other commands' libraries, plots, the
 #: MuJoCo drops, the outline and quadrature code, numpy's masked arrays and series.
-NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy.ma",
+NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy.ma", "shutil",
          "numpy.polynomial", "tomllib", "difflib", "plumbob.stability.drops",
          "plumbob.bodies.region", "plumbob.bodies.tiling", "plumbob.bodies.containment",
          "plumbob.bodies.csg", "plumbob.integrals.polygon", "plumbob.integrals.cells",

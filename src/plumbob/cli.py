@@ -27,6 +27,21 @@ COMMANDS = ("mass", "check", "poses", "lift", "report", "materials", "simulate",
             "balance")
 
 
+def _columns() -> int:
+    """The terminal's width as ``shutil.get_terminal_size`` finds it: ``COLUMNS`` if set,
+    else standard output's terminal, else 80."""
+    try:
+        columns = int(os.environ.get("COLUMNS", "0"))
+    except ValueError:
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns if columns > 0 else 80
+
+
 class _Parser(argparse.ArgumentParser):
     # No option of plumbob looks like a negative number, so "-1,0,0", "-3.5" or "-inf"
     # after an option is its value (argparse would otherwise take it for an unknown
@@ -37,6 +52,12 @@ class _Parser(argparse.ArgumentParser):
         super().__init__(*args, **kwargs)
         if hasattr(self, "_negative_number_matcher"):
             self._negative_number_matcher = self._NEGATIVE_VALUE
+
+    def _get_formatter(self) -> argparse.HelpFormatter:
+        # The width argparse would take from shutil.get_terminal_size, found the same
+        # way without importing shutil (and with it bz2 and lzma): argparse makes a
+        # formatter for every option it adds, so every command paid for that import.
+        return self.formatter_class(prog=self.prog, width=_columns() - 2)
 
     def error(self, message: str) -> None:  # one line, status 2, no usage dump
         choice = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
