@@ -15,7 +15,9 @@ module it loads. All processes run with the same environment.
   ``trimesh.poses.compute_stable_poses`` on it;
 * **floor** — a process that only reads the file (numpy), welds it (an exact sort
   of the float32 coordinates) and takes its convex hull (manifold3d's quickhull, the
-  fastest hull measured here): what any pose method must at least do.
+  fastest hull measured here): what any pose method must at least do. It starts numpy's
+  OpenBLAS on one thread, as plumbob's command does (``plumbob.__main__``): neither uses
+  BLAS threads, and their start-up would otherwise cost the floor ~50 ms of CPU.
 
 It prints the ratios trimesh / plumbob and plumbob / floor, by wall time and by CPU
 time (user + system, which a process waiting for a core does not accrue: the measure a
@@ -61,7 +63,8 @@ print(len(probabilities))
 """
 
 FLOOR = """
-import sys
+import os, sys
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as plumbob's command starts numpy
 import numpy as np
 import manifold3d
 records = np.fromfile(sys.argv[1], dtype=[("n", "<f4", 3), ("t", "<f4", (3, 3)), ("a", "<u2")],

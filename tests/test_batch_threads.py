@@ -123,3 +123,42 @@ def test_a_command_runs_blas_on_one_thread_and_its_blocks_on_every_core(shapes_d
     assert report["status"] == 0 and report["plumbob"] == 3
     blas = [lib for lib in report["libraries"] if lib["user_api"] == "blas"]
     assert blas and all(lib["num_threads"] == 1 for lib in blas)
+
+
+START = """
+import json, os, sys
+from plumbob.__main__ import blas_starts_with_one_thread
+assert "numpy" not in sys.modules, "import plumbob loaded numpy before the command set it up"
+if sys.argv[1] == "command":
+    blas_starts_with_one_thread()
+import numpy, threadpoolctl
+report = {"tasks": len(os.listdir("/proc/self/task")),
+          "blas": [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
+                   if lib["user_api"] == "blas"]}
+with threadpoolctl.threadpool_limits(2):  # what --threads-per-job 2 asks of a worker
+    report["raised"] = [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
+                        if lib["user_api"] == "blas"]
+print(json.dumps(report))
+"""
+
+
+def _start(how: str, **env: str) -> dict:
+    base = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    out = subprocess.run([sys.executable, "-c", START, how], capture_output=True, text=True,
+                         timeout=120, env=dict(base, PYTHONPATH=os.path.join(ROOT, "src"), **env))
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task") or _cores() < 2,
+                    reason="counts the threads in /proc on a machine with 2 or more cores")
+def test_a_command_starts_openblas_without_its_threads():
+    """The command's process has numpy's OpenBLAS start on one thread, so no thread per
+    core is started (and spins) before the command's own limit reaches it; the control,
+    a program that imports plumbob, starts OpenBLAS's threads as numpy does. A worker that
+    inherits the setting can still be given more threads (``--threads-per-job``)."""
+    command, program = _start("command"), _start("program")
+    assert command["blas"] == [1] and command["tasks"] == 1
+    assert program["blas"][0] > 1 and program["tasks"] > 1
+    assert command["raised"] == [2]
+    assert _start("command", OPENBLAS_NUM_THREADS="2")["blas"] == [2]  # the user's own count

@@ -27,7 +27,7 @@ from __future__ import annotations
 from importlib import import_module
 from typing import Any
 
-from .units import SEED_GRAVITY
+from .gravity import SEED_GRAVITY
 from .version import __version__  # noqa: F401 (the release: plumbob/version.py)
 
 __all__ = [

@@ -3,7 +3,22 @@
 from __future__ import annotations
 
 import gc
+import os
 import sys
+
+
+def blas_starts_with_one_thread() -> None:
+    """Have numpy's OpenBLAS start with one thread, unless the environment names a count.
+
+    The command runs BLAS on one thread anyway (:func:`plumbob.blockwise.blas_on_one_thread`:
+    its products are thin), but OpenBLAS starts a thread per core when numpy loads, and
+    those threads spin before the limit reaches them: ~50 ms of processor time per
+    command on 2 cores, more on many, and in every worker of a ``batch`` pool (they
+    inherit the variable; ``--threads-per-job`` raises the count through threadpoolctl,
+    which OpenBLAS allows). Only the command does this, before numpy loads (``import
+    plumbob`` does not load it); a program that imports plumbob keeps its own setting.
+    """
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def entry() -> int:
@@ -15,6 +30,7 @@ def entry() -> int:
     is loaded is frozen (never scanned again) and the collector resumes before the
     command runs: long runs (``plumbob batch``) collect their cycles as usual.
     """
+    blas_starts_with_one_thread()
     gc.disable()
     try:
         from .cli import main

@@ -14,6 +14,7 @@ import re
 import numpy as np
 
 from .errors import ArgumentError, PlumbobError
+from .gravity import SEED_GRAVITY, STANDARD_GRAVITY
 
 __all__ = [
     "MAX_LENGTH",
@@ -34,10 +35,6 @@ __all__ = [
     "parse_length",
 ]
 
-#: m/s², the value of g the seed's worked answers use: the default wherever gravity enters
-#: (``--g`` and every ``g=`` argument), so those answers come out as the seed prints them
-SEED_GRAVITY = 9.81
-
 #: The largest length or coordinate a body may have, m. Mass properties multiply up to five
 #: lengths and a density (an inertia is ρ L⁵), which overflows double precision (1.8e308)
 #: from L ≈ 1e61 m; 1e50 m (some 10²³ times the observable universe) leaves room for the
@@ -54,9 +51,6 @@ overflow double precision (give lengths in other units)"
     """
     return (f"{what} {value:g} m is beyond plumbob's largest length, {MAX_LENGTH:g} m: its mass "
             "properties would overflow double precision (give lengths in other units)")
-#: m/s², standard gravity gₙ as defined (CGPM 1901, exact); pass it as ``g`` (``--g 9.80665``)
-#: for answers in the standard's terms
-STANDARD_GRAVITY = 9.80665
 
 #: metres per unit, for every length unit plumbob knows (px, pt, pc and q are CSS's)
 METRES_PER_UNIT: dict[str, float] = {
