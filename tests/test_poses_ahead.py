@@ -100,7 +100,7 @@ def test_runs_end_where_single_steps_end_anywhere(segments, tilt, turn, seed):
 
 def traced(X: np.ndarray, center: np.ndarray, ahead: bool) -> tuple[np.ndarray, int]:
     """Basin areas of the hull of ``X`` about ``center`` and the trace's loop steps, with
-    lone separatrices run ahead or not (strips and fans as they are)."""
+    the last few separatrices run ahead (Fans.climbs) or not (fans as they are)."""
     from plumbob.stability.poses import basins
 
     X = X - center
@@ -115,6 +115,7 @@ def traced(X: np.ndarray, center: np.ndarray, ahead: bool) -> tuple[np.ndarray, 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(basins, "step", counting)
         patch.setattr(basins, "_AHEAD_FEW", basins._AHEAD_FEW if ahead else -1)
+        patch.setattr(basins, "_STRIP_FEW", basins._STRIP_FEW if ahead else -1)
         found = basins.basins3(build_hull3(X, eps), eps, None)
     assert found is not None, "the exact trace failed"
     return found.area, len(calls)
@@ -124,7 +125,7 @@ def traced(X: np.ndarray, center: np.ndarray, ahead: bool) -> tuple[np.ndarray, 
                          ids=["lumpy blob", "box + tilted cylinder"])
 def test_lone_separatrices_run_ahead_to_the_same_areas(make):
     """One or two separatrices left: their crossings predicted in plain Python and checked
-    by the ordinary step (Fans.ahead_chain), the same basin areas to round-off."""
+    by the ordinary step (Fans.climbs), the same basin areas to round-off."""
     X, center = make()
     ahead, steps = traced(X, center, ahead=True)
     single, single_steps = traced(X, center, ahead=False)

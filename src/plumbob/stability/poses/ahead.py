@@ -16,13 +16,13 @@ only within the step's relaxed tolerance): the roller's loop takes those steps.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from .hull import Hull3
 
-__all__ = ["predict"]
+__all__ = ["Scalars", "climb", "predict", "scalars"]
 
 _THETA_EPS = 1e-12  # as rolling._THETA_EPS: intersections this close are the start's own arc
 _CORNER = 5e-19  # as rolling._CORNER: a crossing this close to an arc's end lands on its face
@@ -113,4 +113,96 @@ def predict(h: Hull3, eg3: Any, W: np.ndarray, far: np.ndarray, v: int, p: np.nd
         points.append([qx, qy, qz])
         v, exclude = int(eb[best]), int(und[best])
         px, py, pz = qx, qy, qz
+    return verts, edges, points
+
+
+class Scalars(NamedTuple):
+    """A hull's arrays as flat memoryviews: single entries read as Python numbers at list
+    speed, with nothing converted up front (``tolist`` of an egg's 600k edges would cost
+    more than the whole walk)."""
+
+    W: memoryview  # (3n,) unit directions of the points
+    N: memoryview  # (3F,) face normals
+    K: memoryview  # (3E,) arc poles
+    start: memoryview
+    degree: memoryview
+    ef: memoryview
+    eg: memoryview
+    eb: memoryview
+    und: memoryview
+    near: memoryview  # (E,) the arcs a walk may cross
+    ismax: memoryview  # (n,) the points a walk ends at
+
+
+def scalars(h: Hull3, eg3: Any, W: np.ndarray, near: np.ndarray, ismax: np.ndarray) -> Scalars:
+    """:class:`Scalars` of a hull ``h``, its edge geometry ``eg3``, the unit directions
+    ``W`` of its points, the arcs ``near`` a walk crosses and its maxima ``ismax``."""
+
+    def flat(a: np.ndarray) -> memoryview:
+        return memoryview(np.ascontiguousarray(a).reshape(-1))
+
+    return Scalars(flat(W), flat(h.normals), flat(eg3.pole), flat(h.start), flat(h.degree),
+                   flat(h.ef), flat(h.eg), flat(h.eb), flat(h.und), flat(near), flat(ismax))
+
+
+def climb(s: Scalars, v: int, px: float, py: float, pz: float, exclude: int, longest: int
+          ) -> tuple[list[int], list[int], list[float]]:
+    """Up to ``longest`` crossings of a separatrix traced uphill from the unit point ``p``
+    in the region of ``v``, having last crossed the undirected edge ``exclude``: the
+    vertices whose regions it crosses (``v`` first), the directed edge it leaves each by,
+    and the points where, flat (x, y, z per crossing).
+
+    The region of ``v`` is a convex spherical polygon and the trace runs on the great
+    circle from ``p`` toward ``w = W[v]``: that circle meets the boundary twice, at ``p``
+    and where it leaves, so the exit is the one arc (among ``near`` ones, other than
+    ``exclude``) whose ends lie on opposite sides of the circle's plane — a sign test of
+    ``(p × w)·n`` at its two faces' normals, no angle computed. The crossing point is the
+    projective map ``w (k·p) − p (k·w)`` of ``p`` (``k`` the arc's pole), signed to lie
+    ahead. The walk stops at a maximum (``ismax``, or ``w`` reached), where no arc or more
+    than one is straddled (a corner), and where the arc would be met beyond ``w``: what
+    the step decides there is the loop's (:func:`.rolling.step` checks every crossing
+    predicted here)."""
+    W, N, K, start, degree = s.W, s.N, s.K, s.start, s.degree
+    ef, eg, eb, und, near, ismax = s.ef, s.eg, s.eb, s.und, s.near, s.ismax
+    verts: list[int] = []
+    edges: list[int] = []
+    points: list[float] = []
+    for _ in range(longest):
+        if ismax[v]:
+            break
+        i = 3 * v
+        wx, wy, wz = W[i], W[i + 1], W[i + 2]
+        if wx * px + wy * py + wz * pz >= 1.0 - 1e-24:
+            break
+        cx, cy, cz = py * wz - pz * wy, pz * wx - px * wz, px * wy - py * wx  # p × w
+        found = -1
+        first = start[v]
+        for j in range(first, first + degree[v]):
+            if not near[j] or und[j] == exclude:
+                continue
+            f, g = 3 * ef[j], 3 * eg[j]
+            sf = cx * N[f] + cy * N[f + 1] + cz * N[f + 2]
+            sg = cx * N[g] + cy * N[g + 1] + cz * N[g + 2]
+            if (sf > 0.0 and sg < 0.0) or (sf < 0.0 and sg > 0.0):
+                if found >= 0:
+                    found = -2
+                    break
+                found = j
+        if found < 0:
+            break
+        k = 3 * found
+        kx, ky, kz = K[k], K[k + 1], K[k + 2]
+        kp = kx * px + ky * py + kz * pz
+        kw = kx * wx + ky * wy + kz * wz
+        if kp < 0.0:
+            kp, kw = -kp, -kw
+        if kw > 0.0 or kp == 0.0:  # met beyond w (or not at all): the trace's maximum first
+            break
+        qx, qy, qz = wx * kp - px * kw, wy * kp - py * kw, wz * kp - pz * kw
+        norm = math.sqrt(qx * qx + qy * qy + qz * qz)
+        px, py, pz = qx / norm, qy / norm, qz / norm
+        verts.append(v)
+        edges.append(found)
+        points += (px, py, pz)
+        v, exclude = eb[found], und[found]
     return verts, edges, points

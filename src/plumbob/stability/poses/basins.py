@@ -27,12 +27,11 @@ from .rolling import Edges3, Roller, edge_geometry, step
 __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 
 _AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
-_STRIP_AFTER = 32  # steps (at least) after which live traces also run along strips (:meth:`.Fans.strip`)
-_STRIP_TABLE = 64  # arcs predicted for about the cost of one step of the loop
-_STRIP_FEW = 16  # ... when no more traces than this are alive
-_STRIP_RETRY = 8  # steps before a trace whose strip run failed tries again
-_AHEAD_FEW = 2  # traces alive at most for runs ahead (:meth:`.Fans.ahead_chain`)
-_AHEAD_AFTER = 8  # steps (at least) after which they start
+_STRIP_AFTER = 32  # steps (at least) after which live traces also run ahead (:meth:`.Fans.climbs`)
+_STRIP_FEW = 32  # ... when no more traces than this are alive
+_STRIP_RETRY = 8  # steps before a trace whose run ahead failed tries again
+_AHEAD_FEW = 2  # ... and after fewer steps, when no more than this are alive
+_AHEAD_AFTER = 8  # steps (at least) after which those start
 _FLAT = 1e-12  # |t| below this: the centre's foot is at the edge's end (a balanced vertex)
 
 
@@ -83,7 +82,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     triangle from the left basin's face normal to the left basin and takes it from the
     right one, all summed in one pass at the end. Around a face of many corners the
     traces move in runs (:mod:`.fans`), one vectorised move per run; once the loop has
-    run long with few traces alive, along predicted strips of thin regions too.
+    run long with few traces alive, along crossings predicted in plain Python too.
 
     ``group`` (F,): per stable face, the face whose basin stands for its group (−1 for
     the others). Only the separatrices between groups are traced, each group's boundary
@@ -118,8 +117,6 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
     seg_trace, seg_from, seg_to = [], [], []  # the path segments, kept for the areas
     no_strip = np.full(len(v), -1, dtype=np.int64)  # the step a strip run may next start
-    # strips need a prediction per arc (one step over them all): worth it once that long
-    strip_after = max(_STRIP_AFTER, np.count_nonzero(near) // _STRIP_TABLE)
     alive = np.arange(len(v))
     ok = True
 
@@ -167,13 +164,12 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
                 no_fan[t] = face
                 continue
             take(t, moved)
-        few = count >= strip_after and len(d) <= _STRIP_FEW
+        few = count >= _STRIP_AFTER and len(d) <= _STRIP_FEW
         lone = count >= _AHEAD_AFTER and len(d) <= _AHEAD_FEW
         if few or lone:
-            # a few long traces, each step mostly overhead: along strips of thin regions, or
-            # (one or two alive) along crossings predicted in plain Python
-            for t in d[~runs & (no_strip[d] <= count)].tolist():
-                moved = fans.strip(int(v[t]), p[t], int(last[t]), few, lone)
+            # a few long traces, each step mostly overhead: their crossings predicted in
+            # plain Python, all checked by one step (strips of thin regions, lone traces)
+            for t, moved in fans.climbs(d[~runs & (no_strip[d] <= count)].tolist(), v, p, last):
                 if moved is None:
                     no_strip[t] = count + _STRIP_RETRY
                     continue
