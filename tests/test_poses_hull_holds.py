@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from plumbob.arrays import dot
 from plumbob.stability.poses import holds as holds_module
 from plumbob.stability.poses.convex import _manifold_hull, hull_mesh
-from plumbob.stability.poses.holds import _degree, degenerate, holds
+from plumbob.stability.poses.holds import _degree, _vertex_copies, degenerate, holds
 from plumbob.stability.poses.hull import build_hull3
 
 
@@ -102,3 +102,55 @@ def test_degenerate_marks_coplanar_neighbours_and_slivers():
     assert degenerate(hm.area, hm.beyond, hm.points, 1e-12)
     _, sphere, _ = _sphere_case(5, 200, 0)
     assert not degenerate(sphere.area, sphere.beyond, sphere.points, 1e-12)
+
+
+def _dense_cap(seed: int):
+    """A hull of 400 points on a unit sphere and 1500 packed into a cap of about 2° at its
+    pole (a tapered tip's many vertices in a small solid angle: one cube-map cell), and
+    300 points just inside triangles of the cap."""
+    rng = np.random.default_rng(seed)
+    cap = rng.normal(size=(1500, 3)) * [0.03, 0.03, 0] + [0, 0, 1]
+    S = np.vstack((rng.normal(size=(400, 3)), cap))
+    S /= np.sqrt(dot(S, S))[:, None]
+    hm = _manifold_hull(S, 1e-12)
+    in_cap = np.flatnonzero(hm.points[hm.tri].mean(axis=1)[:, 2] > 0.999)
+    t = rng.choice(in_cap, size=300)
+    w = rng.dirichlet(np.ones(3), size=300)
+    return S, hm, np.einsum("kc,kcd->kd", w, hm.points[hm.tri[t]]) * (1 - 1e-6)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_walks_start_at_the_nearest_vertex_of_a_crowded_cell(seed):
+    """Walks from the vertex nearest each point in direction end within 16 steps where
+    walks from any vertex of the crowded cell need up to 256 (the answer is the same)."""
+    S, hm, near = _dense_cap(seed)
+    X = np.vstack((S, near))
+    args = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins, hm.area, 1e-7
+    saved = holds_module.EXHAUSTIVE, holds_module.WALK_STEPS, holds_module.START_PAIRS
+    holds_module.EXHAUSTIVE, holds_module.WALK_STEPS = 0, 16
+    try:
+        assert _truth(X, hm, 1e-7)
+        assert holds(X, *args) is True
+        beyond = hm.points[hm.tri[-1]].mean(axis=0) + 1e-5 * hm.normals[-1]
+        assert holds(np.vstack((X, beyond)), *args) is False
+        holds_module.START_PAIRS = -1  # any vertex of the cell: walks too long to decide
+        assert holds(X, *args) is None
+    finally:
+        holds_module.EXHAUSTIVE, holds_module.WALK_STEPS, holds_module.START_PAIRS = saved
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 3000))
+def test_vertex_copies_are_the_rows_equal_to_a_vertex(seed, n):
+    """Every row of X equal to a row of P is found, through however many hash tables its
+    vertex had to go, and no other (a signed zero equals zero; a row one ulp off is
+    not a copy)."""
+    rng = np.random.default_rng(seed)
+    P = np.round(rng.normal(size=(n, 3)), 2)  # rounded: rows that share coordinates
+    P = P[np.unique(P, axis=0, return_index=True)[1]]
+    pick = rng.integers(len(P), size=2 * n)
+    X = np.vstack((P[pick], np.nextafter(P[pick[:n]], np.inf), -P[pick[:n]] * 0.0,
+                   np.round(rng.normal(size=(n, 3)), 2)))
+    X = X[rng.permutation(len(X))]
+    truth = {tuple(p) for p in P.tolist()}
+    assert _vertex_copies(X, P).tolist() == [tuple(x) in truth for x in X.tolist()]

@@ -26,12 +26,12 @@ points), every edge convex (the caller checked it), wound outward:
    lies in ``K`` (:func:`_vertex_copies`); so does one in the ball about ``o`` under
    every plane. The others, when few enough (points × planes), are compared with every
    plane; else, when at most :data:`WALKERS`, each is located (:func:`_walk`: from a
-   triangle at a vertex in the point's cell of a cube map of directions, across each
-   edge whose plane through ``o`` the point lies beyond — across an edge between two
-   planes this raises the gauge ``x · n / offset``, as the two triangles' ``n /
-   offset`` differ by a multiple of that plane's normal, so only flat edges let a walk
-   come back) and compared with its triangle's plane. Then ``K`` holds every input
-   point and is their hull.
+   triangle at the vertex nearest it in direction in its cell of a cube map of
+   directions, across each edge whose plane through ``o`` the point lies beyond —
+   across an edge between two planes this raises the gauge ``x · n / offset``, as the
+   two triangles' ``n / offset`` differ by a multiple of that plane's normal, so only
+   flat edges let a walk come back) and compared with its triangle's plane. Then
+   ``K`` holds every input point and is their hull.
 
 Round-off: a *sliver* (twice its area under :data:`SLIVER` of its longest side squared,
 its corners on one line to round-off) has no reliable plane; it stands in for the
@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...arrays import dot
+from ...arrays import cross, dot, expand, group_first, unit
 from ...tolerances import size_of
 
 __all__ = ["holds", "degenerate", "EXHAUSTIVE", "WALKERS"]
@@ -61,6 +61,9 @@ __all__ = ["holds", "degenerate", "EXHAUSTIVE", "WALKERS"]
 EXHAUSTIVE = 1 << 22
 #: the most points :func:`holds` locates by walks (:func:`_walk`)
 WALKERS = 1 << 13
+#: vertex-point pairs up to which :func:`_starts` compares every point with every vertex
+#: in its cube-map cell
+START_PAIRS = 1 << 20
 #: steps of a walk before :func:`holds` gives up
 WALK_STEPS = 256
 #: more points than this still walking, and nine in ten of those 32 steps before: the
@@ -111,7 +114,9 @@ def _degree(Pc: np.ndarray, tri: np.ndarray) -> int:
 def _vertex_copies(X: np.ndarray, P: np.ndarray) -> np.ndarray:
     """(n,) which rows of ``X`` are copies (equal coordinates) of rows of ``P``: hash
     tables of ``P``'s coordinate bits give each row of ``X`` candidates, compared exactly
-    (a row of ``P`` that lost its slot to another goes to the next table)."""
+    (a row of ``P`` that lost its slot to another goes to the next table, and only the
+    rows of ``X`` that met another row in such a slot look again: a copy of the loser
+    hashes to that slot and differs from its winner)."""
     def hashes(A: np.ndarray, salt: int) -> np.ndarray:
         b = np.ascontiguousarray(A, dtype=np.float64).view(np.uint64)
         h = b[:, 0] * np.uint64(0x9E3779B97F4A7C15 ^ salt)
@@ -124,21 +129,27 @@ def _vertex_copies(X: np.ndarray, P: np.ndarray) -> np.ndarray:
 
     found = np.zeros(len(X), dtype=bool)
     left = np.arange(len(P))
+    look = np.arange(len(X))
     for salt in range(4):
-        if not len(left):
+        if not (len(left) and len(look)):
             break
         bits = max(4, int(len(left)).bit_length() + 2)
         mask = np.uint64((1 << bits) - 1)
         slot = np.full(1 << bits, -1, dtype=np.int64)
         where = (hashes(P[left], salt) & mask).astype(np.intp)
         slot[where] = left
-        look = np.flatnonzero(~found)
-        j = slot[(hashes(X[look], salt) & mask).astype(np.intp)]
-        hit = j >= 0
-        look, j = look[hit], j[hit]
+        cell = (hashes(X[look] if salt else X, salt) & mask).astype(np.intp)
+        j = slot[cell]
+        hit = np.flatnonzero(j >= 0)
+        look, j, cell = look[hit], j[hit], cell[hit]
         Q, Z = P[j], X[look]
-        found[look[(Q[:, 0] == Z[:, 0]) & (Q[:, 1] == Z[:, 1]) & (Q[:, 2] == Z[:, 2])]] = True
-        left = left[slot[where] != left]  # lost their slot: the next table
+        same = (Q[:, 0] == Z[:, 0]) & (Q[:, 1] == Z[:, 1]) & (Q[:, 2] == Z[:, 2])
+        found[look[same]] = True
+        lost = slot[where] != left
+        shared = np.zeros(1 << bits, dtype=bool)
+        shared[where[lost]] = True  # slots a row of P lost: its copies met the winner
+        again = ~same & shared[cell]
+        left, look = left[lost], look[again]  # the next table
     return found
 
 
@@ -164,23 +175,52 @@ def _cell(u: np.ndarray, G: int) -> np.ndarray:
     return np.clip(np.floor((u + 1) * (0.5 * G)), 0, G - 1).astype(np.int64)
 
 
+def _starts(Pc: np.ndarray, tri: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """(k,) for each point of ``Y`` (relative to the interior point) a triangle to walk
+    from (:func:`_walk`): one at the vertex of ``Pc`` nearest it in direction among the
+    vertices in its cell of a cube map of directions (about 12 vertices a cell on
+    average, but hundreds where a tapered tip packs many vertices into a small solid
+    angle: a vertex picked at random there is a hundred steps away); at any vertex of
+    the cell when the cells of ``Y`` hold more than :data:`START_PAIRS` pairs, triangle
+    0 in a cell without vertices. Any start gives the same answer: only the walk's
+    length depends on it."""
+    G = int(np.clip(np.sqrt(len(Pc) / 12.0), 1, 1024))
+    face, u, v = _faces(Pc)
+    cell_p = (face * G + _cell(u, G)) * G + _cell(v, G)
+    face, u, v = _faces(Y)
+    cell_y = (face * G + _cell(u, G)) * G + _cell(v, G)
+    incident = np.full(len(Pc), -1, dtype=np.int64)
+    incident[tri.ravel()] = np.repeat(np.arange(len(tri)), 3)
+    wanted = np.zeros(6 * G * G, dtype=bool)
+    wanted[cell_y] = True
+    cand = np.flatnonzero(wanted[cell_p] & (incident >= 0))  # vertices in Y's cells
+    cand = cand[np.argsort(cell_p[cand], kind="stable")]
+    ranked = cell_p[cand]
+    first = np.searchsorted(ranked, cell_y)
+    count = np.searchsorted(ranked, cell_y, side="right") - first
+    t = np.zeros(len(Y), dtype=np.int64)  # a cell without a vertex: walk from anywhere
+    if int(count.sum()) > START_PAIRS:  # too many to compare: any vertex of the cell
+        some = count > 0
+        t[some] = incident[cand[first[some]]]
+        return t
+    row, item = expand(count, first)
+    closeness = dot(Y[row], unit(Pc[cand[item]]))  # |y| cos(angle): largest nearest
+    best = group_first(row, -closeness, len(Y))
+    some = best >= 0
+    t[some] = incident[cand[item[best[some]]]]
+    return t
+
+
 def _walk(Pc: np.ndarray, tri: np.ndarray, stand: np.ndarray, tn: np.ndarray,
           off: np.ndarray, twins: np.ndarray, Y: np.ndarray, tol: float) -> bool | None:
     """Whether every point of ``Y`` (relative to the interior point) lies at most ``tol``
     above the plane of (the stand-in of) the triangle whose cone holds it, found by
-    walking from a triangle at a vertex in the same cube-map cell across each edge the
-    point lies beyond (the most); None when some walk has not ended after
-    :data:`WALK_STEPS` steps, or the walks stall (:data:`STALLED`): only flat edges let
-    a walk come back, but walks around a vertex of many triangles are long."""
-    G = int(np.clip(np.sqrt(len(Pc) / 12.0), 1, 1024))
-    face, u, v = _faces(Pc)
-    table = np.full(6 * G * G, -1, dtype=np.int64)
-    incident = np.empty(len(Pc), dtype=np.int64)
-    incident[tri.ravel()] = np.repeat(np.arange(len(tri)), 3)
-    table[(face * G + _cell(u, G)) * G + _cell(v, G)] = incident
-    face, u, v = _faces(Y)
-    t = table[(face * G + _cell(u, G)) * G + _cell(v, G)]
-    t[t < 0] = 0  # a cell without a vertex: walk from anywhere
+    walking from a triangle at the vertex nearest it in direction among those in its
+    cube-map cell (:func:`_starts`) across each edge the point lies beyond (the most);
+    None when some walk has not ended after :data:`WALK_STEPS` steps, or the walks stall
+    (:data:`STALLED`): only flat edges let a walk come back, but walks around a vertex
+    of many triangles are long."""
+    t = _starts(Pc, tri, Y)
     allow = CONE_ROUND_OFF * float(dot(Pc, Pc).max()) * np.sqrt(dot(Y, Y))
     act = np.arange(len(Y))
     before = len(act)
@@ -191,8 +231,7 @@ def _walk(Pc: np.ndarray, tri: np.ndarray, stand: np.ndarray, tn: np.ndarray,
             before = len(act)
         C = Pc[tri[t]]
         y = Y[act]
-        s = np.stack([dot(np.cross(C[:, k], C[:, (k + 1) % 3]), y) for k in range(3)],
-                     axis=1)
+        s = np.stack([dot(cross(C[:, k], C[:, (k + 1) % 3]), y) for k in range(3)], axis=1)
         k = np.argmin(s, axis=1)
         done = np.take_along_axis(s, k[:, None], axis=1)[:, 0] >= -allow[act]
         if done.any():
