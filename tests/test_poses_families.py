@@ -227,23 +227,46 @@ def test_the_rockers_candidate_filter_drops_nothing(seed, eps, flat, binned):
     assert np.all(np.abs(fast.tilts_deg - slow.tilts_deg) <= allowed)
 
 
-@settings(max_examples=12, deadline=None)
-@given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(), st.booleans(),
-       st.sampled_from([np.inf, np.nan, 3.0, 15.0]))
-def test_the_least_tilt_is_the_whole_sweeps(seed, eps, flat, binned, cap):
-    """least_tilt() sweeps a way only while it can still lower the least tilt, and only
-    the points that can reach the support on its arcs: min(cap, the whole sweep's least
-    tilt) all the same, whichever filter sweeps the first angles."""
-    import plumbob.stability.rocking as rocking_module
-    import plumbob.stability.sweep as sweep_module
+@settings(max_examples=8, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(), st.integers(0, 600),
+       st.floats(0.05, 2.0))
+def test_each_ways_own_candidates_give_every_ways_pairs(seed, eps, flat, first, width):
+    """candidate_pairs() with each way its own candidates (those its cone keeps, and
+    some others) finds, at every angle of an arc, the contact interval_pairs() finds
+    from every point for every way: the same points within eps of the support, summed
+    in the same order (so the same θ, to the bit)."""
+    from plumbob.stability.rocking import _contact_angles, _directions, _on_arcs
+    from plumbob.stability.sweep import candidate_pairs, interval_pairs
 
     X, down = _rocker_points(seed, flat)
-    threshold = sweep_module.BINNED
-    try:
-        sweep_module.BINNED = 0 if binned else 10**9
-        fast = rocking_module.least_tilt(X, down, eps, cap_deg=cap)
-    finally:
-        sweep_module.BINNED = threshold
+    rng = np.random.default_rng(seed)
+    directions = _directions(down, 5)
+    stop = min(720, first + 2 + int(width / 0.25))  # two angles at least, as swept
+    arc = np.radians(np.arange(0.0, 180.0, 0.25))[first:stop]
+    a, B = X @ down, directions @ X.T
+    keep = _on_arcs(a, B, arc, eps + 1e-9 * float(np.abs(X).max()))
+    keep |= rng.random(keep.shape) < 0.05  # candidates beyond a way's cone change nothing
+    way, point = np.nonzero(keep)
+    cuts = np.searchsorted(way, np.arange(len(directions) + 1))
+    own = candidate_pairs(a[point], B[way, point], cuts, point, arc, eps)
+    every = interval_pairs(a, B, arc, eps)
+    _, theta_own = _contact_angles(X, down, directions, arc, eps, own)
+    _, theta_every = _contact_angles(X, down, directions, arc, eps, every)
+    assert np.array_equal(theta_own, theta_every)
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(),
+       st.sampled_from([np.inf, np.nan, 0.5, 1.5, 3.0, 15.0]))
+def test_the_least_tilt_is_the_whole_sweeps(seed, eps, flat, cap):
+    """least_tilt() sweeps a way only while it can still lower the least tilt, and only
+    the points that can reach the support on its arcs (each way's own candidates,
+    within one cone about down for many ways): min(cap, the whole sweep's least tilt)
+    all the same, under a low cap (fewer first angles) or none."""
+    import plumbob.stability.rocking as rocking_module
+
+    X, down = _rocker_points(seed, flat)
+    fast = rocking_module.least_tilt(X, down, eps, cap_deg=cap)
     whole = rocking_module.rocking(X, down, eps)
     expected = min(float(whole.tilts_deg.min()), cap)  # a NaN cap: no cap, as min() reads it
     # The same points reach the support at every angle swept; the contact's mean may be

@@ -22,8 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import sweep as sweeps
-from .sweep import interval_pairs, sweep_planes
+from .sweep import candidate_pairs, sweep_planes
 from .sweep import sweep_pairs as _sweep_pairs
 
 __all__ = ["Rocking", "least_tilt", "rocking"]
@@ -98,13 +97,19 @@ def _directions(down: np.ndarray, azimuths: int) -> np.ndarray:
     """The ways the contact direction is turned: ``azimuths`` unit vectors perpendicular
     to ``down`` (3D), or the two of a plane."""
     if len(down) == 3:
-        helper = np.eye(3)[np.argmin(np.abs(down))]
-        t1 = np.cross(down, helper)
-        t1 /= np.linalg.norm(t1)
-        t2 = np.cross(down, t1)
+        t1, t2 = _across(down)
         phi = 2 * np.pi * np.arange(azimuths) / azimuths
         return np.cos(phi)[:, None] * t1 + np.sin(phi)[:, None] * t2
     return np.array([[-down[1], down[0]], [down[1], -down[0]]])
+
+
+def _across(down: np.ndarray) -> np.ndarray:
+    """Two orthonormal directions (2, 3) perpendicular to ``down`` (unit, 3D): the
+    ways' directions are combinations of them."""
+    helper = np.eye(3)[np.argmin(np.abs(down))]
+    t1 = np.cross(down, helper)
+    t1 /= np.linalg.norm(t1)
+    return np.stack((t1, np.cross(down, t1)))
 
 
 def _angles() -> np.ndarray:
@@ -180,6 +185,7 @@ def _ends(theta: np.ndarray, alpha: np.ndarray, before: np.ndarray
 
 
 _FIRST = 64  # angles every way is swept through before the least tilt is sought
+_FIRST_UNDER_A_LOW_CAP = (2.0, 16)  # or, where the cap is below 2°, through these
 _LEAST_BLOCK = 128  # angles the way of least peak is swept on by, at a time
 _BLOCK = 64  # and the others
 
@@ -193,19 +199,37 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
     A way's tilt is the peak of its θ up to where its branch ends, so its peak so far
     is a lower bound of it: once that reaches the least tilt found yet (or
     ``cap_deg``), the way cannot lower the answer and is swept no further. Every way is
-    swept through the first :data:`_FIRST` angles; then, over and over, the way of
+    swept through the first :data:`_FIRST` angles (fewer under a low cap, where
+    most often every way's peak passes the cap within a few degrees, and those few
+    degrees' cone holds a few points); then, over and over, the way of
     least peak is swept on to its end (most often near the least tilt) or until its
     peak passes the least tilt so far, and the other ways still below it by a block.
     Each sweep takes only the points that can come within ``eps`` of the support on
-    its arcs (:func:`_on_arcs`). The angles a way is swept through give the θ the whole
-    sweep gives there (the same points reach the support; the contact's sum may be
-    taken in another order: round-off), so the answer is the whole sweep's.
+    each way's arc (:func:`_on_arcs`; for many ways at once, among those that can on
+    the one cone about down that holds their arcs, :func:`_near_down`), each way its
+    own (:func:`~plumbob.stability.sweep.candidate_pairs`). The angles a way is swept
+    through give the θ the whole sweep gives there (the same points reach the
+    support; the contact's sum may be taken in another order: round-off), so the
+    answer is the whole sweep's.
     """
     down = np.asarray(down, dtype=float)
     directions = _directions(down, azimuths)
     alpha = _angles()
     K, m = len(directions), len(alpha)
-    a, B = points @ down, directions @ points.T
+    a = points @ down
+    # The points' coordinates across down (a basis of the ways' directions): the cone
+    # about down measures distances across it from these. Along a way, every point's
+    # (a row of B) is computed once that way is swept alone or with one other.
+    across = points @ _across(down).T if len(down) == 3 else None
+    B = np.empty((K, len(points)))
+    has_row = np.zeros(K, dtype=bool)
+
+    def rows(ways: np.ndarray) -> np.ndarray:
+        new = ways[~has_row[ways]]
+        if len(new):
+            B[new], has_row[new] = directions[new] @ points.T, True
+        return B[ways]
+
     scale = float(np.max(np.abs(points))) if len(points) else 0.0
     bound = float(cap_deg) if cap_deg < np.inf else np.inf  # NaN: no cap
     peak = np.full(K, -np.inf)
@@ -217,12 +241,19 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         nonlocal bound
         first = int(at[ways[0]])
         arc = alpha[first:stop]
-        some = _on_arcs(points, down, a, B[ways], arc, eps + 1e-9 * scale)
-        if first == 0 and len(ways) == K and len(some) >= sweeps.BINNED:
-            pairs = _sweep_pairs(a[some], B[:, some], arc, eps, sweep_planes(directions))
+        reach = eps + 1e-9 * scale
+        if len(ways) > 2 and across is not None:
+            # the ways' arcs all lie in one cone about down: one pass over the points (in
+            # space) keeps those that can reach the support there, each way's cone then
+            # looks at those alone
+            some = _near_down(a, across, float(arc[-1]), reach)
+            a_ways, B_ways = a[some], directions[ways] @ points[some].T
         else:
-            pairs = interval_pairs(a[some], B[ways][:, some], arc, eps)
-        pairs = [(i, some[j]) for i, j in pairs]
+            some, a_ways, B_ways = None, a, rows(ways)
+        way, point = np.nonzero(_on_arcs(a_ways, B_ways, arc, reach))
+        cuts = np.searchsorted(way, np.arange(len(ways) + 1))
+        pairs = candidate_pairs(a_ways[point], B_ways[way, point], cuts,
+                                point if some is None else some[point], arc, eps)
         _, theta = _contact_angles(points, down, directions[ways], arc, eps, pairs)
         running, end, tilt = _ends(theta, arc, peak[ways])
         peak[ways], at[ways] = running[:, -1], stop
@@ -236,7 +267,8 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
     def live() -> np.ndarray:
         return np.flatnonzero(~ended & ~(np.degrees(peak) >= bound))
 
-    sweep(np.arange(K), min(_FIRST, m))
+    low, few = _FIRST_UNDER_A_LOW_CAP
+    sweep(np.arange(K), min(few if bound < low else _FIRST, m))
     while len(ways := live()):
         least = ways[np.argmin(peak[ways])]
         while not ended[least] and not np.degrees(peak[least]) >= bound:
@@ -247,11 +279,10 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
     return bound
 
 
-def _on_arcs(points: np.ndarray, down: np.ndarray, a: np.ndarray, B: np.ndarray,
-             arc: np.ndarray, reach: float) -> np.ndarray:
-    """Indices of the points that can come within ``reach`` of the support along any
-    of the arcs of contact directions ``cos α down + sin α direction`` (α in ``arc``,
-    a direction per row of ``B``: the points' coordinates along it; ``a`` along
+def _on_arcs(a: np.ndarray, B: np.ndarray, arc: np.ndarray, reach: float) -> np.ndarray:
+    """Which points (ways, n) can come within ``reach`` of the support along each way's
+    arc of contact directions ``cos α down + sin α direction`` (α in ``arc``, a
+    direction per row of ``B``: the points' coordinates along it; ``a`` along
     ``down``).
 
     An arc of half-width A about its middle direction c lies in the cone of directions
@@ -262,18 +293,8 @@ def _on_arcs(points: np.ndarray, down: np.ndarray, a: np.ndarray, B: np.ndarray,
     every direction passes the test, and on a smooth surface few others do. An arc's
     directions lie in its way's plane, where u·v is u·v' with v' the part of v in the
     plane: the test holds with |v' × c|, no more than |v × c|, one coordinate of v'.
-    Arcs that all start at down lie in one cone about down as wide as the longest (one
-    test for all the ways, in space, where a cone each costs a pass over the points
-    each)."""
-    if arc[0] == 0.0 and len(B) > 2:  # arcs from down, many: one cone about down
-        half = float(arc[-1])
-        top = int(np.argmax(a))
-        depth = a - a[top]  # v·c ≤ 0
-        # |v × c| from v's part across c, not from |v|² − (v·c)², which cancels near c
-        across = (points - points[top]) - depth[:, None] * down
-        side = np.sqrt(np.einsum("nd,nd->n", across, across))
-        near = depth * np.cos(half) + side * np.sin(half) >= -reach
-        return np.flatnonzero(near)
+    Arcs that all start at down, many, lie in one cone about down instead
+    (:func:`_near_down`)."""
     mid = 0.5 * (arc[0] + arc[-1])
     half = 0.5 * (arc[-1] - arc[0])
     along = np.cos(mid) * a + np.sin(mid) * B  # (ways, n): each point along each c
@@ -282,5 +303,17 @@ def _on_arcs(points: np.ndarray, down: np.ndarray, a: np.ndarray, B: np.ndarray,
     rows = np.arange(len(B))
     depth = along - along[rows, top][:, None]  # v·c ≤ 0
     side = np.abs(across - across[rows, top][:, None])  # |v' × c|
-    near = depth * np.cos(half) + side * np.sin(half) >= -reach
-    return np.flatnonzero(near.any(axis=0))
+    return depth * np.cos(half) + side * np.sin(half) >= -reach
+
+
+def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float) -> np.ndarray:
+    """Indices of the points that can come within ``reach`` of the support for some
+    direction within ``half`` (radians) of down: :func:`_on_arcs`'s test for the one
+    cone about down that holds every way's arc from it (one test for all the ways, in
+    space, where a cone each costs a pass over the points each). ``a``: the points'
+    coordinates along down; ``across`` (n, 2): along two orthonormal directions across
+    it, from which |v × c| is taken (not from |v|² − (v·c)², which cancels near c)."""
+    top = int(np.argmax(a))
+    depth = a - a[top]  # v·c ≤ 0
+    side = np.hypot(across[:, 0] - across[top, 0], across[:, 1] - across[top, 1])
+    return np.flatnonzero(depth * np.cos(half) + side * np.sin(half) >= -reach)

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..arrays import expand
 
-__all__ = ["BINNED", "group_max", "interval_pairs", "sweep_pairs", "sweep_planes"]
+__all__ = ["BINNED", "candidate_pairs", "group_max", "interval_pairs", "sweep_pairs", "sweep_planes"]
 
 _LEVELS = (64, 8)  # angle steps per interval in the exact filter's two passes
 
@@ -66,11 +66,23 @@ def _keep(a: np.ndarray, b: np.ndarray, polar: tuple[np.ndarray, np.ndarray],
 
 
 def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
-                    ) -> list[tuple[np.ndarray, np.ndarray]]:
+                   ) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per row ``b`` of ``B`` (K, n): (angle index, point index) pairs holding, at every
     angle of the sweep, every point whose reach ``a cos α + b sin α`` comes within
     ``eps`` of the support there (the points projected to ``(a, b)`` in the plane of
-    the sweep).
+    the sweep): :func:`candidate_pairs` with every point a candidate of every row."""
+    K, n = B.shape
+    return candidate_pairs(np.tile(a, K), B.ravel(), np.arange(K + 1) * n,
+                           np.tile(np.arange(n), K), alpha, eps)
+
+
+def candidate_pairs(a: np.ndarray, b: np.ndarray, bounds: np.ndarray, point: np.ndarray,
+                    alpha: np.ndarray, eps: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per direction q, from its candidates ``a[bounds[q]:bounds[q + 1]]``,
+    ``b[…]`` (the points ``point[…]``, which must hold every point that supports
+    somewhere on the sweep, each once): (angle index, point) pairs holding, at every
+    angle of the sweep, every candidate whose reach ``a cos α + b sin α`` comes within
+    ``eps`` of the support there. Each direction has at least one candidate.
 
     Exact (no pair that matters is dropped): a fixed point's reach is a sinusoid, whose
     extremes over an interval of angles are at its ends or its crest (trough) inside
@@ -79,13 +91,12 @@ def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
     pairs the last one kept: on a smooth surface an interval's own candidates are the
     few points near the part of the rim it sweeps, where one candidate list for the
     whole sweep would hold the whole rim at every angle. Every direction's sweep runs
-    in the same passes (direction q's point j is point ``q n + j`` of one flat array,
-    its intervals are intervals ``q I …``), each direction's pairs in the order of its
-    own sweep.
+    in the same passes (its candidates are a run of one flat array, its intervals are
+    intervals ``q I …``), each direction's pairs in the order of its own sweep, at each
+    angle in the order of its candidates (so a sum over them is taken in that order).
     """
-    K, n = B.shape
-    m = len(alpha)
-    a, b = np.tile(a, K), B.ravel()
+    K, m = len(bounds) - 1, len(alpha)
+    owner = np.repeat(np.arange(K), np.diff(bounds))
     r, crest = np.hypot(a, b), np.mod(np.arctan2(b, a), 2 * np.pi)
     # the first pass over every point at once: the reach at each interval's two ends
     lo, hi = _intervals(m, _LEVELS[0])
@@ -97,17 +108,20 @@ def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
     inside[crest == ends[-1]] = count - 1
     has = np.flatnonzero((inside >= 0) & (inside < count))
     best[inside[has], has] = r[has]
-    # the support at each interval's start, per direction, and the least it reaches
-    start = reach[:-1].reshape(count, K, n)
-    s = np.argmax(start, axis=2) + np.arange(K) * n  # (intervals, K), flat point ids
+    # the support at each interval's start, per direction (its first candidate of
+    # greatest reach: flat ids), and the least it reaches
+    start = reach[:-1]
+    top = np.maximum.reduceat(start, bounds[:-1], axis=1)  # (intervals, K)
+    first = np.where(start == top[:, owner], np.arange(len(a)), len(a))
+    s = np.minimum.reduceat(first, bounds[:-1], axis=1)
     rows = np.arange(count)[:, None]
     worst = np.minimum(reach[:-1][rows, s], reach[1:][rows, s])
     trough = np.mod(crest[s] + np.pi, 2 * np.pi)
     in_lo = (trough >= alpha[lo][:, None]) & (trough <= alpha[hi][:, None])
     worst = np.where(in_lo, -r[s], worst)
-    near = best.reshape(count, K, n) >= (worst - eps)[:, :, None]
-    q, k, j = np.nonzero(near.transpose(1, 0, 2))  # each direction's pairs together
-    j += q * n
+    near = best >= (worst - eps)[:, owner]
+    j, k = np.nonzero(near.T)  # each direction's pairs together (its candidates are a run)
+    q = owner[j]
     for level, coarse in enumerate(_LEVELS[1:], start=1):
         # each kept interval's pairs, split into the finer intervals inside it
         per = _LEVELS[level - 1] // coarse
@@ -121,9 +135,9 @@ def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
         k, j, q = k[keep], j[keep], q[keep]
     stop = np.where(k == len(lo) - 1, m, hi[k])  # the last interval holds the last angle
     span = stop - lo[k]
-    angle, point = _expand(lo[k], span), np.repeat(j - q * n, span)
-    bounds = np.searchsorted(np.repeat(q, span), np.arange(K + 1))
-    return [(angle[bounds[d]:bounds[d + 1]], point[bounds[d]:bounds[d + 1]]) for d in range(K)]
+    angle, points = _expand(lo[k], span), np.repeat(point[j], span)
+    cuts = np.searchsorted(np.repeat(q, span), np.arange(K + 1))
+    return [(angle[cuts[d]:cuts[d + 1]], points[cuts[d]:cuts[d + 1]]) for d in range(K)]
 
 
 BINNED = 5_000  # from this many points on, the crest-angle bins' filter
