@@ -294,7 +294,7 @@ def test_edge_geometry_is_the_plain_formulas(seed, grid):
     mine_after, mine_before = arc_sides(h, e.pole, np.arange(len(h.ea)))
     for mine, plain in [(e.t, t), (e.pole, pole), (e.saddle, saddle), (mine_after, after_f),
                         (mine_before, before_g), (e.inset, inset), (e.tip_distance, tip),
-                        (e.along, tau * L), (e.saddles, rows), (e.spoint, s[rows]),
+                        (e.along, tau * L), (e.length, L), (e.saddles, rows), (e.spoint, s[rows]),
                         (e.sheight, height[rows]), (e.toward_f, cross(s, pole)[rows])]:
         assert np.array_equal(mine, plain)
 

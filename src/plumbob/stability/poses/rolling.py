@@ -54,6 +54,7 @@ class Edges3(NamedTuple):
     inset: np.ndarray  # (E,) how far the foot of c on face F lies inside this edge, m
     tip_distance: np.ndarray  # (E,) from that foot to the nearest point of the edge, m
     along: np.ndarray  # (E,) that nearest point, as a distance from a, m
+    length: np.ndarray  # (E,) the edge's length, m
     saddles: np.ndarray  # (S,) the directed edges holding a saddle, ascending
     spoint: np.ndarray  # (S, 3) unit direction from c square to the edge line
     sheight: np.ndarray  # (S,) |c to the edge line|, m
@@ -115,10 +116,19 @@ def edge_geometry(h: Hull3) -> Edges3:
         t /= L2  # -(A·D) / |D|²
         L = np.sqrt(L2)
         pole = D / L[:, None]
-        s, _ = _foot_direction(A, D, t)
+        # a saddle needs the foot strictly inside the edge (a few % of a smooth hull's
+        # edges): the arc test only for those rows, the same numbers row by row
+        inside = np.flatnonzero((t > 0) & (t < 1))
+        saddle = np.zeros(len(t), dtype=bool)
+        if len(inside):
+            s, _ = _foot_direction(np.take(A, inside, axis=0), np.take(D, inside, axis=0),
+                                   np.take(t, inside))
+            edges = np.arange(r.start, r.stop)[inside]
+            after_f, before_g = _sides(np.take(pole, inside, axis=0),
+                                       np.take(N, np.take(ef, edges), axis=0),
+                                       np.take(N, np.take(eg, edges), axis=0))
+            saddle[inside] = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
         n = np.take(N, ef[r], axis=0)
-        after_f, before_g = _sides(pole, n, np.take(N, eg[r], axis=0))
-        saddle = (t > 0) & (t < 1) & (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
         # the centre's foot on face F: how far inside this edge, and its nearest point
         foot = np.take(H, ef[r])[:, None] * n
         rel = foot - A
@@ -128,16 +138,16 @@ def edge_geometry(h: Hull3) -> Edges3:
         off += A
         off -= foot  # A + tau D − foot
         tip_distance = np.sqrt(dot(off, off))  # = np.linalg.norm(off, axis=1), bit for bit
-        return pole, t, saddle, inset, tip_distance, tau * L
+        return pole, t, saddle, inset, tip_distance, tau * L, L
 
-    pole, t, saddle, inset, tip, along = blockwise(len(ea), rows)
+    pole, t, saddle, inset, tip, along, length = blockwise(len(ea), rows)
     saddles = np.flatnonzero(saddle)
     A = np.take(X, np.take(ea, saddles), axis=0)
     D = np.take(X, np.take(eb, saddles), axis=0)
     D -= A
     s, height = _foot_direction(A, D, np.take(t, saddles))
     toward_f = cross(s, np.take(pole, saddles, axis=0))
-    return Edges3(pole, t, saddle, inset, tip, along, saddles, s, height, toward_f)
+    return Edges3(pole, t, saddle, inset, tip, along, length, saddles, s, height, toward_f)
 
 
 def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.ndarray,
@@ -239,10 +249,9 @@ class Roller:
         tip = group_first(h.ef, eg3.tip_distance, nF)
         self.tip_edge = tip
         along = eg3.along[tip]
-        D = np.take(h.X, np.take(h.eb, tip), axis=0) - np.take(h.X, np.take(h.ea, tip), axis=0)
-        length = np.sqrt(dot(D, D))
+        length = eg3.length[tip]
         self.pivots = ~self.stable & ~((along > tol) & (along < length - tol))
-        self.pivot_vertex = np.where(along <= tol, h.ea[tip], h.eb[tip])
+        self._tip_at_a = along <= tol  # a pivot's corner: the tip edge's start, else its end
         # rolls over edges chain faces: jump along them to a stable face or a pivot
         over = np.where(self.stable | self.pivots, np.arange(nF), h.eg[tip])
         for _ in range(64):
@@ -254,6 +263,12 @@ class Roller:
             raise StabilityError("the resting poses could not be resolved: rolling over "
                                  "edges never ends (a degenerate hull?)")
         self.lands = over
+
+    def pivot_vertex(self, faces: np.ndarray) -> np.ndarray:
+        """The corner each of the pivoting ``faces`` tips over (the end of its tip edge
+        nearest the centre's foot)."""
+        tip = self.tip_edge[faces]
+        return np.where(self._tip_at_a[faces], self.h.ea[tip], self.h.eb[tip])
 
     def roll(self, face: np.ndarray | None = None, vertex: np.ndarray | None = None,
              point: np.ndarray | None = None) -> np.ndarray:
@@ -291,7 +306,7 @@ class Roller:
                 result[at_face[done]] = f[done]
                 alive[at_face[done]] = False
                 piv, f = at_face[~done], f[~done]  # over a corner: pivot about it
-                v[piv] = self.pivot_vertex[f]
+                v[piv] = self.pivot_vertex(f)
                 p[piv] = h.normals[f]
                 start_face[piv] = f
                 exclude[piv] = -1
