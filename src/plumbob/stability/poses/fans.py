@@ -132,7 +132,7 @@ class Fans:
         at a time while every one is taken. Per trace, what :meth:`advance` returns."""
         h, eg3, W = self.h, self.eg3, self.W
         if self._scalars is None:
-            self._scalars = scalars(h, eg3, W, self.near, self.ismax)
+            self._scalars = scalars(h, eg3, W, self.near)
         sc = self._scalars
         paths: dict[int, list[np.ndarray]] = {t: [p[t][None, :]] for t in traces}
         at = {t: (int(v[t]), int(last[t]), p[t]) for t in traces}

@@ -22,7 +22,7 @@ import numpy as np
 from ...arrays import cross, dot, expand, group_first, unique, unit
 from ...blockwise import blockwise
 from ...errors import StabilityError
-from .ahead import predict
+from .ahead import Scalars, descend, scalars
 from .hull import Hull3
 
 __all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step", "Roller"]
@@ -31,7 +31,7 @@ _THETA_EPS = 1e-12  # rad: intersections closer than this to a trace's start are
 _RELAXED = 1e-4  # how far outside an arc (sine of the angle) a trace may still cross it
 _CORNER = 5e-19  # 1 − cos of the angle (1e-9 rad) within which a roll is at an arc's end
 _RUN_AFTER = 4  # loop steps after which rolls in regions also run ahead (:meth:`Roller.ahead`)
-_RUN_FEW = 8  # ... when no more rolls than this are in regions
+_RUN_FEW = 32  # ... when no more rolls than this are in regions
 _RUN_FIRST = 32  # crossings predicted in a first run; each further one is 4× longer
 _RUN_LONGEST = 2048  # crossings predicted in one run at most
 _RUN_RETRY = 8  # loop steps before a roll whose run failed tries again
@@ -245,6 +245,7 @@ class Roller:
         np.minimum.at(self.margin, h.ef, eg3.inset)
         self.stable = self.margin > tol
         self._memo = np.where(self.stable, np.arange(nF), -1)  # sinks found so far
+        self._scalars: Scalars | None = None  # for runs ahead (:meth:`ahead`)
         # an unstable face tips over the point of its boundary nearest the foot
         tip = group_first(h.ef, eg3.tip_distance, nF)
         self.tip_edge = tip
@@ -354,8 +355,8 @@ class Roller:
             start_face[rolling[~lost]] = -1
             if count >= _RUN_AFTER and len(rolling) <= _RUN_FEW:
                 # a few long rolls, each step mostly overhead: run them ahead
-                for t in cr[no_run[cr] <= count].tolist():
-                    moved = self.ahead(int(v[t]), p[t], int(exclude[t]), far)
+                for t, moved in self.ahead(cr[no_run[cr] <= count].tolist(), v, p, exclude,
+                                           far):
                     if moved is None:
                         no_run[t] = count + _RUN_RETRY
                         continue
@@ -363,43 +364,66 @@ class Roller:
         raise StabilityError("the resting poses could not be resolved: a roll never ends "
                              "(a degenerate hull?)")
 
-    def ahead(self, v: int, p: np.ndarray, exclude: int, far: np.ndarray
-              ) -> tuple[int, np.ndarray, int] | None:
-        """A roll in the region of ``v`` at ``p`` (having last crossed the undirected edge
-        ``exclude``; ``far``: the arcs a roll may cross) run on across regions for as long
-        as :func:`step` agrees with the crossings :func:`.ahead.predict` predicts: all of
-        a run's predicted points are stepped from at once, and the run is taken up to the
-        first where the step crosses another arc, lands or slides, or meets it more than
-        1e-9 rad from the prediction. Runs of 32, 128, … crossings while every one is
-        taken. Returns the roll's new (vertex, point, excluded edge), as the loop would
-        have left it after those crossings; None when not one was taken."""
+    def ahead(self, rolls: list[int], v: np.ndarray, p: np.ndarray, exclude: np.ndarray,
+              far: np.ndarray) -> list[tuple[int, tuple[int, np.ndarray, int] | None]]:
+        """The rolls ``rolls``, in the regions of ``v`` at ``p`` (having last crossed the
+        undirected edges ``exclude``; arrays over all rolls; ``far``: the arcs a roll may
+        cross), run on across regions for as long as :func:`step` agrees with the
+        crossings :func:`.ahead.descend` predicts: all the predicted points of all of them
+        are stepped from at once, and each run is taken up to the first where the step
+        crosses another arc, lands or slides, or meets it more than 1e-9 rad from the
+        prediction. Runs of 32, 128, … crossings while every one is taken. Per roll, its
+        new (vertex, point, excluded edge), as the loop would have left it after those
+        crossings; None when not one was taken."""
         h, eg3, W = self.h, self.eg3, self.W
-        size, moved = _RUN_FIRST, None
-        while True:
-            verts, edges, points = predict(h, eg3, W, far, v, p, exclude, size)
-            if not edges:
-                return moved
-            vs, es, predicted = np.array(verts), np.array(edges), np.array(points)
-            starts = np.concatenate((p[None, :], predicted[:-1]))
+        if self._scalars is None:
+            self._scalars = scalars(h, eg3, W, far)
+        sc = self._scalars
+        at = {r: (int(v[r]), p[r], int(exclude[r])) for r in rolls}
+        moved: dict[int, tuple[int, np.ndarray, int]] = {}
+        todo, size = list(rolls), _RUN_FIRST
+        while todo:
+            chains, verts, edges, points = [], [], [], []
+            for r in todo:
+                vr, pr, xr = at[r]
+                cv, ce, cp = descend(sc, vr, *pr.tolist(), xr, size)
+                if ce:
+                    chains.append((r, len(ce)))
+                    verts += cv
+                    edges += ce
+                    points += cp
+            if not chains:
+                break
+            lengths = np.array([n for _, n in chains])
+            offsets = np.cumsum(lengths) - lengths
+            vs, es = np.array(verts), np.array(edges)
+            predicted = np.array(points).reshape(-1, 3)
+            starts = np.empty_like(predicted)
+            starts[1:] = predicted[:-1]
+            starts[offsets] = [at[r][1] for r, _ in chains]
+            before = np.empty_like(es)
+            before[1:] = h.und[es[:-1]]
+            before[offsets] = [at[r][2] for r, _ in chains]
             w = W[vs]
             tang = unit(dot(w, starts)[:, None] * starts - w)
-            before = np.concatenate(([exclude], h.und[es[:-1]]))
             e, q = step(h, eg3, vs, starts, tang, np.full(len(vs), np.pi), before, far,
                         np.full(len(vs), -1))
             good = (e == es) & (eg3.t[es] >= 1)
             good &= np.sqrt(dot(q - predicted, q - predicted)) <= _AGREE
             good &= 1.0 - dot(q, h.normals[h.ef[es]]) > _CORNER
             good &= 1.0 - dot(q, h.normals[h.eg[es]]) > _CORNER
-            bad = np.flatnonzero(~good)
-            take = int(bad[0]) if len(bad) else len(es)
-            if take == 0:
-                return moved
-            last = int(es[take - 1])
-            v, p, exclude = int(h.eb[last]), q[take - 1], int(h.und[last])
-            moved = (v, p, exclude)
-            if take < size or size >= _RUN_LONGEST:
-                return moved
+            first_bad = np.minimum.reduceat(np.where(good, len(vs), np.arange(len(vs))), offsets)
+            take = np.minimum(first_bad - offsets, lengths)
+            todo = []
+            for (r, n), o, k in zip(chains, offsets.tolist(), take.tolist()):
+                if k == 0:
+                    continue
+                last = o + k - 1
+                at[r] = moved[r] = (int(h.eb[es[last]]), q[last], int(h.und[es[last]]))
+                if k == n == size and size < _RUN_LONGEST:
+                    todo.append(r)
             size *= 4
+        return [(r, moved.get(r)) for r in rolls]
 
     def sinks(self, faces: np.ndarray) -> np.ndarray:
         """The stable face each of ``faces`` ends up on (remembered once rolled)."""
