@@ -193,6 +193,11 @@ _FIRST = 64  # angles every way is swept through before the least tilt is sought
 _FIRST_UNDER_A_LOW_CAP = (2.0, 16)  # or, where the cap is below 2°, through these
 _LEAST_BLOCK = 128  # angles the way of least peak is swept on by, at a time
 _BLOCK = 64  # and the others
+# The interval filter's passes for a way's own candidates: its cone has already kept only
+# the points near its arc, so a coarse pass would keep nearly all; one pass by 8 angles
+# (dense, over the candidates) costs ~10 % less than (64, 8) over the 200k replays, with
+# the same pairs swept
+_LEVELS = (8,)
 
 
 def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float = np.inf,
@@ -258,7 +263,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         way, point = np.nonzero(_on_arcs(a_ways, B_ways, arc, reach))
         cuts = np.searchsorted(way, np.arange(len(ways) + 1))
         pairs = candidate_pairs(a_ways[point], B_ways[way, point], cuts,
-                                point if some is None else some[point], arc, eps)
+                                point if some is None else some[point], arc, eps, _LEVELS)
         _, theta = _contact_angles(points, down, directions[ways], arc, eps, pairs)
         running, end, tilt = _ends(theta, arc, peak[ways])
         peak[ways], at[ways] = running[:, -1], stop

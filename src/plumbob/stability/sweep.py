@@ -77,7 +77,8 @@ def interval_pairs(a: np.ndarray, B: np.ndarray, alpha: np.ndarray, eps: float
 
 
 def candidate_pairs(a: np.ndarray, b: np.ndarray, bounds: np.ndarray, point: np.ndarray,
-                    alpha: np.ndarray, eps: float) -> list[tuple[np.ndarray, np.ndarray]]:
+                    alpha: np.ndarray, eps: float, levels: tuple[int, ...] = _LEVELS
+                    ) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per direction q, from its candidates ``a[bounds[q]:bounds[q + 1]]``,
     ``b[…]`` (the points ``point[…]``, which must hold every point that supports
     somewhere on the sweep, each once): (angle index, point) pairs holding, at every
@@ -99,7 +100,7 @@ def candidate_pairs(a: np.ndarray, b: np.ndarray, bounds: np.ndarray, point: np.
     owner = np.repeat(np.arange(K), np.diff(bounds))
     r, crest = np.hypot(a, b), np.mod(np.arctan2(b, a), 2 * np.pi)
     # the first pass over every point at once: the reach at each interval's two ends
-    lo, hi = _intervals(m, _LEVELS[0])
+    lo, hi = _intervals(m, levels[0])
     count = len(lo)
     ends = alpha[np.append(lo, hi[-1])]
     reach = np.cos(ends)[:, None] * a + np.sin(ends)[:, None] * b
@@ -122,9 +123,9 @@ def candidate_pairs(a: np.ndarray, b: np.ndarray, bounds: np.ndarray, point: np.
     near = best >= (worst - eps)[:, owner]
     j, k = np.nonzero(near.T)  # each direction's pairs together (its candidates are a run)
     q = owner[j]
-    for level, coarse in enumerate(_LEVELS[1:], start=1):
+    for level, coarse in enumerate(levels[1:], start=1):
         # each kept interval's pairs, split into the finer intervals inside it
-        per = _LEVELS[level - 1] // coarse
+        per = levels[level - 1] // coarse
         lo, hi = _intervals(m, coarse)
         count = len(lo)
         split = np.minimum((k + 1) * per, count) - k * per
