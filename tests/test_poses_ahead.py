@@ -1,6 +1,7 @@
-"""Rolls run ahead (stability/poses/ahead.py, ``Roller.ahead``): the crossings a lone
-roll makes, predicted in plain Python and checked by one vectorised step, end every roll
-on the face the step-by-step roll ends on, in far fewer Python steps."""
+"""Rolls run ahead (stability/poses/ahead.py, ``Roller.ahead``): the moves the last few
+rolls make (across regions, over faces and corners), predicted in plain Python and checked
+by one vectorised step, end every roll on the face the step-by-step roll ends on, in far
+fewer Python steps."""
 
 from __future__ import annotations
 

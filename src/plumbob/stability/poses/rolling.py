@@ -22,7 +22,7 @@ import numpy as np
 from ...arrays import cross, dot, expand, group_first, unique, unit
 from ...blockwise import blockwise
 from ...errors import StabilityError
-from .ahead import Scalars, descend, scalars
+from .ahead import Scalars, Tables, roam, scalars
 from .hull import Hull3
 
 __all__ = ["Edges3", "arc_sides", "edge_geometry", "first_least_sorted", "step", "Roller"]
@@ -246,6 +246,7 @@ class Roller:
         self.stable = self.margin > tol
         self._memo = np.where(self.stable, np.arange(nF), -1)  # sinks found so far
         self._scalars: Scalars | None = None  # for runs ahead (:meth:`ahead`)
+        self._tables: Tables | None = None
         # an unstable face tips over the point of its boundary nearest the foot
         tip = group_first(h.ef, eg3.tip_distance, nF)
         self.tip_edge = tip
@@ -355,63 +356,80 @@ class Roller:
             start_face[rolling[~lost]] = -1
             if count >= _RUN_AFTER and len(rolling) <= _RUN_FEW:
                 # a few long rolls, each step mostly overhead: run them ahead
-                for t, moved in self.ahead(cr[no_run[cr] <= count].tolist(), v, p, exclude,
-                                           far):
+                ready = rolling[alive[rolling] & (no_run[rolling] <= count)]
+                cur[ready[in_region[ready]]] = -1
+                for t, moved in self.ahead(ready.tolist(), cur, v, p, exclude, start_face, far):
                     if moved is None:
                         no_run[t] = count + _RUN_RETRY
                         continue
-                    v[t], p[t], exclude[t] = moved
+                    cur[t], v[t], p[t], exclude[t] = moved
+                    in_region[t] = moved[0] < 0
+                    start_face[t] = -1
         raise StabilityError("the resting poses could not be resolved: a roll never ends "
                              "(a degenerate hull?)")
 
-    def ahead(self, rolls: list[int], v: np.ndarray, p: np.ndarray, exclude: np.ndarray,
-              far: np.ndarray) -> list[tuple[int, tuple[int, np.ndarray, int] | None]]:
-        """The rolls ``rolls``, in the regions of ``v`` at ``p`` (having last crossed the
-        undirected edges ``exclude``; arrays over all rolls; ``far``: the arcs a roll may
-        cross), run on across regions for as long as :func:`step` agrees with the
-        crossings :func:`.ahead.descend` predicts: all the predicted points of all of them
-        are stepped from at once, and each run is taken up to the first where the step
-        crosses another arc, lands or slides, or meets it more than 1e-9 rad from the
-        prediction. Runs of 32, 128, … crossings while every one is taken. Per roll, its
-        new (vertex, point, excluded edge), as the loop would have left it after those
-        crossings; None when not one was taken."""
+    def ahead(self, rolls: list[int], cur: np.ndarray, v: np.ndarray, p: np.ndarray,
+              exclude: np.ndarray, start_face: np.ndarray, far: np.ndarray
+              ) -> list[tuple[int, tuple[int, int, np.ndarray, int] | None]]:
+        """The rolls ``rolls`` — at the faces ``cur`` (≥ 0), else in the regions of ``v`` at
+        ``p``, having last crossed the undirected edges ``exclude``, come from the faces
+        ``start_face`` (arrays over all rolls; ``far``: the arcs a roll may cross) — run on
+        for as long as :func:`step` agrees with the moves :func:`.ahead.roam` predicts:
+        every predicted region move of all of them is stepped at once, and each run is
+        taken up to the first move where the step leaves by another arc, meets it more
+        than 1e-9 rad from the prediction, or goes on differently (slides to the other
+        face, lands or not). Runs of 32, 128, … moves while every one is taken. Per roll,
+        its new (face, vertex, point, excluded edge) as the loop would have left it after
+        those moves — a face ≥ 0 to go on from there, else a region — or None when not
+        one move was taken."""
         h, eg3, W = self.h, self.eg3, self.W
         if self._scalars is None:
             self._scalars = scalars(h, eg3, W, far)
-        sc = self._scalars
-        at = {r: (int(v[r]), p[r], int(exclude[r])) for r in rolls}
-        moved: dict[int, tuple[int, np.ndarray, int]] = {}
+            saddles = eg3.saddles.tolist()
+
+            def flat(a: np.ndarray) -> memoryview:
+                return memoryview(np.ascontiguousarray(a).reshape(-1))
+
+            self._tables = Tables(flat(self.lands), flat(self.stable), flat(self.tip_edge),
+                                  flat(self._tip_at_a), flat(h.heights), flat(eg3.saddle),
+                                  flat(eg3.toward_f), dict(zip(saddles, range(len(saddles)))))
+        sc, tables = self._scalars, self._tables
+        at = {r: (int(cur[r]), int(v[r]), p[r], int(exclude[r]), int(start_face[r]))
+              for r in rolls}
+        moved: dict[int, tuple[int, int, np.ndarray, int]] = {}
         todo, size = list(rolls), _RUN_FIRST
         while todo:
-            chains, verts, edges, points = [], [], [], []
+            chains: list[tuple[int, int]] = []
+            V, P, X, SF, E, Q, ends = [], [], [], [], [], [], []
             for r in todo:
-                vr, pr, xr = at[r]
-                cv, ce, cp = descend(sc, vr, *pr.tolist(), xr, size)
-                if ce:
-                    chains.append((r, len(ce)))
-                    verts += cv
-                    edges += ce
-                    points += cp
+                cr, vr, pr, xr, fr = at[r]
+                found = roam(sc, tables, cr, vr, *pr.tolist(), xr, fr, size)
+                if found[4]:
+                    chains.append((r, len(found[4])))
+                    for into, part in zip((V, P, X, SF, E, Q, ends), found):
+                        into += part
             if not chains:
                 break
             lengths = np.array([n for _, n in chains])
             offsets = np.cumsum(lengths) - lengths
-            vs, es = np.array(verts), np.array(edges)
-            predicted = np.array(points).reshape(-1, 3)
-            starts = np.empty_like(predicted)
-            starts[1:] = predicted[:-1]
-            starts[offsets] = [at[r][1] for r, _ in chains]
-            before = np.empty_like(es)
-            before[1:] = h.und[es[:-1]]
-            before[offsets] = [at[r][2] for r, _ in chains]
+            vs, es, outcome = np.array(V), np.array(E), np.array(ends)
+            starts = np.array(P).reshape(-1, 3)
+            predicted = np.array(Q).reshape(-1, 3)
             w = W[vs]
             tang = unit(dot(w, starts)[:, None] * starts - w)
-            e, q = step(h, eg3, vs, starts, tang, np.full(len(vs), np.pi), before, far,
-                        np.full(len(vs), -1))
-            good = (e == es) & (eg3.t[es] >= 1)
-            good &= np.sqrt(dot(q - predicted, q - predicted)) <= _AGREE
-            good &= 1.0 - dot(q, h.normals[h.ef[es]]) > _CORNER
-            good &= 1.0 - dot(q, h.normals[h.eg[es]]) > _CORNER
+            e, q = step(h, eg3, vs, starts, tang, np.full(len(vs), np.pi), np.array(X), far,
+                        np.array(SF))
+            good = (e == es) & (np.sqrt(dot(q - predicted, q - predicted)) <= _AGREE)
+            # what the loop does after each of those steps: slide, land, or cross
+            fa, ga = h.ef[es], h.eg[es]
+            sliding = eg3.t[es] < 1
+            towards_f = np.where(eg3.saddle[es], dot(q, eg3.toward_f_at(es)) > 0,
+                                 h.heights[fa] <= h.heights[ga])
+            on_f = 1.0 - dot(q, h.normals[fa]) <= _CORNER
+            on_g = 1.0 - dot(q, h.normals[ga]) <= _CORNER
+            went = np.where(sliding, np.where(towards_f, fa, ga),
+                            np.where(on_f, fa, np.where(on_g, ga, -1)))
+            good &= went == outcome
             first_bad = np.minimum.reduceat(np.where(good, len(vs), np.arange(len(vs))), offsets)
             take = np.minimum(first_bad - offsets, lengths)
             todo = []
@@ -419,7 +437,13 @@ class Roller:
                 if k == 0:
                     continue
                 last = o + k - 1
-                at[r] = moved[r] = (int(h.eb[es[last]]), q[last], int(h.und[es[last]]))
+                face = int(went[last])
+                edge = int(es[last])
+                if face < 0:  # crossed into the next region
+                    moved[r] = (-1, int(h.eb[edge]), q[last], int(h.und[edge]))
+                else:  # on a face: the loop goes on from there
+                    moved[r] = (face, 0, q[last], -1)
+                at[r] = (*moved[r], -1)
                 if k == n == size and size < _RUN_LONGEST:
                     todo.append(r)
             size *= 4
