@@ -43,7 +43,7 @@ from ...mesh.winding import solid_angle
 from ...tolerances import HULL_LEFT_OUT, size_of
 from .holds import EXHAUSTIVE, degenerate, holds
 
-__all__ = ["hull_triangles", "half_edge_twins", "HullMesh", "hull_mesh", "own_hull",
+__all__ = ["hull_triangles", "half_edge_twins", "twins_and_ends", "HullMesh", "hull_mesh", "own_hull",
            "corner_levels", "may_be_own_hull", "sample_triangles", "SOLID_ANGLE_CLOSURE"]
 
 #: a surface proved convex by :func:`own_hull` subtends 4π from the centre to within this,
@@ -58,7 +58,8 @@ class HullMesh(NamedTuple):
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
     :func:`hull_triangles` returns them. area: (F,) the triangles' areas. beyond: (3F,)
     per half-edge, the height of the far corner of the triangle across it over this
-    triangle's plane (≤ 0 to rounding error on a convex hull). The corners' heights
+    triangle's plane (≤ 0 to rounding error on a convex hull). ends: (3F,) the
+    half-edges in ascending order of (from, to) points (:func:`twins_and_ends`). The corners' heights
     along their own triangle's normal are :func:`corner_levels`', measured where needed.
     """
 
@@ -69,6 +70,7 @@ class HullMesh(NamedTuple):
     twins: np.ndarray
     area: np.ndarray
     beyond: np.ndarray
+    ends: np.ndarray
 
 
 def _twins_by_search(tri: np.ndarray, n: int) -> np.ndarray | None:
@@ -91,28 +93,45 @@ def _twins_by_search(tri: np.ndarray, n: int) -> np.ndarray | None:
 def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
     """For the half-edges ``tri[t, k] → tri[t, (k + 1) % 3]`` (numbered ``3 t + k``), the
     reversed half-edge of each; None when the triangles are not a closed surface (an
-    edge without exactly one reversed partner).
-
-    One sort of the undirected keys puts each edge's two half-edges side by side (a
-    closed surface has exactly two, opposite); anything else is settled by
-    :func:`_twins_by_search`.
+    edge without exactly one reversed partner): :func:`twins_and_ends`' twins.
 
     >>> half_edge_twins(np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]), 4).tolist()
     [8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1]
     """
+    found = twins_and_ends(tri, n)
+    return None if found is None else found[0]
+
+
+def twins_and_ends(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """:func:`half_edge_twins` (3F,) and the half-edges in ascending order of (from, to)
+    (3F,), for the hull's edges (:func:`~.hull.build_hull3`); None when not closed.
+
+    One stable sort of the directed keys (from, to), and one of that order by ``to``,
+    which puts it in the order of (to, from): on a closed surface, whose directed edges
+    are distinct and each reversed exactly once, the i-th half-edge by (to, from) is the
+    reverse of the i-th by (from, to), as reversing maps one order onto the other.
+    Checked: each pair must be reversed, else the surface is not closed (an edge used
+    twice in one direction, or one without its reverse) and None, as
+    :func:`_twins_by_search` finds. The second sort's keys are point numbers (one or
+    two 16-bit passes), and the first one's order is the edges' order that
+    :func:`~.hull.build_hull3` would otherwise sort again.
+
+    >>> [a.tolist() for a in twins_and_ends(np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1],
+    ...                                                [1, 3, 2]]), 4)]
+    [[8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1], [0, 3, 6, 8, 1, 9, 2, 11, 4, 5, 7, 10]]
+    """
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
-    key = np.minimum(frm, to) * n + np.maximum(frm, to)
-    order = stable_order(key)
-    skey = key[order]
-    a, b = order[0::2], order[1::2]
-    if (len(key) % 2 == 0 and np.array_equal(skey[0::2], skey[1::2])
-            and not np.any(skey[1:-1:2] == skey[2::2])
-            and np.array_equal(frm[a], to[b]) and not np.any(frm[a] == to[a])):
-        twin = np.empty_like(order)
-        twin[a], twin[b] = b, a
-        return twin
-    return _twins_by_search(tri, n)
+    ends = stable_order(frm * n + to)
+    a, b = frm[ends], to[ends]  # the directed keys in ascending order
+    if len(ends) > 1 and np.any((a[1:] == a[:-1]) & (b[1:] == b[:-1])):
+        return None  # an edge used twice in one direction: not a 2-manifold
+    back = ends[stable_order(b)]  # by (to, from)
+    if not (np.array_equal(frm[back], b) and np.array_equal(to[back], a)):
+        return None  # an edge without its reverse
+    twin = np.empty_like(ends)
+    twin[ends] = back
+    return twin, ends
 
 
 def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.ndarray:
@@ -244,11 +263,12 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     twins and the heights across them; None when not closed."""
     order = _normal_order(tn, ties)
     tri, tn, off, area = (np.take(a, order, axis=0) for a in (tri, tn, off, area))
-    twin = half_edge_twins(tri, len(P))
-    if twin is None:
+    found = twins_and_ends(tri, len(P))
+    if found is None:
         return None
+    twin, ends = found
     beyond = _beyond(P, tri, tn, off, twin)
-    return HullMesh(P, tri, tn, off, twin, area, beyond)
+    return HullMesh(P, tri, tn, off, twin, area, beyond, ends)
 
 
 SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries

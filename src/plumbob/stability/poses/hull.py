@@ -31,7 +31,7 @@ class Hull3(NamedTuple):
     normals, heights, areas: per face (F, 3), (F,), (F,): outward unit normal, h(normal)
         and area. Faces are exactly coplanar groups of the hull's triangles.
     ea, eb, ef, eg: (E,) directed edges a → b with face ef on the left (counter-clockwise
-        about its normal) and eg on the right. Sorted by ``ea``.
+        about its normal) and eg on the right. Sorted by (ea, eb).
     start, degree: per point, its out-edges are ``start .. start + degree``.
     twin: (E,) the reversed edge. und: (E,) undirected edge id (shared by a pair).
     """
@@ -129,7 +129,7 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     tri, twin = hm.tri, hm.twins
     n = len(hm.points)
     frm = tri.ravel()
-    order = stable_order(frm)
+    order = hm.ends  # by (from, to)
     inverse = np.empty_like(order)
     inverse[order] = np.arange(len(order))
     ea, eb = frm[order], tri[:, [1, 2, 0]].ravel()[order]
@@ -234,11 +234,16 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
         raise GeometryError("a face of the hull has no corners (degenerate hull)")
     # an edge per chain: from its first half-edge (at a corner) to its last one's end
     corner = bnd & real[frm]
-    first = np.flatnonzero(corner)
+    first = hm.ends[corner[hm.ends]]  # by (a, to[first])
     last = ptr[first]
-    order = stable_order(frm[first] * n + to[last])  # by (a, b)
-    first, last = first[order], last[order]
     ea, eb = frm[first], to[last]
+    if len(ea) > 1 and not np.all((ea[1:] > ea[:-1]) | ((ea[1:] == ea[:-1]) & (eb[1:] > eb[:-1]))):
+        # a chain past a straight corner ends elsewhere: sort by (a, b) again
+        first = np.flatnonzero(corner)
+        last = ptr[first]
+        order = stable_order(frm[first] * n + to[last])
+        first, last = first[order], last[order]
+        ea, eb = frm[first], to[last]
     ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
