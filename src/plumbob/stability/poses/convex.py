@@ -58,8 +58,9 @@ class HullMesh(NamedTuple):
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
     :func:`hull_triangles` returns them. area: (F,) the triangles' areas. beyond: (3F,)
     per half-edge, the height of the far corner of the triangle across it over this
-    triangle's plane (≤ 0 to rounding error on a convex hull). ends: (3F,) the
-    half-edges in ascending order of (from, to) points (:func:`twins_and_ends`). The corners' heights
+    triangle's plane (≤ 0 to rounding error on a convex hull). ends, end_twins: (3F,)
+    the half-edges in ascending order of (from, to) points, and the place of each one's
+    twin in that order (:func:`twins_and_ends`). The corners' heights
     along their own triangle's normal are :func:`corner_levels`', measured where needed.
     """
 
@@ -71,6 +72,7 @@ class HullMesh(NamedTuple):
     area: np.ndarray
     beyond: np.ndarray
     ends: np.ndarray
+    end_twins: np.ndarray
 
 
 def _twins_by_search(tri: np.ndarray, n: int) -> np.ndarray | None:
@@ -102,14 +104,17 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
     return None if found is None else found[0]
 
 
-def twins_and_ends(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray] | None:
-    """:func:`half_edge_twins` (3F,) and the half-edges in ascending order of (from, to)
-    (3F,), for the hull's edges (:func:`~.hull.build_hull3`); None when not closed.
+def twins_and_ends(tri: np.ndarray, n: int
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """:func:`half_edge_twins` (3F,), the half-edges in ascending order of (from, to)
+    (3F,: ``ends``) and, for the p-th of them, the place of its twin in that order
+    (3F,: ``twin[ends[p]] == ends[end_twins[p]]``), for the hull's edges
+    (:func:`~.hull.build_hull3`); None when the triangles are not a closed surface.
 
     One stable sort of the directed keys (from, to), and one of that order by ``to``,
     which puts it in the order of (to, from): on a closed surface, whose directed edges
-    are distinct and each reversed exactly once, the i-th half-edge by (to, from) is the
-    reverse of the i-th by (from, to), as reversing maps one order onto the other.
+    are distinct and each reversed exactly once, the p-th half-edge by (to, from) is the
+    reverse of the p-th by (from, to), as reversing maps one order onto the other.
     Checked: each pair must be reversed, else the surface is not closed (an edge used
     twice in one direction, or one without its reverse) and None, as
     :func:`_twins_by_search` finds. The second sort's keys are point numbers (one or
@@ -117,8 +122,9 @@ def twins_and_ends(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray] | N
     :func:`~.hull.build_hull3` would otherwise sort again.
 
     >>> [a.tolist() for a in twins_and_ends(np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1],
-    ...                                                [1, 3, 2]]), 4)]
-    [[8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1], [0, 3, 6, 8, 1, 9, 2, 11, 4, 5, 7, 10]]
+    ...                                                [1, 3, 2]]), 4)]  # doctest: +NORMALIZE_WHITESPACE
+    [[8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1], [0, 3, 6, 8, 1, 9, 2, 11, 4, 5, 7, 10],
+     [3, 6, 9, 0, 7, 10, 1, 4, 11, 2, 5, 8]]
     """
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
@@ -126,12 +132,12 @@ def twins_and_ends(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray] | N
     a, b = frm[ends], to[ends]  # the directed keys in ascending order
     if len(ends) > 1 and np.any((a[1:] == a[:-1]) & (b[1:] == b[:-1])):
         return None  # an edge used twice in one direction: not a 2-manifold
-    back = ends[stable_order(b)]  # by (to, from)
-    if not (np.array_equal(frm[back], b) and np.array_equal(to[back], a)):
+    end_twins = stable_order(b)  # by (to, from): the reverse of each by (from, to)
+    if not (np.array_equal(a[end_twins], b) and np.array_equal(b[end_twins], a)):
         return None  # an edge without its reverse
     twin = np.empty_like(ends)
-    twin[ends] = back
-    return twin, ends
+    twin[ends] = ends[end_twins]
+    return twin, ends, end_twins
 
 
 def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.ndarray:
@@ -266,9 +272,8 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     found = twins_and_ends(tri, len(P))
     if found is None:
         return None
-    twin, ends = found
-    beyond = _beyond(P, tri, tn, off, twin)
-    return HullMesh(P, tri, tn, off, twin, area, beyond, ends)
+    beyond = _beyond(P, tri, tn, off, found[0])
+    return HullMesh(P, tri, tn, off, found[0], area, beyond, found[1], found[2])
 
 
 SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries

@@ -126,15 +126,12 @@ def _coplanar_pairs(hm: HullMesh, eps: float) -> tuple[np.ndarray, np.ndarray]:
 
 def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     """Every triangle a face of its own: the half-edges are the edges."""
-    tri, twin = hm.tri, hm.twins
+    tri, order, etwin = hm.tri, hm.ends, hm.end_twins  # by (from, to); the reverse's place
     n = len(hm.points)
-    frm = tri.ravel()
-    order = hm.ends  # by (from, to)
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
-    ea, eb = frm[order], tri[:, [1, 2, 0]].ravel()[order]
-    ef, eg = order // 3, twin[order] // 3
-    etwin = inverse[twin[order]]
+    ea = np.take(tri.ravel(), order)
+    eb = np.take(ea, etwin)
+    ef = order // 3
+    eg = np.take(ef, etwin)
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
     und = np.minimum(np.arange(len(ea)), etwin)
@@ -234,9 +231,12 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
         raise GeometryError("a face of the hull has no corners (degenerate hull)")
     # an edge per chain: from its first half-edge (at a corner) to its last one's end
     corner = bnd & real[frm]
-    first = hm.ends[corner[hm.ends]]  # by (a, to[first])
+    at_corner = corner[hm.ends]  # the corners' half-edges in the order of (from, to)
+    placed = np.flatnonzero(at_corner)
+    first = hm.ends[placed]
     last = ptr[first]
     ea, eb = frm[first], to[last]
+    etwin = None
     if len(ea) > 1 and not np.all((ea[1:] > ea[:-1]) | ((ea[1:] == ea[:-1]) & (eb[1:] > eb[:-1]))):
         # a chain past a straight corner ends elsewhere: sort by (a, b) again
         first = np.flatnonzero(corner)
@@ -244,10 +244,15 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
         order = stable_order(frm[first] * n + to[last])
         first, last = first[order], last[order]
         ea, eb = frm[first], to[last]
+    elif np.array_equal(first, last):  # every edge one half-edge: its twin's is the reverse
+        back = hm.end_twins[placed]
+        if np.all(at_corner[back]):
+            etwin = (np.cumsum(at_corner) - 1)[back]
     ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
-    etwin = _edge_twins(ea, eb, first, last, twin, n)
+    if etwin is None:
+        etwin = _edge_twins(ea, eb, first, last, twin, n)
     und = np.minimum(np.arange(len(ea)), etwin)
     heights = np.full(nfaces, -np.inf)
     np.maximum.at(heights, comp, row_max(np.where(corner.reshape(m, 3), level, -np.inf)))
