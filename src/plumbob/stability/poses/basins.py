@@ -89,14 +89,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     fanned from its standing face's normal, and the group's whole area is put there: the
     saddles inside a rolling family (a capsule's 400 side faces) need no trace at all.
     """
-    nF = len(h.normals)
-    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
-    ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
-    f, g = ends[:len(sad)], ends[len(sad):]
-    if group is not None:
-        f, g = group[f], group[g]
-        between = f != g
-        sad, f, g = sad[between], f[between], g[between]
+    sad, f, g = _saddles_between(h, eg3, roller, group)
     if len(sad) == 0:  # no saddle between basins (groups): one of them is the whole sphere
         standing = standing_faces(roller, group)
         count = np.count_nonzero(standing)
@@ -111,8 +104,9 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     side = dot(cross(p, W[v]), h.normals[h.ef[edge]]) > 0
     left, right = np.where(side, f, g), np.where(side, g, f)
     near = eg3.t < -_FLAT  # arcs a region's flow leaves: traced back through them
-    ismax = np.bincount(h.ea[near], minlength=len(h.X)) == 0  # on the tip: nothing flows in
+    ismax = _maxima(h, near)
     fans = Fans(h, eg3, W, ismax, near)
+    rings = fans.corner_count.max(initial=0) >= FAN_CORNERS
     last = np.full(len(v), -1, dtype=np.int64)  # the edge each trace crossed last
     no_fan = np.full(len(v), -1, dtype=np.int64)  # a face a run around has just failed on
     seg_trace, seg_from, seg_to = [], [], []  # the path segments, kept for the areas
@@ -154,16 +148,20 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
         go = ~lost
         d, e = alive[go], e[go]
         v[d], p[d], exclude[d] = h.eb[e], q[go], h.und[e]
-        circling = _crossing_face(h, last[d], e)
-        last[d] = e
-        runs = (circling >= 0) & (circling != no_fan[d])
-        runs &= fans.corner_count[np.maximum(circling, 0)] >= FAN_CORNERS
-        for t, face in zip(d[runs].tolist(), circling[runs].tolist()):
-            moved = fans.advance(int(v[t]), p[t], int(last[t]), face)
-            if moved is None:
-                no_fan[t] = face
-                continue
-            take(t, moved)
+        if rings:
+            circling = _crossing_face(h, last[d], e)
+            last[d] = e
+            runs = (circling >= 0) & (circling != no_fan[d])
+            runs &= fans.corner_count[np.maximum(circling, 0)] >= FAN_CORNERS
+            for t, face in zip(d[runs].tolist(), circling[runs].tolist()):
+                moved = fans.advance(int(v[t]), p[t], int(last[t]), face)
+                if moved is None:
+                    no_fan[t] = face
+                    continue
+                take(t, moved)
+        else:  # no face of many corners to run around (an egg's hull)
+            last[d] = e
+            runs = np.zeros(len(d), dtype=bool)
         few = count >= _STRIP_AFTER and len(d) <= _STRIP_FEW
         lone = count >= _AHEAD_AFTER and len(d) <= _AHEAD_FEW
         if few or lone:
@@ -179,11 +177,35 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
         ok = False
     trace = np.concatenate(seg_trace)
     a, b = np.concatenate(seg_from), np.concatenate(seg_to)
+    nF = len(h.normals)
     area = np.bincount(left[trace], solid_angle(h.normals[left[trace]], a, b, unit=True),
                        minlength=nF)
     area -= np.bincount(right[trace], solid_angle(h.normals[right[trace]], a, b, unit=True),
                         minlength=nF)
     return np.mod(area, 4 * np.pi), ok
+
+
+def _saddles_between(h: Hull3, eg3: Edges3, roller: Roller, group: np.ndarray | None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The saddle edges (one of each pair) between two basins (groups, with ``group``)
+    and the stable faces (standing faces) the rolls from their two faces end on."""
+    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
+    ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
+    f, g = ends[:len(sad)], ends[len(sad):]
+    if group is not None:
+        f, g = group[f], group[g]
+        between = f != g
+        sad, f, g = sad[between], f[between], g[between]
+    return sad, f, g
+
+
+def _maxima(h: Hull3, near: np.ndarray) -> np.ndarray:
+    """(n,) the points no region flows into: none of their out-edges is ``near`` (the
+    edges are sorted by their start, ``h.start``)."""
+    ismax = np.ones(len(h.X), dtype=bool)
+    real = np.flatnonzero(h.degree)
+    ismax[real] = ~np.logical_or.reduceat(near, h.start[real])
+    return ismax
 
 
 def sampled_basins(h: Hull3, roller: Roller, samples: int) -> np.ndarray:

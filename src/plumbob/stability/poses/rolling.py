@@ -165,8 +165,12 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     theta = np.arctan2(-a, b)
     theta = np.where(theta <= _THETA_EPS, theta + np.pi, theta)
     q = np.cos(theta)[:, None] * pr + np.sin(theta)[:, None] * tr
-    after_f, before_g = arc_sides(h, k, cand)
-    miss = np.maximum(0.0, -np.minimum(dot(q, after_f), dot(q, before_g)))
+    # q·after_f = q·(k × n_F) = n_F·(q × k) and q·before_g = q·(n_G × k) = −n_G·(q × k):
+    # one cross product for both sides
+    qk = cross(q, k)
+    inside_f = dot(qk, np.take(h.normals, np.take(h.ef, cand), axis=0))
+    inside_g = dot(qk, np.take(h.normals, np.take(h.eg, cand), axis=0))
+    miss = np.maximum(0.0, -np.minimum(inside_f, -inside_g))
     ok = (theta > _THETA_EPS) & (theta <= limit[rows] + 1e-12)
     return np.where(ok, theta, np.inf), miss, q
 
@@ -207,9 +211,10 @@ def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
     (≥ 0 for a trace starting at that face's normal, a corner of the region);
     returns (edge id or −1, meeting point)."""
     rows, cand = expand(h.degree[v], h.start[v])
-    fr = face[rows]
     keep = want[cand] & (h.und[cand] != exclude[rows])
-    keep &= (fr < 0) | ((h.ef[cand] != fr) & (h.eg[cand] != fr))
+    if face.max(initial=-1) >= 0:  # some start at a face's normal
+        fr = face[rows]
+        keep &= (fr < 0) | ((h.ef[cand] != fr) & (h.eg[cand] != fr))
     rows, cand = rows[keep], cand[keep]
     theta, miss, q = _arc_hits(h, eg3, rows, cand, p, tang, limit)
     # the first arc met inside; failing that (a point a rounding error outside its
