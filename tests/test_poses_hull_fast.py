@@ -334,3 +334,14 @@ def test_the_hull_is_the_same_to_the_bit_whatever_order_manifold3d_returns(seed,
         manifold3d.Manifold.hull_points = original
     for mine, plain in zip(got, want):
         assert np.array_equal(mine, plain)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 60), st.integers(1, 6))
+def test_rotated_starts_each_triangle_at_its_first_least_point(seed, n, spread):
+    """``_rotated`` is the rotation ``np.argmin`` picks (ties too: the first least)."""
+    from plumbob.stability.poses.convex import _rotated
+
+    tri = np.random.default_rng(seed).integers(0, spread, size=(n, 3))
+    start = np.argmin(tri, axis=1) if n else np.zeros(0, dtype=int)
+    want = np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
+    assert np.array_equal(_rotated(tri), want)

@@ -58,9 +58,10 @@ class HullMesh(NamedTuple):
     points (m, 3), tri (F, 3), normals (F, 3), offsets (F,), twins (3F,): as
     :func:`hull_triangles` returns them. area: (F,) the triangles' areas. beyond: (3F,)
     per half-edge, the height of the far corner of the triangle across it over this
-    triangle's plane (≤ 0 to rounding error on a convex hull). ends, end_twins: (3F,)
-    the half-edges in ascending order of (from, to) points, and the place of each one's
-    twin in that order (:func:`twins_and_ends`). The corners' heights
+    triangle's plane (≤ 0 to rounding error on a convex hull). ends, end_twins,
+    end_points: (3F,), (3F,), (2, 3F) the half-edges in ascending order of (from, to)
+    points, the place of each one's twin in that order, and their points
+    (:func:`twins_and_ends`). The corners' heights
     along their own triangle's normal are :func:`corner_levels`', measured where needed.
     """
 
@@ -73,6 +74,7 @@ class HullMesh(NamedTuple):
     beyond: np.ndarray
     ends: np.ndarray
     end_twins: np.ndarray
+    end_points: np.ndarray
 
 
 def _twins_by_search(tri: np.ndarray, n: int) -> np.ndarray | None:
@@ -105,11 +107,12 @@ def half_edge_twins(tri: np.ndarray, n: int) -> np.ndarray | None:
 
 
 def twins_and_ends(tri: np.ndarray, n: int
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """:func:`half_edge_twins` (3F,), the half-edges in ascending order of (from, to)
-    (3F,: ``ends``) and, for the p-th of them, the place of its twin in that order
-    (3F,: ``twin[ends[p]] == ends[end_twins[p]]``), for the hull's edges
-    (:func:`~.hull.build_hull3`); None when the triangles are not a closed surface.
+    (3F,: ``ends``), for the p-th of them the place of its twin in that order (3F,:
+    ``twin[ends[p]] == ends[end_twins[p]]``) and its points (2, 3F: from, to), for the
+    hull's edges (:func:`~.hull.build_hull3`); None when the triangles are not a closed
+    surface.
 
     One stable sort of the directed keys (from, to), and one of that order by ``to``,
     which puts it in the order of (to, from): on a closed surface, whose directed edges
@@ -124,7 +127,8 @@ def twins_and_ends(tri: np.ndarray, n: int
     >>> [a.tolist() for a in twins_and_ends(np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1],
     ...                                                [1, 3, 2]]), 4)]  # doctest: +NORMALIZE_WHITESPACE
     [[8, 11, 3, 2, 10, 6, 5, 9, 0, 7, 4, 1], [0, 3, 6, 8, 1, 9, 2, 11, 4, 5, 7, 10],
-     [3, 6, 9, 0, 7, 10, 1, 4, 11, 2, 5, 8]]
+     [3, 6, 9, 0, 7, 10, 1, 4, 11, 2, 5, 8],
+     [[0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3], [1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2]]]
     """
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
@@ -137,7 +141,7 @@ def twins_and_ends(tri: np.ndarray, n: int
         return None  # an edge without its reverse
     twin = np.empty_like(ends)
     twin[ends] = ends[end_twins]
-    return twin, ends, end_twins
+    return twin, ends, end_twins, np.stack((a, b))
 
 
 def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.ndarray:
@@ -175,8 +179,14 @@ def _rotated(tri: np.ndarray) -> np.ndarray:
     >>> _rotated(np.array([[5, 2, 7], [3, 1, 4]])).tolist()
     [[2, 7, 5], [1, 4, 3]]
     """
-    start = np.argmin(tri, axis=1)
-    return np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    at_a = (a <= b) & (a <= c)  # np.argmin's choice: the first least corner
+    at_b = ~at_a & (b <= c)
+    out = np.empty_like(tri)
+    out[:, 0] = np.where(at_a, a, np.where(at_b, b, c))
+    out[:, 1] = np.where(at_a, b, np.where(at_b, c, a))
+    out[:, 2] = np.where(at_a, c, np.where(at_b, a, b))
+    return out
 
 
 def _canonical(tri: np.ndarray) -> np.ndarray:
@@ -273,7 +283,7 @@ def _finish(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     if found is None:
         return None
     beyond = _beyond(P, tri, tn, off, found[0])
-    return HullMesh(P, tri, tn, off, found[0], area, beyond, found[1], found[2])
+    return HullMesh(P, tri, tn, off, found[0], area, beyond, *found[1:])
 
 
 SAMPLE_TRIANGLES = 16  # triangles whose planes :func:`may_be_own_hull` tries

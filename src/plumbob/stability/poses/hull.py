@@ -128,8 +128,7 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
     """Every triangle a face of its own: the half-edges are the edges."""
     tri, order, etwin = hm.tri, hm.ends, hm.end_twins  # by (from, to); the reverse's place
     n = len(hm.points)
-    ea = np.take(tri.ravel(), order)
-    eb = np.take(ea, etwin)
+    ea, eb = hm.end_points
     ef = order // 3
     eg = np.take(ef, etwin)
     degree = np.bincount(ea, minlength=n)
@@ -235,19 +234,22 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
     placed = np.flatnonzero(at_corner)
     first = hm.ends[placed]
     last = ptr[first]
-    ea, eb = frm[first], to[last]
     etwin = None
-    if len(ea) > 1 and not np.all((ea[1:] > ea[:-1]) | ((ea[1:] == ea[:-1]) & (eb[1:] > eb[:-1]))):
-        # a chain past a straight corner ends elsewhere: sort by (a, b) again
-        first = np.flatnonzero(corner)
-        last = ptr[first]
-        order = stable_order(frm[first] * n + to[last])
-        first, last = first[order], last[order]
-        ea, eb = frm[first], to[last]
-    elif np.array_equal(first, last):  # every edge one half-edge: its twin's is the reverse
+    if np.array_equal(first, last):  # every edge one half-edge: its twin's is the reverse
+        ea, eb = hm.end_points[:, placed]
         back = hm.end_twins[placed]
         if np.all(at_corner[back]):
             etwin = (np.cumsum(at_corner) - 1)[back]
+    else:
+        ea, eb = frm[first], to[last]
+        if len(ea) > 1 and not np.all((ea[1:] > ea[:-1])
+                                      | ((ea[1:] == ea[:-1]) & (eb[1:] > eb[:-1]))):
+            # a chain past a straight corner ends elsewhere: sort by (a, b) again
+            first = np.flatnonzero(corner)
+            last = ptr[first]
+            order = stable_order(frm[first] * n + to[last])
+            first, last = first[order], last[order]
+            ea, eb = frm[first], to[last]
     ef, eg = face[first], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
