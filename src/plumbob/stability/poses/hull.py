@@ -236,7 +236,7 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
     last = ptr[first]
     etwin = None
     if np.array_equal(first, last):  # every edge one half-edge: its twin's is the reverse
-        ea, eb = hm.end_points[:, placed]
+        ea, eb = np.compress(at_corner, hm.end_points, axis=1)
         back = hm.end_twins[placed]
         if np.all(at_corner[back]):
             etwin = (np.cumsum(at_corner) - 1)[back]
