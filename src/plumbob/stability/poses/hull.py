@@ -139,23 +139,38 @@ def _single(hm: HullMesh, area: np.ndarray) -> Hull3:
                  und)
 
 
-def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, bnd: np.ndarray,
-                merged: np.ndarray, n: int) -> np.ndarray:
-    """For every boundary half-edge (per half-edge ``3 t + k``; ``bnd`` marks them), the
-    boundary half-edge of the same face that starts where it ends: the next one in its
-    triangle when the triangle is a face alone, else found by sorting the boundary
-    half-edges of merged faces (``merged``) by (face, start)."""
-    nxt = np.arange(len(frm)).reshape(-1, 3)[:, [1, 2, 0]].ravel()
-    sub = np.flatnonzero(bnd & merged)
-    key = face[sub] * n + frm[sub]
+def _chain_next(face: np.ndarray, frm: np.ndarray, to: np.ndarray, sub: np.ndarray, n: int
+                ) -> np.ndarray:
+    """For the boundary half-edges ``sub`` of merged faces (ascending; ``face``, ``frm``,
+    ``to``: theirs), the boundary half-edge of the same face that starts where each ends,
+    found by sorting them by (face, start)."""
+    key = face * n + frm
     order = stable_order(key)
-    want = face[sub] * n + to[sub]
+    want = face * n + to
     pos = np.minimum(np.searchsorted(key[order], want), max(len(sub) - 1, 0))
-    found = sub[order[pos]] if len(sub) else sub
-    if not np.array_equal(face[found] * n + frm[found], want):
+    if len(sub) and not np.array_equal(key[order[pos]], want):
         raise GeometryError("a face of the hull is not a simple polygon (degenerate hull)")
-    nxt[sub] = found
-    return nxt
+    return sub[order[pos]] if len(sub) else sub
+
+
+def _chain_ends(tri: np.ndarray, bnd: np.ndarray, real: np.ndarray, sub: np.ndarray,
+                nxt_sub: np.ndarray) -> np.ndarray | None:
+    """Per half-edge, the last half-edge of the chain it starts: the next boundary
+    half-edge of its face (``sub``'s are ``nxt_sub``, the others' the next in their
+    triangle) followed while it ends at a point that is no corner (not ``real``); None
+    when every point is a corner (then every chain is one half-edge)."""
+    if real.all():
+        return None
+    m3 = 3 * len(tri)
+    nxt = np.arange(m3).reshape(-1, 3)[:, [1, 2, 0]].ravel()
+    nxt[sub] = nxt_sub
+    term = ~bnd | real[tri[:, [1, 2, 0]].ravel()]
+    ptr = np.where(term, np.arange(m3), nxt)
+    for _ in range(64):
+        if term[ptr].all():
+            return ptr
+        ptr = np.where(term[ptr], ptr, ptr[ptr])
+    raise GeometryError("a face of the hull has no corners (degenerate hull)")
 
 
 def _edge_twins(ea: np.ndarray, eb: np.ndarray, first: np.ndarray, last: np.ndarray,
@@ -213,51 +228,55 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
 
     # --- face boundaries: chains of half-edges between different faces
     frm = tri.ravel()
-    to = tri[:, [1, 2, 0]].ravel()
     face = np.repeat(comp, 3)
     beyond = face[twin]
     bnd = face != beyond
     real = np.bincount(frm[bnd], minlength=n) >= 3
-    merged = np.repeat(np.bincount(comp, minlength=nfaces)[comp] > 1, 3)
-    nxt = _chain_next(face, frm, to, bnd, merged, n)
-    term = ~bnd | real[to]
-    ptr = np.where(term, np.arange(3 * m), nxt)
-    for _ in range(64):
-        if term[ptr].all():
-            break
-        ptr = np.where(term[ptr], ptr, ptr[ptr])
-    else:
-        raise GeometryError("a face of the hull has no corners (degenerate hull)")
+    in_merged = np.bincount(comp, minlength=nfaces)[comp] > 1  # per triangle
+    merged = np.flatnonzero(in_merged)
+    sub = (3 * merged[:, None] + np.arange(3)).ravel()  # their half-edges, ascending
+    sub = sub[bnd[sub]]
+    nxt_sub = _chain_next(face[sub], frm[sub], frm[sub - sub % 3 + (sub + 1) % 3], sub, n)
+    ptr = _chain_ends(tri, bnd, real, sub, nxt_sub)
     # an edge per chain: from its first half-edge (at a corner) to its last one's end
-    corner = bnd & real[frm]
-    at_corner = corner[hm.ends]  # the corners' half-edges in the order of (from, to)
+    at_corner = bnd[hm.ends] & real[hm.end_points[0]]  # corners, in the order of (from, to)
     placed = np.flatnonzero(at_corner)
     first = hm.ends[placed]
-    last = ptr[first]
+    last = first if ptr is None else ptr[first]
     etwin = None
-    if np.array_equal(first, last):  # every edge one half-edge: its twin's is the reverse
+    if ptr is None or np.array_equal(first, last):  # every edge one half-edge
         ea, eb = np.compress(at_corner, hm.end_points, axis=1)
-        back = hm.end_twins[placed]
+        back = hm.end_twins[placed]  # its twin's is the reverse
         if np.all(at_corner[back]):
             etwin = (np.cumsum(at_corner) - 1)[back]
     else:
+        to = tri[:, [1, 2, 0]].ravel()
         ea, eb = frm[first], to[last]
         if len(ea) > 1 and not np.all((ea[1:] > ea[:-1])
                                       | ((ea[1:] == ea[:-1]) & (eb[1:] > eb[:-1]))):
             # a chain past a straight corner ends elsewhere: sort by (a, b) again
-            first = np.flatnonzero(corner)
+            first = np.flatnonzero(bnd & real[frm])
             last = ptr[first]
             order = stable_order(frm[first] * n + to[last])
             first, last = first[order], last[order]
             ea, eb = frm[first], to[last]
-    ef, eg = face[first], beyond[first]
+    ef, eg = comp[first // 3], beyond[first]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
     if etwin is None:
         etwin = _edge_twins(ea, eb, first, last, twin, n)
     und = np.minimum(np.arange(len(ea)), etwin)
+    # a face's height: its highest corner, along its normal
+    top = row_max(level)
+    # (only a merged face's triangle, or one at a point that is no corner, has a
+    # half-edge that starts no edge)
+    odd = merged if ptr is None else np.flatnonzero(in_merged | ~real[tri].all(axis=1))
+    corner = bnd[(3 * odd[:, None] + np.arange(3))] & real[tri[odd]]
+    top[odd] = row_max(np.where(corner, level[odd], -np.inf))
     heights = np.full(nfaces, -np.inf)
-    np.maximum.at(heights, comp, row_max(np.where(corner.reshape(m, 3), level, -np.inf)))
+    heights[comp] = top  # a face alone; merged faces' highest below
+    heights[comp[merged]] = -np.inf
+    np.maximum.at(heights, comp[merged], top[merged])
     return Hull3(X, normals, heights, areas, ea, eb, ef, eg, start, degree, etwin, und)
 
 
