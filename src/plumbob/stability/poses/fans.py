@@ -120,7 +120,14 @@ class Fans:
         found = self.chain(entered, face)
         if found is None:
             return None
-        return self.run(p, entered, *found)
+        corners, edges = found
+        # a trace ends at the first maximum it reaches (the step takes nothing from its
+        # region): no prediction past it (a cap's ring, left at its highest corner). The
+        # points before it are the same, bit for bit, however long the run's table
+        top = np.flatnonzero(self.ismax[corners])
+        if len(top):
+            corners, edges = corners[:top[0]], edges[:top[0]]
+        return self.run(p, entered, corners, edges) if len(corners) else None
 
     def climbs(self, traces: list[int], v: np.ndarray, p: np.ndarray, last: np.ndarray
                ) -> list[tuple[int, tuple[np.ndarray, int, int] | None]]:
