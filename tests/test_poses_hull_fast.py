@@ -345,3 +345,28 @@ def test_rotated_starts_each_triangle_at_its_first_least_point(seed, n, spread):
     start = np.argmin(tri, axis=1) if n else np.zeros(0, dtype=int)
     want = np.take_along_axis(tri, (start[:, None] + np.arange(3)) % 3, axis=1)
     assert np.array_equal(_rotated(tri), want)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(0, 300), st.floats(1e-3, 1e6))
+def test_planes_levels_and_heights_across_are_the_row_formulas(seed, m, scale):
+    """The planes, the corners' levels and the heights across each half-edge, computed
+    on coordinate columns, are the row formulas' numbers to the bit (a triangle with a
+    repeated corner too: NaN alike)."""
+    from plumbob.stability.poses.convex import _beyond, _corner_planes, _planes, corner_levels
+
+    rng = np.random.default_rng(seed)
+    P = rng.normal(size=(40, 3)) * scale + rng.normal(size=3) * scale * 10
+    tri = rng.integers(0, 40, size=(m, 3))
+    C = P[tri]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        want = _corner_planes(C)
+    for mine, plain in zip(_planes(P, tri), want):
+        np.testing.assert_array_equal(mine, plain)
+    normals = rng.normal(size=(m, 3))
+    np.testing.assert_array_equal(corner_levels(P, tri, normals),
+                                  dot(C, normals[:, None, :]))
+    twin = rng.integers(0, 3 * m, size=3 * m) if m else np.zeros(0, dtype=int)
+    offsets = rng.normal(size=m)
+    far = P[tri[:, [2, 0, 1]].ravel()[twin]].reshape(-1, 3, 3)
+    np.testing.assert_array_equal(_beyond(P, tri, normals, offsets, twin),
+                                  (dot(far, normals[:, None, :]) - offsets[:, None]).ravel())

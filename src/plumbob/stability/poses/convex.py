@@ -221,18 +221,55 @@ def _point_keys(tri: np.ndarray, n: int) -> np.ndarray | None:
     return key
 
 
+def _columns(P: np.ndarray) -> np.ndarray:
+    """(3, n) the coordinates of the points ``P`` (n, 3), a row each: gathered by index,
+    each gives a contiguous array, and the products below run on contiguous arrays (the
+    same operations, in the same order, as on rows of corners: the same bits, in about
+    half the time)."""
+    return np.ascontiguousarray(np.asarray(P, dtype=np.float64).T)
+
+
+def _dot_rows(Q: np.ndarray, idx: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``dot(P[idx], v[:, None, :])`` for ``Q = _columns(P)``, ``idx`` (k, 3), ``v`` (k, 3):
+    each row's three points along that row's vector (x, then y, then z added)."""
+    out = Q[0][idx] * v[:, 0:1]
+    out += Q[1][idx] * v[:, 1:2]
+    out += Q[2][idx] * v[:, 2:3]
+    return out
+
+
 def _planes(P: np.ndarray, tri: np.ndarray, solid_angles: bool = False
             ) -> tuple[np.ndarray, ...]:
     """Unit normals, offsets (the plane n·x = offset) and the lengths of the raw cross
     products (twice the areas) of the triangles ``tri`` through ``P``; with
     ``solid_angles``, also the solid angle each subtends from the origin. Block by
-    block: the corners are never gathered for all triangles at once."""
+    block: the corners are never gathered for all triangles at once. The numbers are
+    :func:`_corner_planes`', bit for bit (tested)."""
+    if solid_angles:
+        def corners(r: slice) -> tuple[np.ndarray, ...]:
+            C = np.take(P, tri[r], axis=0)
+            return (*_corner_planes(C), solid_angle(C[:, 0], C[:, 1], C[:, 2]))
+
+        return blockwise(len(tri), corners)
+    Q = _columns(P)
+
     def rows(r: slice) -> tuple[np.ndarray, ...]:
-        C = np.take(P, tri[r], axis=0)
-        planes = _corner_planes(C)
-        if not solid_angles:
-            return planes
-        return (*planes, solid_angle(C[:, 0], C[:, 1], C[:, 2]))
+        t = tri[r].T
+        (ax, bx, cx), (ay, by, cy), (az, bz, cz) = (Q[k][t] for k in range(3))
+        ux, uy, uz = bx - ax, by - ay, bz - az
+        vx, vy, vz = cx - ax, cy - ay, cz - az
+        nx = uy * vz - uz * vy  # arrays.cross's formulas
+        ny = uz * vx - ux * vz
+        nz = ux * vy - uy * vx
+        norm = nx * nx + ny * ny
+        norm += nz * nz
+        np.sqrt(norm, out=norm)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            tx, ty, tz = nx / norm, ny / norm, nz / norm
+        off = (ax + bx + cx) / 3 * tx
+        off += (ay + by + cy) / 3 * ty
+        off += (az + bz + cz) / 3 * tz
+        return np.stack((tx, ty, tz), axis=1), off, norm
 
     return blockwise(len(tri), rows)
 
@@ -250,8 +287,10 @@ def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def corner_levels(P: np.ndarray, tri: np.ndarray, normals: np.ndarray) -> np.ndarray:
     """(F, 3) the heights of the corners of the triangles ``tri`` through ``P`` along
     ``normals`` (F, 3), one normal per triangle: block by block."""
+    Q = _columns(P)
+
     def rows(r: slice) -> tuple[np.ndarray]:
-        return (dot(np.take(P, tri[r], axis=0), normals[r][:, None, :]),)
+        return (_dot_rows(Q, tri[r], normals[r]),)
 
     return blockwise(len(tri), rows)[0]
 
@@ -261,11 +300,13 @@ def _beyond(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
     """(3F,) per half-edge, the height of the far corner of the triangle across it over
     this triangle's plane (≤ 0 to rounding error where the edge is convex)."""
     far = tri[:, [2, 0, 1]].ravel()  # the corner of each half-edge's triangle across it
+    Q = _columns(P)
 
     def rows(r: slice) -> tuple[np.ndarray]:
-        corners = np.take(far, twin[3 * r.start:3 * r.stop])
-        far_points = np.take(P, corners, axis=0).reshape(-1, 3, 3)
-        return (dot(far_points, tn[r][:, None, :]) - off[r][:, None],)
+        corners = np.take(far, twin[3 * r.start:3 * r.stop]).reshape(-1, 3)
+        out = _dot_rows(Q, corners, tn[r])
+        out -= off[r][:, None]
+        return (out,)
 
     beyond, = blockwise(len(tri), rows)
     return beyond.ravel()
