@@ -30,6 +30,9 @@ def test_connected_components_match_scipy(n, edges):
     # the same partition: labels correspond one to one
     pairs = set(zip(ours.tolist(), theirs.tolist()))
     assert len(pairs) == count
+    # numbered in the order of each component's smallest node
+    assert np.array_equal(np.unique(ours, return_index=True)[1], np.sort(
+        np.unique(ours, return_index=True)[1])) and ours[0] == 0
 
 
 def test_topology_of_a_cube():

@@ -285,4 +285,7 @@ def connected_components(n: int, u: np.ndarray, v: np.ndarray) -> np.ndarray:
             if np.array_equal(grand, parent):
                 break
             parent = grand
-    return np.unique(parent, return_inverse=True)[1].reshape(-1)
+    # every node points at its component's least node (a parent is never larger than its
+    # child): the roots, counted in order, are the labels (np.unique's, without its sort)
+    roots = parent == np.arange(n)
+    return (np.cumsum(roots) - 1)[parent]

@@ -70,10 +70,12 @@ def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
     parts (a chain of nearly coplanar slivers can bend). ``level`` (F, 3): each part's
     corners' heights along its group's normal; returns (comp, bent mask of old groups,
     nfaces)."""
-    hi = np.full(nfaces, -np.inf)
-    lo = np.full(nfaces, np.inf)
-    np.maximum.at(hi, comp, row_max(level))
-    np.minimum.at(lo, comp, row_min(level))
+    hi, lo = np.empty(nfaces), np.empty(nfaces)
+    hi[comp], lo[comp] = row_max(level), row_min(level)  # right for a face of one triangle
+    grouped = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
+    hi[comp[grouped]], lo[comp[grouped]] = -np.inf, np.inf  # the others': over their parts
+    np.maximum.at(hi, comp[grouped], row_max(level[grouped]))
+    np.minimum.at(lo, comp[grouped], row_min(level[grouped]))
     bent = hi - lo > tol
     if bent.any():
         comp = np.where(bent[comp], nfaces + np.arange(len(comp)), comp)
