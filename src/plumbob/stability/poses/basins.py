@@ -189,7 +189,7 @@ def _saddles_between(h: Hull3, eg3: Edges3, roller: Roller, group: np.ndarray | 
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The saddle edges (one of each pair) between two basins (groups, with ``group``)
     and the stable faces (standing faces) the rolls from their two faces end on."""
-    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
+    sad = _one_of_each(h, eg3)
     ends = roller.sinks(np.concatenate((h.ef[sad], h.eg[sad])))
     f, g = ends[:len(sad)], ends[len(sad):]
     if group is not None:
@@ -197,6 +197,13 @@ def _saddles_between(h: Hull3, eg3: Edges3, roller: Roller, group: np.ndarray | 
         between = f != g
         sad, f, g = sad[between], f[between], g[between]
     return sad, f, g
+
+
+def _one_of_each(h: Hull3, eg3: Edges3) -> np.ndarray:
+    """The saddle edges, one of each pair (``a < b``), ascending: from the saddle rows,
+    not a pass over every edge."""
+    saddles = eg3.saddles
+    return saddles[np.take(h.ea, saddles) < np.take(h.eb, saddles)]
 
 
 def _maxima(h: Hull3, near: np.ndarray) -> np.ndarray:
@@ -236,7 +243,7 @@ def basins3(h: Hull3, eps: float, samples: int | None,
     stable = roller.stable
     if not stable.any():
         raise StabilityError("no face of the hull is stable (degenerate hull)")
-    sad = np.flatnonzero(eg3.saddle & (h.ea < h.eb))
+    sad = _one_of_each(h, eg3)
     if samples is not None:
         return Basins(sampled_basins(h, roller, samples), roller, eg3, sad, float("nan"))
     group = grouping(h, roller, eg3, sad) if grouping is not None else None
