@@ -27,10 +27,10 @@ from .rolling import Edges3, Roller, edge_geometry, step
 __all__ = ["Basins", "trace_basins", "sampled_basins", "basins3"]
 
 _AREA_CHECK = 1e-7  # relative tolerance on the basins' total area (4π)
-_STRIP_AFTER = 32  # steps (at least) after which live traces also run ahead (:meth:`.Fans.climbs`)
+_STRIP_AFTER = 8  # steps (at least) after which live traces also run ahead (:meth:`.Fans.climbs`)
 _STRIP_FEW = 32  # ... when no more traces than this are alive
 _STRIP_RETRY = 8  # steps before a trace whose run ahead failed tries again
-_AHEAD_FEW = 2  # ... and after fewer steps, when no more than this are alive
+_AHEAD_FEW = 2  # ... or when no more than this are alive (whatever _STRIP_FEW says)
 _AHEAD_AFTER = 8  # steps (at least) after which those start
 _FLAT = 1e-12  # |t| below this: the centre's foot is at the edge's end (a balanced vertex)
 
