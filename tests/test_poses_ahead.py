@@ -133,3 +133,41 @@ def test_lone_separatrices_run_ahead_to_the_same_areas(make):
     assert np.allclose(ahead, single, rtol=0, atol=1e-13 * 4 * np.pi)
     assert abs(ahead.sum() - 4 * np.pi) <= 1e-12 * 4 * np.pi
     assert steps < single_steps
+
+
+def test_the_sign_test_predicts_the_steps_crossings():
+    """ahead.climb's exit (the one arc whose ends lie on opposite sides of the great
+    circle toward w) and its crossing point (the linear map of the point it came in at)
+    are the ordinary step's own, crossing after crossing, on every separatrix of a lumpy
+    blob: the runs ahead are checked by the step, but a predictor that seldom agreed
+    would make them useless."""
+    from plumbob.arrays import dot
+    from plumbob.stability.poses.ahead import climb, scalars
+
+    X, center = lumpy(120, 3)
+    X = X - center
+    h = build_hull3(X, 1e-12 * float(np.linalg.norm(np.ptp(X, axis=0))))
+    eg3 = rolling.edge_geometry(h)
+    W = unit(h.X)
+    near = eg3.t < -1e-12
+    sad = eg3.saddles[h.ea[eg3.saddles] < h.eb[eg3.saddles]]
+    s = scalars(h, eg3, W, near)
+    crossings = 0
+    for start in (h.ea[sad], h.eb[sad]):
+        for v0, edge, p0 in zip(start.tolist(), sad.tolist(), eg3.spoint[eg3.saddle_rows(sad)]):
+            verts, edges, points = climb(s, v0, *p0.tolist(), int(h.und[edge]), 400)
+            if not edges:
+                continue
+            q = np.array(points).reshape(-1, 3)
+            starts = np.concatenate((p0[None, :], q[:-1]))
+            vs = np.array(verts)
+            w = W[vs]
+            wp = dot(starts, w)
+            before = np.concatenate(([h.und[edge]], h.und[np.array(edges[:-1], dtype=np.int64)]))
+            e, stepped = rolling.step(h, eg3, vs, starts, unit(w - wp[:, None] * starts),
+                                      np.arccos(np.clip(wp, -1.0, 1.0)), before, near,
+                                      np.full(len(vs), -1))
+            assert np.array_equal(e, edges)
+            assert np.abs(stepped - q).max() <= 1e-12
+            crossings += len(edges)
+    assert crossings > 20 * len(sad)  # long separatrices, all of them predicted
