@@ -132,8 +132,11 @@ def twins_and_ends(tri: np.ndarray, n: int
     """
     frm = tri.ravel()
     to = tri[:, [1, 2, 0]].ravel()
-    ends = stable_order(frm * n + to)
-    a, b = frm[ends], to[ends]  # the directed keys in ascending order
+    key = frm * n + to
+    ends = stable_order(key)
+    key = key[ends]  # the directed keys in ascending order
+    a = key // n
+    b = key - a * n
     if len(ends) > 1 and np.any((a[1:] == a[:-1]) & (b[1:] == b[:-1])):
         return None  # an edge used twice in one direction: not a 2-manifold
     end_twins = stable_order(b)  # by (to, from): the reverse of each by (from, to)
@@ -157,11 +160,14 @@ def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.nda
     order of their points). Then x and y, 31 bits each, are one key sorted once, and
     only the triangles that tie on it (a split flat facet's) are sorted further.
     """
-    q = (1e9 - np.rint(normals * 1e9)).astype(np.int64)  # 0 ..= 2e9: descending components
+    def rounded(index: tuple | slice) -> np.ndarray:  # 0 ..= 2e9: descending components
+        return (1e9 - np.rint(normals[index] * 1e9)).astype(np.int64)
+
     if ties is None:
+        q = rounded(slice(None))
         return lex_order([q[:, 2], q[:, 1], q[:, 0]])
-    key = q[:, 0] << 31
-    key |= q[:, 1]
+    key = rounded((slice(None), 0)) << 31
+    key |= rounded((slice(None), 1))
     order = np.argsort(key)  # not stable: every tie is settled below
     ranked = key[order]
     same = ranked[1:] == ranked[:-1]
@@ -169,7 +175,7 @@ def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.nda
         tied = np.flatnonzero(np.concatenate((same, [False])) | np.concatenate(([False], same)))
         run = np.cumsum(np.concatenate(([0], ~same)))[tied]  # ascending along ``tied``
         sub = order[tied]
-        order[tied] = sub[np.lexsort((sub, ties[sub], q[sub, 2], run))]
+        order[tied] = sub[np.lexsort((sub, ties[sub], rounded((sub, 2)), run))]
     return order
 
 

@@ -53,9 +53,17 @@ class Hull3(NamedTuple):
 def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray
                       ) -> np.ndarray:
     """Area-weighted unit normals of groups (``np.bincount`` adds in the same order as
-    ``np.add.at``, so the sums are the same to the bit)."""
-    out = np.stack([np.bincount(comp, weights=normals[:, k] * area, minlength=nfaces)
-                    for k in range(normals.shape[1])], axis=1)
+    ``np.add.at``, so the sums are the same to the bit). A group of one is its own
+    weighted normal plus 0.0 (the sum a bincount starts from: −0.0 becomes 0.0); only
+    the larger groups are summed."""
+    weighted = normals * area[:, None]
+    out = np.empty((nfaces, normals.shape[1]))
+    out[comp] = weighted + 0.0
+    grouped = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
+    if len(grouped):
+        g = comp[grouped]
+        for k in range(normals.shape[1]):
+            out[g, k] = np.bincount(g, weights=weighted[grouped, k], minlength=nfaces)[g]
     bad = np.sqrt(dot(out, out)) == 0
     if bad.any():  # zero-area groups: the plain normals
         w = bad[comp]
