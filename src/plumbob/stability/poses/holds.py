@@ -138,17 +138,16 @@ def _vertex_copies(X: np.ndarray, P: np.ndarray) -> np.ndarray:
         slot = np.full(1 << bits, -1, dtype=np.int64)
         where = (hashes(P[left], salt) & mask).astype(np.intp)
         slot[where] = left
-        cell = (hashes(X[look] if salt else X, salt) & mask).astype(np.intp)
+        Z = X[look] if salt else X  # the first table: every row, in place
+        cell = (hashes(Z, salt) & mask).astype(np.intp)
         j = slot[cell]
-        hit = np.flatnonzero(j >= 0)
-        look, j, cell = look[hit], j[hit], cell[hit]
-        Q, Z = P[j], X[look]
-        same = (Q[:, 0] == Z[:, 0]) & (Q[:, 1] == Z[:, 1]) & (Q[:, 2] == Z[:, 2])
+        Q = np.take(P, j, axis=0)  # j = -1 (no row of P there) is masked below
+        same = (j >= 0) & (Q[:, 0] == Z[:, 0]) & (Q[:, 1] == Z[:, 1]) & (Q[:, 2] == Z[:, 2])
         found[look[same]] = True
         lost = slot[where] != left
         shared = np.zeros(1 << bits, dtype=bool)
         shared[where[lost]] = True  # slots a row of P lost: its copies met the winner
-        again = ~same & shared[cell]
+        again = ~same & (j >= 0) & shared[cell]
         left, look = left[lost], look[again]  # the next table
     return found
 
@@ -204,7 +203,7 @@ def _starts(Pc: np.ndarray, tri: np.ndarray, Y: np.ndarray) -> np.ndarray:
         t[some] = incident[cand[first[some]]]
         return t
     row, item = expand(count, first)
-    closeness = dot(Y[row], unit(Pc[cand[item]]))  # |y| cos(angle): largest nearest
+    closeness = dot(Y[row], unit(Pc[cand])[item])  # |y| cos(angle): largest nearest
     best = group_first(row, -closeness, len(Y))
     some = best >= 0
     t[some] = incident[cand[item[best[some]]]]
