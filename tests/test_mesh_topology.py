@@ -78,7 +78,8 @@ def test_a_consistently_wound_mesh_skips_the_winding_components():
 
 
 @pytest.mark.parametrize("n", [2048, 5001])
-@pytest.mark.parametrize("span", [1, 2**16 - 1, 2**16, 2**32 + 7, 2**48 - 1, 2**48, 2**62])
+@pytest.mark.parametrize("span", [1, 2**16 - 1, 2**16, 2**32 + 7, 2**48 - 1, 2**48, 2**62,
+                                  2**63 - 8])
 def test_sorts_by_digits_are_stable_argsorts(n, span):
     """From RADIX_MIN keys stable_order sorts by 16-bit digits and unique_first by the top
     48 bits: the same orders as numpy's stable argsort and unique, keys alike in their
