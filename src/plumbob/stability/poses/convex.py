@@ -494,8 +494,8 @@ def _holds_input(X: np.ndarray, found: HullMesh, eps: float) -> bool:
     coplanar and collinear points. :func:`.holds.holds` proves or refutes it — always
     for up to :data:`~.holds.EXHAUSTIVE` points × triangles, and on larger inputs whose
     hull shows exact coplanarity or collinearity (:func:`.holds.degenerate`) when few
-    points are left to locate (a 200k-triangle egg: about 850 points, 35–50 ms beside
-    a 550 ms hull). Where it does not decide — larger inputs without such marks, or
+    points are left to locate (a 200k-triangle egg: about 850 points, 20 ms of CPU
+    beside a 300 ms hull). Where it does not decide — larger inputs without such marks, or
     walks that do not settle (a box united with a tilted cylinder: tens of thousands
     of points on the cylinder's straight sides, walks circling its flat caps) — the
     hull is taken on an observation, not a proof: no point left out in 4 000 random

@@ -64,12 +64,14 @@ def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: 
         g = comp[grouped]
         for k in range(normals.shape[1]):
             out[g, k] = np.bincount(g, weights=weighted[grouped, k], minlength=nfaces)[g]
-    bad = np.sqrt(dot(out, out)) == 0
+    norm = np.sqrt(dot(out, out))
+    bad = norm == 0
     if bad.any():  # zero-area groups: the plain normals
         w = bad[comp]
         out += np.stack([np.bincount(comp, weights=normals[:, k] * w, minlength=nfaces)
                          for k in range(normals.shape[1])], axis=1)
-    return unit(out)
+        return unit(out)
+    return out / norm[:, None]  # unit(out), its norm measured once
 
 
 def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
