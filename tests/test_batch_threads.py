@@ -129,10 +129,9 @@ START = """
 import json, os, sys
 from plumbob.__main__ import blas_starts_with_one_thread
 assert "numpy" not in sys.modules, "import plumbob loaded numpy before the command set it up"
-if sys.argv[1] == "command":
-    blas_starts_with_one_thread()
+started = blas_starts_with_one_thread() if sys.argv[1] == "command" else None
 import numpy, threadpoolctl
-report = {"tasks": len(os.listdir("/proc/self/task")),
+report = {"tasks": len(os.listdir("/proc/self/task")), "started": started,
           "blas": [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
                    if lib["user_api"] == "blas"]}
 with threadpoolctl.threadpool_limits(2):  # what --threads-per-job 2 asks of a worker
@@ -143,7 +142,9 @@ print(json.dumps(report))
 
 
 def _start(how: str, **env: str) -> dict:
-    base = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    from plumbob.__main__ import BLAS_VARIABLES
+
+    base = {k: v for k, v in os.environ.items() if k not in BLAS_VARIABLES}
     out = subprocess.run([sys.executable, "-c", START, how], capture_output=True, text=True,
                          timeout=120, env=dict(base, PYTHONPATH=os.path.join(ROOT, "src"), **env))
     assert out.returncode == 0, out.stderr
@@ -158,7 +159,38 @@ def test_a_command_starts_openblas_without_its_threads():
     a program that imports plumbob, starts OpenBLAS's threads as numpy does. A worker that
     inherits the setting can still be given more threads (``--threads-per-job``)."""
     command, program = _start("command"), _start("program")
-    assert command["blas"] == [1] and command["tasks"] == 1
+    assert command["blas"] == [1] and command["tasks"] == 1 and command["started"] is True
     assert program["blas"][0] > 1 and program["tasks"] > 1
     assert command["raised"] == [2]
-    assert _start("command", OPENBLAS_NUM_THREADS="2")["blas"] == [2]  # the user's own count
+    own = _start("command", OPENBLAS_NUM_THREADS="2")  # the user's own count: the command
+    assert own["blas"] == [2] and own["started"] is False  # limits it itself (below)
+
+
+ENTRY = """
+import contextlib, io, json, sys
+from plumbob.__main__ import entry
+sys.argv = ["plumbob", "mass", sys.argv[1]]
+with contextlib.redirect_stdout(io.StringIO()):
+    status = entry()
+import threadpoolctl
+print(json.dumps({"status": status, "blas": [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
+                                            if lib["user_api"] == "blas"]}))
+"""
+
+
+@pytest.mark.parametrize("asked", [None, "8"])
+def test_the_command_runs_blas_on_one_thread_however_it_started(shapes_dir, asked):
+    """Through the console script's entry point: BLAS on one thread while the command
+    runs, whether it started so (nothing asked: the entry point set it) or the
+    environment asked for 8 threads (then the command limits it)."""
+    from plumbob.__main__ import BLAS_VARIABLES
+
+    env = {k: v for k, v in os.environ.items() if k not in BLAS_VARIABLES}
+    if asked:
+        env["OPENBLAS_NUM_THREADS"] = asked
+    out = subprocess.run([sys.executable, "-c", ENTRY, os.path.join(shapes_dir, "sculpture.toml")],
+                         env=dict(env, PYTHONPATH=os.path.join(ROOT, "src")),
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    report = json.loads(out.stdout)
+    assert report["status"] == 0 and report["blas"] == [1]

@@ -58,11 +58,13 @@ def meshes(tmp_path_factory) -> dict[str, str]:
     return paths
 
 
-def imported(*cli_args: str) -> set[str]:
-    """The modules a ``python -m plumbob`` process imports (it must succeed)."""
+def imported(*cli_args: str, env: dict[str, str] | None = None) -> set[str]:
+    """The modules a ``python -m plumbob`` process imports (it must succeed), in this
+    process's environment or ``env``."""
     result = subprocess.run([sys.executable, "-X", "importtime", "-m", "plumbob", *cli_args],
                             capture_output=True, text=True, timeout=120,
-                            env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
+                            env=dict(os.environ if env is None else env,
+                                     PYTHONPATH=os.path.join(ROOT, "src")))
     assert result.returncode == 0, result.stderr[-2000:]
     names = set(re.findall(r"^import time:\s+\d+ \|\s+\d+ \|\s+(\S+)$", result.stderr, re.M))
     assert "numpy" in names and "plumbob.cli" in names  # the report was read
@@ -98,6 +100,18 @@ def test_check_of_a_mesh_loads_neither_poses_nor_drops(meshes):
     names = imported("check", meshes["box"], "--units", "mm")
     assert "plumbob.stability.poses.settling" in names
     assert not _loaded(names, ("plumbob.stability.drops", "mujoco", "matplotlib", "trimesh"))
+
+
+def test_threadpoolctl_loads_only_to_limit_threads_the_environment_asked_for(meshes):
+    """The command's entry point has BLAS start on one thread (nothing asked in the
+    environment), so it need not load threadpoolctl (~2 ms) to limit it; asked for 8,
+    it does."""
+    from plumbob.__main__ import BLAS_VARIABLES
+
+    clean = {k: v for k, v in os.environ.items() if k not in BLAS_VARIABLES}
+    assert "threadpoolctl" not in imported("poses", meshes["box"], "--units", "mm", env=clean)
+    asked = dict(clean, OPENBLAS_NUM_THREADS="8")
+    assert "threadpoolctl" in imported("poses", meshes["box"], "--units", "mm", env=asked)
 
 
 def test_stability_names_load_on_first_use():

@@ -189,20 +189,25 @@ def _numeric_failure(args: argparse.Namespace, warning: Warning) -> str:
             "compute with; check them, or give lengths in other units")
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, *, blas_on_one_thread: bool = False) -> int:
+    """Run the command line ``argv`` (default: this process's arguments); its exit status.
+    ``blas_on_one_thread``: BLAS already runs on one thread (the entry point had it start
+    so, :func:`plumbob.__main__.blas_starts_with_one_thread`), else it is limited here."""
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
-    from .blockwise import blas_on_one_thread
     from .commands._notices import flush_notices
 
     succeeded = False
     try:
         with _escaped_output(), _warnings_caught():
-            blas_on_one_thread()  # thin products: BLAS threads would only spin (blockwise.py)
+            if not blas_on_one_thread:  # thin products: BLAS threads would only spin
+                from .blockwise import blas_on_one_thread as limit_blas
+
+                limit_blas()
             status = int(args.func(args) or 0)
         succeeded = True
         return status
