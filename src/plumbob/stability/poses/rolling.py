@@ -105,39 +105,84 @@ def edge_geometry(h: Hull3) -> Edges3:
     against the edge. Row by row, in blocks (:func:`~plumbob.blockwise.blockwise`)."""
     X, N, H = h.X, h.normals, h.heights
     ea, eb, ef, eg = h.ea, h.eb, h.ef, h.eg
+    # coordinate columns: contiguous gathers and arithmetic on contiguous arrays, the
+    # row formulas' operations in the same order (dot: (x + y) + z; cross: the same
+    # differences of products), so the same bits
+    Xc, Nc = np.ascontiguousarray(X.T), np.ascontiguousarray(N.T)
 
     def rows(r: slice) -> tuple[np.ndarray, ...]:
-        A = np.take(X, ea[r], axis=0)
-        D = np.take(X, eb[r], axis=0)
-        D -= A
-        L2 = dot(D, D)
-        t = dot(A, D)
+        ia, ib, jf = ea[r], eb[r], ef[r]
+        a0, a1, a2 = (np.take(Xc[k], ia) for k in range(3))
+        d0, d1, d2 = (np.take(Xc[k], ib) for k in range(3))
+        d0 -= a0
+        d1 -= a1
+        d2 -= a2
+        L2 = d0 * d0
+        L2 += d1 * d1
+        L2 += d2 * d2  # dot(D, D)
+        t = a0 * d0
+        t += a1 * d1
+        t += a2 * d2
         np.negative(t, out=t)
         t /= L2  # -(A·D) / |D|²
         L = np.sqrt(L2)
-        pole = D / L[:, None]
+        pole = np.empty((len(t), 3))
+        np.divide(d0, L, out=pole[:, 0])
+        np.divide(d1, L, out=pole[:, 1])
+        np.divide(d2, L, out=pole[:, 2])
         # a saddle needs the foot strictly inside the edge (a few % of a smooth hull's
         # edges): the arc test only for those rows, the same numbers row by row
         inside = np.flatnonzero((t > 0) & (t < 1))
         saddle = np.zeros(len(t), dtype=bool)
         if len(inside):
-            s, _ = _foot_direction(np.take(A, inside, axis=0), np.take(D, inside, axis=0),
-                                   np.take(t, inside))
+            A = np.stack([np.take(c, inside) for c in (a0, a1, a2)], axis=1)
+            D = np.stack([np.take(c, inside) for c in (d0, d1, d2)], axis=1)
+            s, _ = _foot_direction(A, D, np.take(t, inside))
             edges = np.arange(r.start, r.stop)[inside]
             after_f, before_g = _sides(np.take(pole, inside, axis=0),
                                        np.take(N, np.take(ef, edges), axis=0),
                                        np.take(N, np.take(eg, edges), axis=0))
             saddle[inside] = (dot(s, after_f) >= 0) & (dot(s, before_g) >= 0)
-        n = np.take(N, ef[r], axis=0)
-        # the centre's foot on face F: how far inside this edge, and its nearest point
-        foot = np.take(H, ef[r])[:, None] * n
-        rel = foot - A
-        inset = dot(cross(D, rel), n) / L  # signed, positive inside
-        tau = np.clip(dot(rel, D) / L2, 0.0, 1.0)
-        off = tau[:, None] * D
-        off += A
-        off -= foot  # A + tau D − foot
-        tip_distance = np.sqrt(dot(off, off))  # = np.linalg.norm(off, axis=1), bit for bit
+        n0, n1, n2 = (np.take(Nc[k], jf) for k in range(3))
+        # the centre's foot on face F (height × normal): how far inside this edge, and
+        # its nearest point on the edge; rel = foot − A
+        hf = np.take(H, jf)
+        f0, f1, f2 = hf * n0, hf * n1, hf * n2
+        r0, r1, r2 = f0 - a0, f1 - a1, f2 - a2
+        # inset = (D × rel)·n / L, signed, positive inside
+        inset = d1 * r2
+        inset -= d2 * r1
+        inset *= n0
+        c = d2 * r0
+        c -= d0 * r2
+        c *= n1
+        inset += c
+        c = d0 * r1
+        c -= d1 * r0
+        c *= n2
+        inset += c
+        inset /= L
+        tau = r0 * d0
+        tau += r1 * d1
+        tau += r2 * d2
+        tau /= L2
+        np.clip(tau, 0.0, 1.0, out=tau)
+        # A + tau D − foot, component by component
+        o = tau * d0
+        o += a0
+        o -= f0
+        dist = o * o
+        o = tau * d1
+        o += a1
+        o -= f1
+        o *= o
+        dist += o
+        o = tau * d2
+        o += a2
+        o -= f2
+        o *= o
+        dist += o
+        tip_distance = np.sqrt(dist)  # = np.linalg.norm(off, axis=1), bit for bit
         return pole, t, saddle, inset, tip_distance, tau * L, L
 
     pole, t, saddle, inset, tip, along, length = blockwise(len(ea), rows)
