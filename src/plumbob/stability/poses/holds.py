@@ -136,7 +136,7 @@ def _vertex_copies(X: np.ndarray, P: np.ndarray) -> np.ndarray:
         bits = max(4, int(len(left)).bit_length() + 2)
         mask = np.uint64((1 << bits) - 1)
         slot = np.full(1 << bits, -1, dtype=np.int64)
-        where = (hashes(P[left], salt) & mask).astype(np.intp)
+        where = (hashes(np.take(P, left, axis=0) if salt else P, salt) & mask).astype(np.intp)
         slot[where] = left
         Z = X[look] if salt else X  # the first table: every row, in place
         cell = (hashes(Z, salt) & mask).astype(np.intp)
@@ -203,8 +203,8 @@ def _starts(Pc: np.ndarray, tri: np.ndarray, Y: np.ndarray) -> np.ndarray:
         t[some] = incident[cand[first[some]]]
         return t
     row, item = expand(count, first)
-    closeness = dot(Y[row], unit(Pc[cand])[item])  # |y| cos(angle): largest nearest
-    best = group_first(row, -closeness, len(Y))
+    closeness = dot(np.take(Y, row, axis=0), np.take(unit(Pc[cand]), item, axis=0))
+    best = group_first(row, -closeness, len(Y))  # |y| cos(angle): the largest is nearest
     some = best >= 0
     t[some] = incident[cand[item[best[some]]]]
     return t
