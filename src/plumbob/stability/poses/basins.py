@@ -125,8 +125,8 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     for count in range(len(h.X) + 8):
         if len(alive) == 0:
             break
-        va, pa = v[alive], p[alive]
-        w = W[va]
+        va, pa = v[alive], np.take(p, alive, axis=0)
+        w = np.take(W, va, axis=0)
         wp = dot(pa, w)
         done = ismax[va] | (wp >= 1.0 - 1e-24)  # at its maximum already
         if done.any():

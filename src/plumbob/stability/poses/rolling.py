@@ -204,8 +204,9 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     Returns θ (inf when the great circle is not met before ``limit``), how far outside
     the arc the meeting point lies (0 inside; sines of angles) and the meeting points.
     """
-    k = eg3.pole[cand]
-    pr, tr = p[rows], tang[rows]
+    # rows gathered with np.take (fancy indexing of rows costs about 3x as much)
+    k = np.take(eg3.pole, cand, axis=0)
+    pr, tr = np.take(p, rows, axis=0), np.take(tang, rows, axis=0)
     a, b = dot(pr, k), dot(tr, k)
     theta = np.arctan2(-a, b)
     theta = np.where(theta <= _THETA_EPS, theta + np.pi, theta)
@@ -272,7 +273,7 @@ def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
         return np.full(len(v), -1, dtype=np.int64), unit(p)
     b = np.maximum(best, 0)
     edge = np.where(found, cand[b], -1)
-    point = np.where(found[:, None], q[b], p)
+    point = np.where(found[:, None], np.take(q, b, axis=0), p)
     return edge, unit(point)
 
 
@@ -369,7 +370,7 @@ class Roller:
                     return result
                 continue
             va, pa = v[rolling], p[rolling]
-            w = self.W[va]
+            w = np.take(self.W, va, axis=0)
             tang = unit(dot(w, pa)[:, None] * pa - w)
             edge, q = step(h, eg3, va, pa, tang, np.full(len(rolling), np.pi),
                             exclude[rolling], far, start_face[rolling])
