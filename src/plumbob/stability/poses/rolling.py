@@ -305,13 +305,19 @@ class Roller:
         length = eg3.length[tip]
         self.pivots = ~self.stable & ~((along > tol) & (along < length - tol))
         self._tip_at_a = along <= tol  # a pivot's corner: the tip edge's start, else its end
-        # rolls over edges chain faces: jump along them to a stable face or a pivot
-        over = np.where(self.stable | self.pivots, np.arange(nF), h.eg[tip])
+        # rolls over edges chain faces: jump along them to a stable face or a pivot (the
+        # chains' ends, which point to themselves); only the faces that roll over an edge
+        # (a few % of a smooth hull's) jump, each until it points at an end
+        move = np.flatnonzero(~(self.stable | self.pivots))
+        over = np.arange(nF)
+        over[move] = h.eg[tip[move]]
         for _ in range(64):
-            jumped = over[over]
-            if np.array_equal(jumped, over):
+            if len(move) == 0:
                 break
-            over = jumped
+            nxt = over[move]
+            jumped = over[nxt]
+            over[move] = jumped
+            move = move[jumped != nxt]
         else:
             raise StabilityError("the resting poses could not be resolved: rolling over "
                                  "edges never ends (a degenerate hull?)")
