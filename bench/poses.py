@@ -16,8 +16,9 @@ module it loads. All processes run with the same environment.
 * **floor** — a process that only reads the file (numpy), welds it (an exact sort
   of the float32 coordinates) and takes its convex hull (manifold3d's quickhull, the
   fastest hull measured here): what any pose method must at least do. It starts numpy's
-  OpenBLAS on one thread, as plumbob's command does (``plumbob.__main__``): neither uses
-  BLAS threads, and their start-up would otherwise cost the floor ~50 ms of CPU.
+  OpenBLAS on one thread and sets glibc's malloc to keep freed memory, as plumbob's
+  command does (``plumbob.__main__``): neither uses BLAS threads, whose start-up would
+  otherwise cost the floor ~50 ms of CPU, and both run on the same allocator.
 
 It prints the ratios trimesh / plumbob and plumbob / floor, by wall time and by CPU
 time (user + system, which a process waiting for a core does not accrue: the measure a
@@ -63,8 +64,14 @@ print(len(probabilities))
 """
 
 FLOOR = """
-import os, sys
+import ctypes, os, sys
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as plumbob's command starts numpy
+if sys.platform.startswith("linux"):  # and as it sets glibc's malloc (plumbob.__main__)
+    try:
+        for parameter, value in ((-3, 256 << 20), (-1, 512 << 20), (-2, 64 << 20)):
+            ctypes.CDLL(None).mallopt(parameter, value)
+    except (AttributeError, OSError):
+        pass
 import numpy as np
 import manifold3d
 records = np.fromfile(sys.argv[1], dtype=[("n", "<f4", 3), ("t", "<f4", (3, 3)), ("a", "<u2")],

@@ -194,3 +194,55 @@ def test_the_command_runs_blas_on_one_thread_however_it_started(shapes_dir, aske
     assert out.returncode == 0, out.stderr
     report = json.loads(out.stdout)
     assert report["status"] == 0 and report["blas"] == [1]
+
+
+MALLOC = """
+import ctypes, json, sys
+from plumbob.__main__ import malloc_keeps_freed_memory
+done = malloc_keeps_freed_memory() if sys.argv[1] == "command" else None
+import numpy as np
+
+
+class Info(ctypes.Structure):  # glibc's struct mallinfo2 (2.33 on)
+    _fields_ = [(name, ctypes.c_size_t) for name in (
+        "arena", "ordblks", "smblks", "hblks", "hblkhd", "usmblks", "fsmblks", "uordblks",
+        "fordblks", "keepcost")]
+
+
+libc = ctypes.CDLL(None)
+libc.mallinfo2.restype = Info
+held = np.ones(8 << 20)  # 64 MB: mapped on its own by default (beyond 32 MB, always)
+while_held = libc.mallinfo2()
+del held
+after = libc.mallinfo2()
+print(json.dumps({"done": done, "mapped_while_held": while_held.hblkhd,
+                  "heap_after_free": after.arena}))
+"""
+
+
+def _malloc(how: str) -> dict:
+    out = subprocess.run([sys.executable, "-c", MALLOC, how], capture_output=True, text=True,
+                         timeout=120, env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def _has_mallinfo2() -> bool:
+    import ctypes
+
+    try:
+        return sys.platform.startswith("linux") and hasattr(ctypes.CDLL(None), "mallinfo2")
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not _has_mallinfo2(), reason="glibc's malloc (mallopt, mallinfo2), on Linux")
+def test_a_command_keeps_the_memory_it_freed_for_the_next_array():
+    """The command has malloc serve a 64 MB array from its heap and keep it there once
+    freed, for the next array to reuse without page faults; in a program that imports
+    plumbob (the control) the array is mapped on its own and given back when freed."""
+    MB = 1 << 20
+    command, program = _malloc("command"), _malloc("program")
+    assert command["done"] is True
+    assert command["mapped_while_held"] < MB and command["heap_after_free"] >= 64 * MB
+    assert program["mapped_while_held"] >= 64 * MB and program["heap_after_free"] < 64 * MB
