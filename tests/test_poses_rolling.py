@@ -9,10 +9,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_poses_fans import boss_points
 
-from plumbob.arrays import group_first
+from plumbob import blockwise
+from plumbob.arrays import cross, dot, group_first, unit
 from plumbob.stability.poses import basins, poses_from_points
 from plumbob.stability.poses.hull import build_hull3
-from plumbob.stability.poses.rolling import first_least_sorted
+from plumbob.stability.poses.rolling import Roller, edge_geometry, first_least_sorted
 
 
 @settings(max_examples=60, deadline=None)
@@ -31,6 +32,46 @@ def test_first_least_sorted_is_group_first(pairs):
     got = first_least_sorted(np.zeros(len(lone), dtype=np.int64), lone, 1)
     assert np.array_equal(got, first_least_sorted(np.zeros(len(lone), dtype=np.int64),
                                                   lone, 2)[:1])
+
+
+def _row_geometry(h):
+    """The edge geometry by the row formulas (whole rows, no blocks, no columns)."""
+    A, D = h.X[h.ea], h.X[h.eb] - h.X[h.ea]
+    L2 = dot(D, D)
+    t = -dot(A, D) / L2
+    L = np.sqrt(L2)
+    n = h.normals[h.ef]
+    foot = h.heights[h.ef][:, None] * n
+    rel = foot - A
+    inset = dot(cross(D, rel), n) / L
+    tau = np.clip(dot(rel, D) / L2, 0.0, 1.0)
+    off = tau[:, None] * D + A - foot
+    return D / L[:, None], t, inset, np.sqrt(dot(off, off)), tau * L, L
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_edge_geometry_and_roller_are_the_row_formulas_bit_for_bit(seed, monkeypatch):
+    """The columns edge_geometry computes on (in blocks, in threads) give the row formulas'
+    bits, and the roller's chains over edges (jumped only where a face rolls over an edge)
+    end where jumping every face ends."""
+    monkeypatch.setattr(blockwise, "BLOCK_ROWS", 1000)  # several blocks, in threads
+    monkeypatch.setattr(blockwise, "MIN_THREADED_ROWS", 2000)
+    rng = np.random.default_rng(seed)
+    u = unit(rng.normal(size=(1500, 3)))  # an egg-like ellipsoid: every point a vertex
+    X = u * [1.0, 0.7, 0.5] * (1 + 0.1 * u[:, :1]) + [0.1, -0.05, 0.02]
+    h = build_hull3(X, 1e-12 * 4)
+    eg3 = edge_geometry(h)
+    assert len(h.ea) > 4 * blockwise.BLOCK_ROWS and eg3.saddle.any()
+    for got, want in zip((eg3.pole, eg3.t, eg3.inset, eg3.tip_distance, eg3.along,
+                          eg3.length), _row_geometry(h)):
+        assert np.array_equal(got, want)
+    roller = Roller(h, eg3, unit(h.X), 1e-9)
+    over = np.where(roller.stable | roller.pivots, np.arange(len(h.normals)),
+                    h.eg[roller.tip_edge])
+    while not np.array_equal(over[over], over):
+        over = over[over]
+    assert np.array_equal(roller.lands, over)
+    assert (roller.lands != np.arange(len(h.normals))).any()  # some roll over edges
 
 
 def test_a_roll_through_a_face_normal_lands_on_that_face():
