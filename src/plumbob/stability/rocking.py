@@ -304,8 +304,8 @@ def _on_arcs(a: np.ndarray, B: np.ndarray, arc: np.ndarray, reach: float) -> np.
     every direction passes the test, and on a smooth surface few others do. An arc's
     directions lie in its way's plane, where u·v is u·v' with v' the part of v in the
     plane: the test holds with |v' × c|, no more than |v × c|, one coordinate of v'.
-    Arcs that all start at down, many, lie in one cone about down instead
-    (:func:`_near_down`)."""
+    For many ways at once, the points are first narrowed by the one cone about down
+    that holds all their arcs (:func:`_near_down`)."""
     mid = 0.5 * (arc[0] + arc[-1])
     half = 0.5 * (arc[-1] - arc[0])
     along = np.cos(mid) * a + np.sin(mid) * B  # (ways, n): each point along each c
@@ -319,11 +319,14 @@ def _on_arcs(a: np.ndarray, B: np.ndarray, arc: np.ndarray, reach: float) -> np.
 
 def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float) -> np.ndarray:
     """Indices of the points that can come within ``reach`` of the support for some
-    direction within ``half`` (radians) of down: :func:`_on_arcs`'s test for the one
-    cone about down that holds every way's arc from it (one test for all the ways, in
-    space, where a cone each costs a pass over the points each). ``a``: the points'
-    coordinates along down; ``across`` (n, 2): along two orthonormal directions across
-    it, from which |v × c| is taken (not from |v|² − (v·c)², which cancels near c)."""
+    direction within ``half`` (radians, up to π) of down: :func:`_on_arcs`'s test for
+    the one cone about down that holds every way's arc of a block (one test for all the
+    ways, in space, where a cone each costs a pass over the points each). With φ the
+    angle of v from down (past 90°), the test reads |v| cos(φ − half) ≥ −reach: exact
+    where φ > half, and passed where φ ≤ half (the cosine is then not negative), so it
+    holds for a cone wider than 90° too. ``a``: the points' coordinates along down;
+    ``across`` (n, 2): along two orthonormal directions across it, from which |v × c|
+    is taken (not from |v|² − (v·c)², which cancels near c)."""
     top = int(np.argmax(a))
     depth = a - a[top]  # v·c ≤ 0
     side = np.hypot(across[:, 0] - across[top, 0], across[:, 1] - across[top, 1])
