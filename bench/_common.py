@@ -76,3 +76,13 @@ def time_call(function, repeat: int = 3) -> float:
 
 
 PYTHON = sys.executable
+SRC = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "src")
+
+
+def src_environment(**extra: str) -> dict[str, str]:
+    """This process's environment for a timed child, plumbob's ``src/`` first on
+    ``PYTHONPATH`` and whatever was there kept after it (packages a machine keeps
+    outside the interpreter's own, such as wheels unpacked into a folder), plus
+    ``extra``."""
+    kept = os.environ.get("PYTHONPATH")
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, (SRC, kept))), **extra)

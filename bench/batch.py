@@ -5,14 +5,17 @@ binary STL, their triangle counts spread from 10 to 200,000 (log-uniform, square
 toward the small end as real part libraries are), and about 4.5 % broken on purpose
 (truncated, open, garbage). Each file gets mass properties and resting poses:
 
-* ``plumbob batch CORPUS --poses --jobs 1`` and ``--jobs N`` (N = every core), the
-  whole command timed as a process, writing CSV; and ``--jobs N`` again with
-  ``OPENBLAS_NUM_THREADS=OMP_NUM_THREADS=MKL_NUM_THREADS=8`` in its environment;
+* ``plumbob batch CORPUS --poses --jobs 1`` and ``--jobs N`` (N = every core, or each
+  of a list: ``--jobs 4,16``), the whole command timed as a process, writing CSV; and
+  ``--jobs N`` (the largest) again with
+  ``OPENBLAS_NUM_THREADS=OMP_NUM_THREADS=MKL_NUM_THREADS=8`` (``--env-threads``) in its
+  environment;
 * ``plumbob.batch.run(..., scheduler=...)`` on a Dask ``LocalCluster`` of N
   single-threaded worker processes (cluster start-up not timed);
 * a trimesh loop doing the same (``trimesh.load``, ``mass_properties``,
-  ``compute_stable_poses`` at the centre of mass) in a process pool of 1 and of N, each
-  worker limited to one BLAS/OpenMP thread by ``threadpoolctl`` as plumbob's workers are.
+  ``compute_stable_poses`` at the centre of mass) in a process pool of 1 and of N (or
+  of the sizes ``--trimesh-jobs`` lists), each worker limited to one BLAS/OpenMP thread
+  by ``threadpoolctl`` as plumbob's workers are.
 
 plumbob and trimesh run in turns (plumbob 1, trimesh 1, plumbob N, trimesh N), so that
 a shared machine's changing load falls alike on each pair. Printed: wall time, files per
@@ -24,8 +27,8 @@ trimesh process pool of the same size and at least 1.7× from 1 to 2 jobs on a 2
 machine; the ratios are printed, never asserted (a shared machine's timings are noisy;
 by CPU time they are distorted least).
 
-Run: ``python bench/batch.py [--files N] [--largest T] [--folder DIR] [--skip-trimesh]
-[--skip-dask] [--skip-env]``;
+Run: ``python bench/batch.py [--files N] [--largest T] [--folder DIR] [--jobs N[,N...]]
+[--trimesh-jobs N[,N...]] [--env-threads K] [--skip-trimesh] [--skip-dask] [--skip-env]``;
 ``--smoke``: four tiny files, no Dask, every step run once and no target judged (the
 test suite runs it, so an import error or a changed API fails the tests).
 """
@@ -43,11 +46,8 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
-from _common import PYTHON, write_binary_stl
+from _common import PYTHON, SRC, src_environment, write_binary_stl
 from _shapes import potato
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.join(os.path.dirname(HERE), "src")
 
 
 def triangle_counts(n: int, rng: np.random.Generator) -> np.ndarray:
@@ -174,9 +174,7 @@ def compile_plumbob() -> None:
 def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) -> float:
     """Wall time of the whole command; ``threads``: what the environment asks BLAS and
     OpenMP for (the workers must not follow it)."""
-    env = dict(os.environ, PYTHONPATH=SRC)
-    if threads:
-        env.update(dict.fromkeys(THREAD_VARIABLES, threads))
+    env = src_environment(**dict.fromkeys(THREAD_VARIABLES, threads) if threads else {})
     cpu, start = _children_cpu(), time.perf_counter()
     done = subprocess.run([PYTHON, "-m", "plumbob.cli", "batch", folder, "--poses", "--out",
                            out, "--jobs", str(jobs), "--quiet"], env=env, check=False)
@@ -186,7 +184,7 @@ def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) ->
     if ADOPTS:
         _reap_orphans()
     if jobs == 1 or ADOPTS:  # one job runs in the command's own process
-        CPU[f"plumbob {jobs}{' env 8' if threads else ''}"] = _children_cpu() - cpu
+        CPU[f"plumbob {jobs}{f' env {threads}' if threads else ''}"] = _children_cpu() - cpu
     return seconds
 
 
@@ -202,13 +200,34 @@ def plumbob_dask(folder: str, jobs: int) -> tuple[float, list]:
         return time.perf_counter() - start, result.rows
 
 
+def _counts(text: str) -> list[int]:
+    """``"4,16"`` -> [4, 16]: process counts, each at least 1."""
+    try:
+        counts = [int(part) for part in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected counts such as 4 or 4,16, not {text!r}") from None
+    if min(counts) < 1:
+        raise argparse.ArgumentTypeError(f"process counts are at least 1, not {text!r}")
+    return counts
+
+
+def _pool(n: int) -> str:
+    return f"trimesh pool, {n} process{'es' if n > 1 else ''}"
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--files", type=int, default=2000)
     parser.add_argument("--largest", type=int, default=200_000,
                         help="the largest part's triangles (default 200,000)")
     parser.add_argument("--folder", help="keep the corpus here (default: a temporary folder)")
-    parser.add_argument("--jobs", type=int, default=None, help="N (default: every core)")
+    parser.add_argument("--jobs", type=_counts, default=None,
+                        help="N, or several: 4,16 (default: every core); 1 is always run")
+    parser.add_argument("--trimesh-jobs", type=_counts, default=None,
+                        help="the trimesh pool's sizes (default: the same as plumbob's)")
+    parser.add_argument("--env-threads", default="8",
+                        help="what the environment asks BLAS/OpenMP for in the last run")
     parser.add_argument("--skip-trimesh", action="store_true")
     parser.add_argument("--skip-dask", action="store_true")
     parser.add_argument("--skip-env", action="store_true",
@@ -221,7 +240,9 @@ def main(argv: list[str] | None = None) -> int:
     sys.path.insert(0, SRC)
     from plumbob.batch import default_jobs
 
-    jobs = args.jobs or default_jobs()
+    sizes = sorted({1, *(args.jobs or [default_jobs()])})
+    jobs = sizes[-1]
+    trimesh_sizes = [] if args.skip_trimesh else sorted(set(args.trimesh_jobs or sizes))
     global ADOPTS
     ADOPTS = _adopt_orphans()
     folder = args.folder or tempfile.mkdtemp(prefix="plumbob-batch-")
@@ -248,42 +269,43 @@ def main(argv: list[str] | None = None) -> int:
         print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
         # plumbob and trimesh in turns, each size after the other, so that a shared
         # machine's changing load falls alike on both of a pair
-        for n in sorted({1, jobs}):
+        for n in sizes:
             name = f"plumbob batch --jobs {n}"
             report(name, plumbob_cli(corpus, n, os.path.join(folder, f"{n}.csv")),
                    f"plumbob {n}")
-            if not args.skip_trimesh:
-                report(f"trimesh pool, {n} process{'es' if n > 1 else ''}",
-                       trimesh_loop(paths, n), f"trimesh {n}")
+            if n in trimesh_sizes:
+                report(_pool(n), trimesh_loop(paths, n), f"trimesh {n}")
         many = f"plumbob batch --jobs {jobs}"
-        eight = f"--jobs {jobs}, BLAS env 8"
+        eight = f"--jobs {jobs}, BLAS env {args.env_threads}"
         if not args.skip_env:
-            report(eight, plumbob_cli(corpus, jobs, os.path.join(folder, "e.csv"), threads="8"),
-                   f"plumbob {jobs} env 8")
+            report(eight, plumbob_cli(corpus, jobs, os.path.join(folder, "e.csv"),
+                                      threads=args.env_threads),
+                   f"plumbob {jobs} env {args.env_threads}")
         if not args.skip_dask:
             seconds, _ = plumbob_dask(corpus, jobs)
             report(f"plumbob on Dask ({jobs} workers)", seconds)
         print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
         print()
         one = "plumbob batch --jobs 1"
-        print(f"scaling, --jobs 1 -> --jobs {jobs}: {rate[many] / rate[one]:.2f}x wall "
-              "(target 1.7x for 2 jobs)" + (
-                  f", {CPU['plumbob 1'] / CPU[f'plumbob {jobs}']:.2f}x CPU (the pool's "
-                  "own cost)" if f"plumbob {jobs}" in CPU and jobs > 1 else ""))
+        for n in sizes[1:]:
+            ours = f"plumbob batch --jobs {n}"
+            print(f"scaling, --jobs 1 -> --jobs {n}: {rate[ours] / rate[one]:.2f}x wall, "
+                  f"{rate[ours] / rate[one] / n:.2f} per job (target 1.7x for 2 jobs)" + (
+                      f", {CPU['plumbob 1'] / CPU[f'plumbob {n}']:.2f}x CPU (the pool's "
+                      "own cost)" if f"plumbob {n}" in CPU else ""))
         if not args.skip_env:
-            print(f"--jobs {jobs} with OPENBLAS/OMP/MKL_NUM_THREADS=8 / without: "
-                  f"{rate[eight] / rate[many]:.2f}x (the workers keep one thread each)")
-        if not args.skip_trimesh:
-            for n in sorted({1, jobs}):
-                ours, theirs = f"plumbob {n}", f"trimesh {n}"
-                tm = f"trimesh pool, {n} process{'es' if n > 1 else ''}"
-                line = (f"plumbob / trimesh pool, {n} process{'es' if n > 1 else ''} each: "
-                        f"{rate[f'plumbob batch --jobs {n}'] / rate[tm]:.1f}x wall")
-                if ours in CPU and theirs in CPU:
-                    line += (f", {CPU[theirs] / CPU[ours]:.1f}x CPU (plumbob {CPU[ours]:.1f} s, "
-                             f"trimesh {CPU[theirs]:.1f} s: the ratio a shared machine "
-                             "distorts least)")
-                print(line + (" (target 5x)" if n == jobs else ""))
+            print(f"--jobs {jobs} with OPENBLAS/OMP/MKL_NUM_THREADS={args.env_threads} / "
+                  f"without: {rate[eight] / rate[many]:.2f}x (the workers keep one thread "
+                  "each)")
+        for n in trimesh_sizes:
+            ours, theirs = f"plumbob {n}", f"trimesh {n}"
+            line = (f"plumbob / trimesh pool, {n} process{'es' if n > 1 else ''} each: "
+                    f"{rate[f'plumbob batch --jobs {n}'] / rate[_pool(n)]:.1f}x wall")
+            if ours in CPU and theirs in CPU:
+                line += (f", {CPU[theirs] / CPU[ours]:.1f}x CPU (plumbob {CPU[ours]:.1f} s, "
+                         f"trimesh {CPU[theirs]:.1f} s: the ratio a shared machine "
+                         "distorts least)")
+            print(line + (" (target 5x)" if n > 1 else ""))
         if not args.skip_dask:
             print(f"Dask / --jobs {jobs}: "
                   f"{rate[f'plumbob on Dask ({jobs} workers)'] / rate[many]:.2f}x")

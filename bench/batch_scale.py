@@ -34,10 +34,7 @@ import tempfile
 import threading
 import time
 
-from _common import PYTHON
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.join(os.path.dirname(HERE), "src")
+from _common import PYTHON, SRC, src_environment
 
 
 def _descendants(root: int) -> dict[int, int]:
@@ -125,7 +122,7 @@ def batch(corpus: str, out: str, jobs: int, *extra: str, stop_at: int | None = N
     its own CPU time, s: the work the parent does per file bounds the rate many workers
     can reach).
     ``stop_at``: send SIGINT once the table holds that many rows."""
-    env = dict(os.environ, PYTHONPATH=SRC)
+    env = src_environment()
     start = time.perf_counter()
     child = subprocess.Popen([PYTHON, "-m", "plumbob", "batch", corpus, "--poses", "--out", out,
                               "--jobs", str(jobs), "--quiet", *extra], env=env)

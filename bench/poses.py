@@ -49,7 +49,7 @@ import tempfile
 import time
 
 import numpy as np
-from _common import compile_bytecode, write_binary_stl
+from _common import compile_bytecode, src_environment, write_binary_stl
 from _shapes import SMOOTH
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -126,7 +126,7 @@ def capsule(faces: int) -> np.ndarray:
 
 
 def _env() -> dict[str, str]:
-    return dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"))
+    return src_environment()
 
 
 GNU_TIME = "/usr/bin/time"  # its child's peak memory starts afresh (see run_once)
