@@ -69,6 +69,12 @@ def jsonable(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return [jsonable(v) for v in value]
     if isinstance(value, np.ndarray):
+        if value.dtype.kind == "f" and value.dtype.itemsize <= 8:  # as floats, value by value
+            plain = value.astype(np.float64) + 0.0  # no negative zeros
+            if np.isfinite(plain).all():
+                return plain.tolist()
+        elif value.dtype.kind in "biu":  # Python's bools and ints already
+            return value.tolist()
         return jsonable(value.tolist())
     if isinstance(value, (np.bool_, bool)):
         return bool(value)
