@@ -21,10 +21,10 @@ from plumbob.stability.drops.run import worker_pool
 
 if __name__ == "__main__":
     with worker_pool(2) as pool:
-        drops = pool.submit(thread_report, ("scipy.linalg",)).result()
+        drops = pool.submit(thread_report, ("scipy.linalg",), True).result()
     print(json.dumps({
         "parent": {"plumbob": workers(), "libraries": threadpoolctl.threadpool_info()},
-        "batch": worker_threads(imports=("scipy.linalg",)),
+        "batch": worker_threads(imports=("scipy.linalg",), manifold_work=True),
         "batch_two": worker_threads(2, imports=("scipy.linalg",)),
         "drops": drops}))
 """
@@ -73,6 +73,45 @@ def test_a_live_worker_runs_one_thread_per_library(reports, pool):
     assert len(report["libraries"]) >= 2
     assert _threads(report) == [1] * len(report["libraries"])
     assert report["plumbob"] == 1
+
+
+# The control for manifold3d's threads: a plain process (BLAS on one thread, so that
+# only manifold's scheduler can add threads) doing the same manifold work.
+MANIFOLD_CONTROL = """
+import json
+from plumbob.batch.pool import thread_report
+print(json.dumps(thread_report((), True)))
+"""
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="threads are counted "
+                    "through Linux's /proc, which this system lacks")
+@pytest.mark.parametrize("pool", ["batch", "drops"])
+def test_a_live_worker_runs_manifolds_loops_on_one_thread(reports, pool):
+    """manifold3d's oneTBB scheduler has no thread setting of its own; a worker starts
+    it on one thread (``blockwise.manifold_on_threads``), so parallel-sized manifold work
+    starts no thread in a worker, where a plain process starts a thread per core."""
+    before, after = reports[pool]["os_threads"]
+    assert after == before
+    if _cores() > 1:
+        env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), OPENBLAS_NUM_THREADS="1")
+        out = subprocess.run([sys.executable, "-c", MANIFOLD_CONTROL], env=env,
+                             capture_output=True, text=True, timeout=60)
+        assert out.returncode == 0, out.stderr
+        before, after = json.loads(out.stdout)["os_threads"]
+        assert after > before
+
+
+def test_manifold_on_threads_leaves_the_affinity_as_it_was():
+    """The scheduler is started under a narrowed CPU mask, which is then restored: the
+    process may still run on every CPU it was given."""
+    from plumbob.blockwise import manifold_on_threads
+
+    if not hasattr(os, "sched_getaffinity"):
+        pytest.skip("CPU affinity is a Linux interface, which this system lacks")
+    before = os.sched_getaffinity(0)
+    manifold_on_threads(1)
+    assert os.sched_getaffinity(0) == before
 
 
 def test_threads_per_job_asks_for_more(reports):

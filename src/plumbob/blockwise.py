@@ -14,10 +14,10 @@ rows).
 
 ``PLUMBOB_THREADS`` (an integer ≥ 1) sets the number of threads; by default it is the
 number of cores the process may use. Processes that already run side by side (a batch's
-workers, the drops' workers) call :func:`limit_threads` ``(1)``: plumbob's blocks and
-every BLAS/OpenMP library in the process (through ``threadpoolctl``) then run on one
-thread each, whatever the environment asked for — N workers each starting a thread per
-core would fight N × cores threads over the cores.
+workers, the drops' workers) call :func:`limit_threads` ``(1)``: plumbob's blocks,
+every BLAS/OpenMP library in the process (through ``threadpoolctl``) and manifold3d's
+parallel loops then run on one thread each, whatever the environment asked for — N
+workers each starting a thread per core would fight N × cores threads over the cores.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 __all__ = ["BLOCK_ROWS", "MIN_THREADED_ROWS", "THREAD_VARIABLES", "blas_on_one_thread",
-           "blockwise", "limit_threads", "set_workers", "workers"]
+           "blockwise", "limit_threads", "manifold_on_threads", "set_workers", "workers"]
 
 #: rows per block: a block's (rows, 3) float64 temporaries (384 KB) fit in a core's cache
 BLOCK_ROWS = 16_384
@@ -104,6 +104,45 @@ def limit_threads(count: int) -> None:
         os.environ[name] = str(count)
     set_workers(count)
     threadpoolctl.threadpool_limits(limits=count)
+    manifold_on_threads(count)
+
+
+def manifold_on_threads(count: int) -> bool:
+    """Start manifold3d's parallel scheduler on ``count`` threads; True where it was done.
+
+    manifold3d runs its loops on oneTBB, linked into it, and offers no setting for the
+    thread count; threadpoolctl does not reach it. oneTBB fixes its count the first
+    time it is used, from the CPUs the calling thread may then run on (its affinity
+    mask). So the mask is narrowed to ``count`` of those CPUs for one tiny manifold
+    operation, which starts the scheduler, and restored at once: the process still runs
+    on any of its CPUs, and manifold's loops on ``count`` threads for its life. Without
+    this, each of 16 batch workers on a 16-core machine started 15 more threads that
+    spun between loops: ``--jobs 4`` kept 6.6 cores busy and ``--jobs 16`` scaled 7.8×
+    over one job (2026-11-27, a 16-core device machine; docs/batch.md).
+
+    Nothing is done (False) where the process may use no more than ``count`` CPUs
+    anyway, where the affinity cannot be set (not Linux) or where manifold3d is missing.
+    A scheduler already started in this process keeps its count: call this first.
+    """
+    try:
+        allowed = os.sched_getaffinity(0)
+    except (AttributeError, OSError):
+        return False
+    if len(allowed) <= count:
+        return False
+    try:
+        import manifold3d
+    except ImportError:
+        return False
+    try:
+        os.sched_setaffinity(0, sorted(allowed)[:count])
+    except OSError:
+        return False
+    try:
+        manifold3d.Manifold.cube()  # the scheduler's first use: it reads the mask now
+    finally:
+        os.sched_setaffinity(0, allowed)
+    return True
 
 
 def blockwise(n: int, work: Callable[[slice], Sequence[np.ndarray]],

@@ -8,15 +8,17 @@ Only paths go out and small rows come back: meshes are read where they are measu
 never copied between processes. Workers come from a fork server that has already
 imported numpy and plumbob, so a restart costs milliseconds.
 
-The workers own their threads: each runs BLAS, OpenMP and plumbob's own blocks on
-``threads`` threads (default 1, ``--threads-per-job``) whatever the environment says,
-since ``jobs`` processes already share the cores (:func:`~plumbob.blockwise.limit_threads`).
+The workers own their threads: each runs BLAS, OpenMP, manifold3d's loops and plumbob's
+own blocks on ``threads`` threads (default 1, ``--threads-per-job``) whatever the
+environment says, since ``jobs`` processes already share the cores
+(:func:`~plumbob.blockwise.limit_threads`).
 One job without a time limit runs in this process, on every core it was given.
 """
 
 from __future__ import annotations
 
 import multiprocessing
+import os
 import signal
 import time
 from collections import deque
@@ -33,16 +35,28 @@ __all__ = ["Task", "run_pool", "worker_threads"]
 Task = tuple[int, str, str]
 
 
-def thread_report(imports: tuple[str, ...] = ()) -> dict:
+def thread_report(imports: tuple[str, ...] = (), manifold_work: bool = False) -> dict:
     """The threads this process runs: plumbob's blocks and each BLAS/OpenMP library's
-    (``threadpoolctl.threadpool_info()``), once ``imports`` (module names) are imported."""
+    (``threadpoolctl.threadpool_info()``), once ``imports`` (module names) are imported;
+    with ``manifold_work``, also how many threads the operating system counts in this
+    process before and after a manifold3d operation big enough to run its loops in
+    parallel (a sphere of 2,048 triangles), which starts its scheduler's threads
+    (``os_threads``: [before, after]; None where Linux's /proc is missing)."""
     import importlib
 
     import threadpoolctl
 
     for name in imports:
         importlib.import_module(name)
-    return {"plumbob": block_threads(), "libraries": threadpoolctl.threadpool_info()}
+    report = {"plumbob": block_threads(), "libraries": threadpoolctl.threadpool_info()}
+    if manifold_work:
+        import manifold3d
+
+        tasks = "/proc/self/task"
+        before = len(os.listdir(tasks)) if os.path.isdir(tasks) else None
+        manifold3d.Manifold.sphere(1.0, 64).volume()
+        report["os_threads"] = before and [before, len(os.listdir(tasks))]
+    return report
 
 
 def _serve(conn, options: Options, threads: int) -> None:
@@ -62,7 +76,7 @@ def _serve(conn, options: Options, threads: int) -> None:
         if task is None:
             return
         if task[0] == "threads":
-            conn.send(thread_report(task[1]))
+            conn.send(thread_report(*task[1:]))
             continue
         index, path, shown = task
         conn.send((index, process_file(path, options, shown)))
@@ -117,12 +131,14 @@ class _Worker:
         self.conn.close()
 
 
-def worker_threads(threads: int = 1, imports: tuple[str, ...] = ()) -> dict:
+def worker_threads(threads: int = 1, imports: tuple[str, ...] = (),
+                   manifold_work: bool = False) -> dict:
     """The :func:`thread_report` of a live pool worker started with ``threads``, once it
-    has imported ``imports``: what BLAS, OpenMP and plumbob run on in a batch's workers."""
+    has imported ``imports``: what BLAS, OpenMP, manifold3d and plumbob run on in a
+    batch's workers."""
     worker = _Worker(_context(), Options(), threads)
     try:
-        worker.conn.send(("threads", tuple(imports)))
+        worker.conn.send(("threads", tuple(imports), manifold_work))
         return _answer(worker.conn.recv())
     finally:
         worker.stop()
