@@ -200,6 +200,38 @@ def test_check_solid_vertices_are_those_a_body_would_weld(name, triangles, reuse
     assert np.array_equal(moved.hull_points(), moved_expect)
 
 
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("inside_out", [False, True])
+def test_a_large_mesh_is_hashed_once(monkeypatch, dtype, inside_out):
+    """A mesh past the full check's size: the check's edge pairing hashes the corners, and
+    the body welds by those keys (float64 corners; float32 ones are hashed by their own
+    bits, so the weld hashes again): the same vertices and index as a weld of its own."""
+    from plumbob.bodies.solid import MeshSolid
+    from plumbob.mesh import solid
+    from plumbob.mesh.weld import merge_vertices, point_keys
+
+    monkeypatch.setattr(solid, "FULL_CHECK_LIMIT", 10)
+    triangles = _rotated(pyramid(np.stack((np.cos(np.arange(24) / 3.8),
+                                           np.sin(np.arange(24) / 3.8)), axis=1), 0.8).triangles,
+                         7).astype(dtype)
+    checked = solid.check_solid(triangles[:, ::-1] if inside_out else triangles)
+    assert checked.vertices is None and checked.notices[-1].startswith("shells: not checked")
+    assert np.array_equal(checked.triangles, triangles)
+    if dtype == np.float32:
+        assert checked.keys is None
+        return
+    corners = checked.triangles.reshape(-1, 3)
+    assert np.array_equal(checked.keys.reshape(-1), point_keys(corners.astype(float)))
+    body = MeshSolid(checked.triangles, checked=True, keys=checked.keys)
+    points, index = body.welded
+    expect, expect_index = merge_vertices(corners)
+    assert np.array_equal(points, expect) and np.array_equal(index.reshape(-1), expect_index)
+    assert "_weld_keys" not in body.__dict__  # let go once welded
+    wrong = np.zeros_like(checked.keys)  # keys that collide: caught, the exact weld instead
+    points, index = MeshSolid(checked.triangles, checked=True, keys=wrong).welded
+    assert len(points) == len(expect) and np.array_equal(points[index], checked.triangles)
+
+
 def _arc_runs_by_labels(starts, ends, normals):
     """The grouping of the support's edges as it was computed before (a label per run,
     then np.unique of the labels, which loaded numpy.ma): the oracle for the split."""

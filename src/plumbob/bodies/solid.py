@@ -111,6 +111,9 @@ class MeshSolid(_UniformSolid):
         them already (:attr:`plumbob.mesh.CheckedSolid.vertices`): not welded again.
     index: (init only) with ``vertices``, each triangle's corners as rows of them
         (:attr:`plumbob.mesh.CheckedSolid.index`): :attr:`welded` without a weld.
+    keys: (init only) the hashes (n, 3) of the corners that
+        :func:`~plumbob.mesh.weld.merge_vertices` welds them by, when a reader's check has
+        them (:attr:`plumbob.mesh.CheckedSolid.keys`): :attr:`welded` does not hash again.
     """
 
     triangles: np.ndarray
@@ -123,8 +126,10 @@ class MeshSolid(_UniformSolid):
     checked: bool = field(default=False, repr=False)
     vertices: InitVar[np.ndarray | None] = None
     index: InitVar[np.ndarray | None] = None
+    keys: InitVar[np.ndarray | None] = None
 
-    def __post_init__(self, vertices: np.ndarray | None, index: np.ndarray | None) -> None:
+    def __post_init__(self, vertices: np.ndarray | None, index: np.ndarray | None,
+                      keys: np.ndarray | None) -> None:
         tri = np.asarray(self.triangles)
         if tri.dtype.kind in "iu":
             tri = tri.astype(float)
@@ -149,6 +154,8 @@ class MeshSolid(_UniformSolid):
                 index = index.astype(np.int64, copy=True)
                 index.setflags(write=False)
                 self.__dict__["welded"] = (vertices, index)
+        elif keys is not None and keys.shape == (len(tri), 3) and keys.dtype == np.uint64:
+            self.__dict__["_weld_keys"] = keys  # taken (and let go) by the weld
 
     def mass_properties(self) -> MassProperties:
         m = self.moments if self.moments is not None else triangle_soup_moments(self.triangles)
@@ -183,7 +190,8 @@ class MeshSolid(_UniformSolid):
     def welded(self) -> tuple[np.ndarray, np.ndarray]:
         """The mesh as distinct vertices (n, 3), m, and triangles (m, 3) indexing them
         (:func:`~plumbob.mesh.weld.merge_vertices`, exact copies only): welded once."""
-        points, index = merge_vertices(self.triangles.reshape(-1, 3))
+        points, index = merge_vertices(self.triangles.reshape(-1, 3),
+                                       keys=self.__dict__.pop("_weld_keys", None))
         points.setflags(write=False)
         index = index.reshape(-1, 3)
         index.setflags(write=False)

@@ -36,7 +36,7 @@ def mesh_solid(triangles: np.ndarray, *, path: str | None = None, name: str | No
                            assumed=assumed) if extent else ()
     try:
         body = MeshSolid(checked.triangles, name=name, moments=checked.moments, checked=True,
-                         vertices=checked.vertices, index=checked.index)
+                         vertices=checked.vertices, index=checked.index, keys=checked.keys)
     except PlumbobError as error:
         raise GeometryError(error.message, path=path) from None
     return body, notices + checked.notices

@@ -34,7 +34,7 @@ from .topology import Topology, mesh_topology
 from .weld import point_keys
 
 __all__ = ["CLOSURE_TOLERANCE", "ZERO_VOLUME", "Holes", "SurfaceSummary", "edges_pair", "holes",
-           "join_at_slits",
+           "join_at_slits", "paired_keys",
            "is_closed", "open_message", "require_closed", "require_sums_close", "surface_summary"]
 
 #: |vector area| / area above which a surface is open
@@ -139,17 +139,35 @@ def edges_pair(triangles: np.ndarray) -> bool:
     >>> edges_pair(tetra), edges_pair(tetra[:3]), edges_pair(tetra[[0, 1, 2, 3, 3]])
     (True, False, False)
     """
+    return paired_keys(triangles) is not None
+
+
+def paired_keys(triangles: np.ndarray) -> np.ndarray | None:
+    """The hashes (n, 3) uint64 of the triangles' corners (:func:`~plumbob.mesh.weld.point_keys`
+    of each block's corners, in the soup's dtype) when every directed edge meets its reverse
+    (:func:`edges_pair`), else None: a body welds float64 corners by these same keys
+    (:func:`~plumbob.mesh.weld.merge_vertices`), so a mesh read from a file hashes them once.
+
+    >>> import numpy as np
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    >>> tetra = v[[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]]
+    >>> keys = paired_keys(tetra)
+    >>> keys.shape, bool(keys[0, 0] == keys[1, 0]), paired_keys(tetra[:3]) is None
+    ((4, 3), True, True)
+    """
+    keys = np.empty((len(triangles), 3), dtype=np.uint64)
     total = np.uint64(0)
     with np.errstate(over="ignore"):
         for start in range(0, len(triangles), PAIR_CHUNK):  # bounded temporaries
-            h = point_keys(triangles[start:start + PAIR_CHUNK]).reshape(-1, 3)
+            h = keys[start:start + PAIR_CHUNK]
+            h[...] = point_keys(triangles[start:start + PAIR_CHUNK]).reshape(-1, 3)
             g = h ^ (h >> np.uint64(31))  # not linear in h: no cancellation but by pairs
             # Σ over the edges 0→1, 1→2, 2→0 of h(u)g(v) − h(v)g(u), gathered by corner
             s = h[:, 0] * (g[:, 1] - g[:, 2])
             s += h[:, 1] * (g[:, 2] - g[:, 0])
             s += h[:, 2] * (g[:, 0] - g[:, 1])
             total += s.sum(dtype=np.uint64)
-    return bool(total == 0)
+    return keys if total == 0 else None
 
 
 class Holes(NamedTuple):

@@ -22,7 +22,14 @@ import numpy as np
 from ..errors import GeometryError, fmt_point
 from ..integrals.mesh import VolumeMoments
 from ..tolerances import WELD, weld_tolerance
-from .closure import SurfaceSummary, edges_pair, holes, join_at_slits, open_message, surface_summary
+from .closure import (
+    SurfaceSummary,
+    holes,
+    join_at_slits,
+    open_message,
+    paired_keys,
+    surface_summary,
+)
 from .repair import fill_holes
 from .shells import resolve_shells
 from .topology import mesh_topology
@@ -46,6 +53,10 @@ class CheckedSolid(NamedTuple):
         on the way (so a body need not weld them again), else None.
     index: (n, 3) int64, each triangle's corners as rows of ``vertices`` (the index
         :func:`~plumbob.mesh.weld.merge_vertices` gives), when ``vertices`` is known.
+    keys: (n, 3) uint64, the hashes of ``triangles``' corners as float64 by which
+        :func:`~plumbob.mesh.weld.merge_vertices` welds them, when the check computed them
+        (a large mesh whose edges pair, not stored as float32) and ``vertices`` is not known:
+        a body that welds the triangles need not hash them again.
     """
 
     triangles: np.ndarray
@@ -54,6 +65,7 @@ class CheckedSolid(NamedTuple):
     surface: SurfaceSummary
     vertices: np.ndarray | None = None
     index: np.ndarray | None = None
+    keys: np.ndarray | None = None
 
 
 def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | None = None,
@@ -110,18 +122,21 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
     if not summary.area > 0:
         raise GeometryError(f"{prefix}all {n} triangles have zero area: there is no surface")
     notices: list[str] = []
-    full = repair or n <= FULL_CHECK_LIMIT or not (summary.closed and edges_pair(triangles))
-    if not full:
+    keys = None if repair or n <= FULL_CHECK_LIMIT or not summary.closed else \
+        paired_keys(triangles)
+    if keys is not None:  # closed edge to edge: the cheap tests suffice
         if summary.flat:
             raise GeometryError(f"{prefix}encloses no volume: the surface is flat or its faces "
                                 "cancel")
         moments = summary.moments
         if summary.volume < 0:
             notices.append(f"{prefix}inside out: its faces pointed inward; turned outward")
-            triangles, moments = triangles[:, ::-1], None
+            triangles, moments, keys = triangles[:, ::-1], None, keys[:, ::-1]
         notices.append(f"{prefix}shells: not checked for overlap ({n} triangles, over "
                        f"{FULL_CHECK_LIMIT}; --repair checks)")
-        return CheckedSolid(triangles, tuple(notices), moments, summary)
+        # float32 corners were hashed by their own bits, not as the float64 a weld hashes
+        return CheckedSolid(triangles, tuple(notices), moments, summary,
+                            keys=keys if triangles.dtype != np.float32 else None)
 
     size = float(np.linalg.norm(summary.hi - summary.lo))
     weld = weld_tolerance(size)

@@ -89,7 +89,8 @@ def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return order[new], inverse
 
 
-def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+def merge_vertices(points: np.ndarray, tolerance: float = 0.0, *,
+                   keys: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Distinct points and the index of each input point among them.
 
     Parameters
@@ -99,6 +100,10 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
     tolerance : float
         m; 0 merges exact copies only. Above 0, points closer than it are merged too
         (:func:`weld_near`); each merged group keeps its first point's coordinates.
+    keys : (n,) uint64 ndarray, optional
+        ``point_keys`` of the points as float64, when the caller has them (a mesh check
+        hashed them already: :func:`~plumbob.mesh.closure.paired_keys`); they decide the
+        vertices' order, and a collision is caught as without them.
 
     Returns
     -------
@@ -119,7 +124,7 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0) -> tuple[np.ndarr
     2
     """
     p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
-    first, inverse = unique_first(point_keys(p))
+    first, inverse = unique_first(point_keys(p) if keys is None else keys.reshape(-1))
     unique = np.take(p, first, axis=0)
     # a hash collision (two points, one key): merge exactly instead
     if not np.array_equal(np.take(unique, inverse, axis=0), p):
