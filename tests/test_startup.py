@@ -36,6 +36,25 @@ NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy
          "plumbob.export", "plumbob.balance", "plumbob.dynamics")
 
 
+def _gridded_box(k: int) -> np.ndarray:
+    """A unit cube, each face cut into k × k squares of two triangles (12 k² triangles)."""
+    t = np.linspace(0.0, 1.0, k + 1)
+    u, v = np.meshgrid(t[:-1], t[:-1], indexing="ij")
+    d = 1.0 / k
+    quads = np.stack([np.stack((u, v), -1), np.stack((u + d, v), -1),
+                      np.stack((u + d, v + d), -1), np.stack((u, v + d), -1)], axis=2)
+    squares = quads.reshape(-1, 4, 2)
+    faces = []
+    for axis in range(3):
+        for side in (0.0, 1.0):
+            corners = np.insert(squares, axis, side, axis=2)
+            if (side == 1.0) == (axis == 1):  # wound outward
+                corners = corners[:, ::-1]
+            faces.append(corners[:, [0, 1, 2]])
+            faces.append(corners[:, [0, 2, 3]])
+    return np.concatenate(faces)
+
+
 def _rotated(triangles: np.ndarray, seed: int) -> np.ndarray:
     q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
     q *= np.sign(np.diag(r))
@@ -50,7 +69,8 @@ def meshes(tmp_path_factory) -> dict[str, str]:
     ring = np.stack((np.cos(angles), np.sin(angles)), axis=1)
     bodies = {"box": _rotated(box(1, 2, 3).triangles, 3),
               "pyramid": _rotated(pyramid(ring, 0.8).triangles, 4),
-              "upright": box(1, 2, 3).triangles}
+              "upright": box(1, 2, 3).triangles,
+              "large": _gridded_box(66)}  # past mesh.FULL_CHECK_LIMIT
     paths = {}
     for name, triangles in bodies.items():
         paths[name] = str(folder / f"{name}.stl")
@@ -83,6 +103,18 @@ def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
                                        else "plumbob.stability.drops")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
+
+
+def test_poses_on_a_large_mesh_builds_no_topology(meshes):
+    """A mesh past the full check's size whose edges pair: its check and weld need neither
+    the topology (a sort of every edge) nor the repair and shell code."""
+    from plumbob.mesh import FULL_CHECK_LIMIT
+
+    assert len(_gridded_box(66)) > FULL_CHECK_LIMIT
+    names = imported("poses", meshes["large"], "--units", "mm")
+    assert not _loaded(names, NEVER + ("plumbob.mesh.topology", "plumbob.mesh.repair",
+                                       "plumbob.mesh.shells", "json"))
+    assert "plumbob.mesh.solid" in names
 
 
 @pytest.mark.parametrize("extra", [(), ("--json",)])

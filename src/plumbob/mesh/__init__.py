@@ -34,6 +34,9 @@ plumbob.errors.GeometryError: is open with a hole too large to close safely (3 b
 
 from __future__ import annotations
 
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+
 from ..arrays import connected_components
 from .closure import (
     CLOSURE_TOLERANCE,
@@ -45,12 +48,14 @@ from .closure import (
     require_closed,
     surface_summary,
 )
-from .repair import HOLE_AREA_FRACTION, fill_holes
-from .shells import resolve_shells, unite_shells
 from .solid import FULL_CHECK_LIMIT, CheckedSolid, check_solid
-from .topology import Topology, mesh_topology
 from .weld import merge_vertices, weld_near
-from .winding import solid_angle, solid_angles, winding_numbers
+
+if _TYPE_CHECKING:  # for readers and type checkers; at run time see __getattr__
+    from .repair import HOLE_AREA_FRACTION, fill_holes
+    from .shells import resolve_shells, unite_shells
+    from .topology import Topology, mesh_topology
+    from .winding import solid_angle, solid_angles, winding_numbers
 
 __all__ = [
     "CLOSURE_TOLERANCE",
@@ -77,3 +82,26 @@ __all__ = [
     "weld_near",
     "winding_numbers",
 ]
+
+#: public name → the module (of this package) that defines it, imported on first use: a
+#: large mesh whose edges pair (the check's cheap tests) never builds its topology, so
+#: reading one loads neither the topology nor the repair and shell code
+_LAZY = {
+    **dict.fromkeys(("HOLE_AREA_FRACTION", "fill_holes"), ".repair"),
+    **dict.fromkeys(("resolve_shells", "unite_shells"), ".shells"),
+    **dict.fromkeys(("Topology", "mesh_topology"), ".topology"),
+    **dict.fromkeys(("solid_angle", "solid_angles", "winding_numbers"), ".winding"),
+}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(_import_module(_LAZY[name], __name__), name)
+    globals()[name] = value  # looked up once
+    return value
+
+
+def __dir__() -> list[str]:
+    """What the package shows: its public names as if imported, with its modules."""
+    return sorted(set(globals()) | set(__all__))

@@ -22,7 +22,7 @@ without sorting; only when it fails is the topology built.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -30,8 +30,12 @@ from ..arrays import connected_components
 from ..errors import GeometryError, fmt_point
 from ..integrals.mesh import VolumeMoments, triangle_soup_moments
 from ..tolerances import weld_tolerance
-from .topology import Topology, mesh_topology
 from .weld import point_keys
+
+if TYPE_CHECKING:
+    from .topology import Topology
+
+# the topology (a sort of every edge) loads only for a mesh whose cheap tests fail
 
 __all__ = ["CLOSURE_TOLERANCE", "ZERO_VOLUME", "Holes", "SurfaceSummary", "edges_pair", "holes",
            "join_at_slits", "paired_keys",
@@ -201,6 +205,7 @@ def holes(topo: Topology, area: float) -> Holes:
     loops are not.
 
     >>> import numpy as np
+    >>> from plumbob.mesh.topology import mesh_topology
     >>> v = np.array([[x, y, z] for z in (0, 1) for x, y in ((0, 0), (1, 0), (1, 1), (0, 1))],
     ...              dtype=float)
     >>> sides = [(i, (i + 1) % 4, 4 + (i + 1) % 4, 4 + i) for i in range(4)]
@@ -300,6 +305,8 @@ def require_closed(triangles: np.ndarray, *, summary: SurfaceSummary | None = No
         raise GeometryError("the mesh has a coordinate that is not a finite number")
     if summary.closed and edges_pair(triangles):
         return
+    from .topology import mesh_topology
+
     size = float(np.linalg.norm(summary.hi - summary.lo))
     found = holes(mesh_topology(triangles, weld_tolerance(size)), summary.area)
     if found.loops:

@@ -30,9 +30,9 @@ from .closure import (
     paired_keys,
     surface_summary,
 )
-from .repair import fill_holes
-from .shells import resolve_shells
-from .topology import mesh_topology
+
+# the topology, repair and shells load for the full check only (a small mesh, one whose
+# cheap tests fail, or --repair): a large mesh that closes edge to edge never needs them
 
 __all__ = ["FULL_CHECK_LIMIT", "CheckedSolid", "check_solid", "unrepaired_message"]
 
@@ -137,6 +137,10 @@ def check_solid(triangles: np.ndarray, *, repair: bool = False, label: str | Non
         # float32 corners were hashed by their own bits, not as the float64 a weld hashes
         return CheckedSolid(triangles, tuple(notices), moments, summary,
                             keys=keys if triangles.dtype != np.float32 else None)
+
+    from .repair import fill_holes
+    from .shells import resolve_shells
+    from .topology import mesh_topology
 
     size = float(np.linalg.norm(summary.hi - summary.lo))
     weld = weld_tolerance(size)
