@@ -6,7 +6,7 @@ sort of undirected keys are twins by search (closed or not), the weld's one-sort
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import example, given
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from plumbob.arrays import cross, dot, expand, lex_order, row_max, row_min, stable_order, unit
@@ -214,6 +214,21 @@ def test_row_max_and_min_are_numpys(seed, n, k):
 def test_stable_order_is_a_stable_argsort(seed, n, spread):
     keys = np.random.default_rng(seed).integers(-spread, spread, n, dtype=np.int64)
     assert np.array_equal(stable_order(keys), np.argsort(keys, kind="stable"))
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2048, 6000), st.sampled_from([1, 2, 3]),
+       st.integers(0, 9))
+def test_stable_order_partitions_a_small_top_digit(seed, n, words, top):
+    """Keys whose top 16-bit digit takes a few values (sorted by a partition per value,
+    from RADIX_MIN keys) or more (a counting sort): numpy's stable argsort, ties kept in
+    order; the keys shifted off zero too."""
+    rng = np.random.default_rng(seed)
+    span = (top << (16 * words)) + int(rng.integers(0, 1 << (16 * words)))
+    keys = rng.integers(0, span, n, dtype=np.int64, endpoint=True)
+    keys[rng.integers(0, n, n // 4)] = span  # the top value, and many ties
+    for shifted in (keys, keys - 12345):
+        assert np.array_equal(stable_order(shifted), np.argsort(shifted, kind="stable"))
 
 
 @given(st.integers(0, 2**32 - 1), st.integers(0, 200), st.integers(1, 4))

@@ -147,10 +147,12 @@ def _sweep(points: np.ndarray, down: np.ndarray, directions: np.ndarray, alpha: 
 
 
 def _contact_angles(points: np.ndarray, down: np.ndarray, directions: np.ndarray,
-                    alpha: np.ndarray, eps: float, pairs: list[tuple[np.ndarray, np.ndarray]]
-                    ) -> tuple[np.ndarray, np.ndarray]:
+                    alpha: np.ndarray, eps: float, pairs: list[tuple[np.ndarray, np.ndarray]],
+                    columns: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Heights (K, m), m, and the angle θ (K, m), radians, between each contact direction
-    and its contact, from each way's (angle, point) pairs."""
+    and its contact, from each way's (angle, point) pairs. ``columns``: the points'
+    coordinates as contiguous rows (dim, n), when the caller has them (a copy of every
+    point's coordinates per call otherwise: most of a few-way sweep's cost)."""
     K, m, dim = len(directions), len(alpha), len(down)
     u = (np.cos(alpha)[None, :, None] * down
          + np.sin(alpha)[None, :, None] * directions[:, None, :]).reshape(K * m, dim)
@@ -158,7 +160,8 @@ def _contact_angles(points: np.ndarray, down: np.ndarray, directions: np.ndarray
     j = np.concatenate([b for _, b in pairs])
     # u·p coordinate by coordinate, each gathered from its own contiguous column: a
     # gather of whole rows and einsum over 3 terms cost some 5 times as much
-    u_at, p_at = np.ascontiguousarray(u.T), np.ascontiguousarray(points.T)
+    u_at = np.ascontiguousarray(u.T)
+    p_at = np.ascontiguousarray(points.T) if columns is None else columns
     reach = u_at[0][at] * p_at[0][j]
     for d in range(1, dim):
         reach += u_at[d][at] * p_at[d][j]
@@ -234,6 +237,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
     across = points @ _across(down).T if len(down) == 3 else None
     B = np.empty((K, len(points)))
     has_row = np.zeros(K, dtype=bool)
+    columns = np.ascontiguousarray(points.T)  # for every sweep's contacts
 
     def rows(ways: np.ndarray) -> np.ndarray:
         new = ways[~has_row[ways]]
@@ -265,7 +269,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         cuts = np.searchsorted(way, np.arange(len(ways) + 1))
         pairs = candidate_pairs(a_ways[point], B_ways[way, point], cuts,
                                 point if some is None else some[point], arc, eps, _LEVELS)
-        _, theta = _contact_angles(points, down, directions[ways], arc, eps, pairs)
+        _, theta = _contact_angles(points, down, directions[ways], arc, eps, pairs, columns)
         running, end, tilt = _ends(theta, arc, peak[ways])
         peak[ways], at[ways] = running[:, -1], stop
         if stop == m:  # a branch that never fell ends at the last angle

@@ -125,11 +125,11 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
     for count in range(len(h.X) + 8):
         if len(alive) == 0:
             break
-        va, pa = v[alive], np.take(p, alive, axis=0)
-        w = np.take(W, va, axis=0)
+        va, pa = v[alive], p.take(alive, axis=0)
+        w = W.take(va, axis=0)
         wp = dot(pa, w)
         done = ismax[va] | (wp >= 1.0 - 1e-24)  # at its maximum already
-        if done.any():
+        if np.count_nonzero(done):
             seg_trace.append(alive[done])
             seg_from.append(pa[done])
             seg_to.append(w[done])
@@ -137,11 +137,11 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
             if len(alive) == 0:
                 break
         tang = unit(w - wp[:, None] * pa)
-        limit = np.arccos(np.clip(wp, -1.0, 1.0))
+        limit = np.arccos(np.minimum(np.maximum(wp, -1.0), 1.0))  # np.clip, without its wrapper
         e, q = step(h, eg3, va, pa, tang, limit, exclude[alive], near,
                     np.full(len(alive), -1))
         lost = e < 0  # passes through a corner, or numerically lost: end it at w
-        ok = ok and not lost.any()
+        ok = ok and not np.count_nonzero(lost)
         seg_trace.append(alive)
         seg_from.append(pa)
         seg_to.append(np.where(lost[:, None], w, q))

@@ -70,8 +70,8 @@ class Edges3(NamedTuple):
         if len(self.saddles) == 0:
             return np.zeros((len(edges), 3))
         rows = np.minimum(self.saddle_rows(edges), len(self.saddles) - 1)
-        found = np.take(self.saddles, rows) == edges
-        return np.where(found[:, None], np.take(self.toward_f, rows, axis=0), 0.0)
+        found = self.saddles.take(rows) == edges
+        return np.where(found[:, None], self.toward_f.take(rows, axis=0), 0.0)
 
 
 def arc_sides(h: Hull3, pole: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -204,9 +204,10 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     Returns θ (inf when the great circle is not met before ``limit``), how far outside
     the arc the meeting point lies (0 inside; sines of angles) and the meeting points.
     """
-    # rows gathered with np.take (fancy indexing of rows costs about 3x as much)
-    k = np.take(eg3.pole, cand, axis=0)
-    pr, tr = np.take(p, rows, axis=0), np.take(tang, rows, axis=0)
+    # rows gathered with ndarray.take (fancy indexing of rows costs about 3x as much,
+    # and np.take's wrapper twice the method on a step's few hundred rows)
+    k = eg3.pole.take(cand, axis=0)
+    pr, tr = p.take(rows, axis=0), tang.take(rows, axis=0)
     a, b = dot(pr, k), dot(tr, k)
     theta = np.arctan2(-a, b)
     theta = np.where(theta <= _THETA_EPS, theta + np.pi, theta)
@@ -214,8 +215,8 @@ def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.n
     # q·after_f = q·(k × n_F) = n_F·(q × k) and q·before_g = q·(n_G × k) = −n_G·(q × k):
     # one cross product for both sides
     qk = cross(q, k)
-    inside_f = dot(qk, np.take(h.normals, np.take(h.ef, cand), axis=0))
-    inside_g = dot(qk, np.take(h.normals, np.take(h.eg, cand), axis=0))
+    inside_f = dot(qk, h.normals.take(h.ef[cand], axis=0))
+    inside_g = dot(qk, h.normals.take(h.eg[cand], axis=0))
     miss = np.maximum(0.0, -np.minimum(inside_f, -inside_g))
     ok = (theta > _THETA_EPS) & (theta <= limit[rows] + 1e-12)
     return np.where(ok, theta, np.inf), miss, q
@@ -238,9 +239,9 @@ def first_least_sorted(rows: np.ndarray, values: np.ndarray, n: int) -> np.ndarr
             out[0] = first
         return out
     new = np.concatenate(([True], rows[1:] != rows[:-1]))
-    starts = np.flatnonzero(new)
-    least = np.minimum.reduceat(values, starts)
-    segment = np.cumsum(new) - 1
+    starts = new.nonzero()[0]  # the methods: np.flatnonzero's and np.cumsum's wrappers
+    least = np.minimum.reduceat(values, starts)  # cost as much as the work on a few rows
+    segment = new.cumsum() - 1
     at = np.where(values == least[segment], np.arange(len(rows)), len(rows))
     first = np.minimum.reduceat(at, starts)
     finite = np.isfinite(least)
@@ -269,11 +270,11 @@ def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
     score = np.where(miss <= 1e-12, theta, np.where(met & (miss <= _RELAXED), 10.0 + miss, np.inf))
     best = first_least_sorted(rows, score, len(v))
     found = best >= 0
-    if not found.any():
+    if not np.count_nonzero(found):
         return np.full(len(v), -1, dtype=np.int64), unit(p)
     b = np.maximum(best, 0)
     edge = np.where(found, cand[b], -1)
-    point = np.where(found[:, None], np.take(q, b, axis=0), p)
+    point = np.where(found[:, None], q.take(b, axis=0), p)
     return edge, unit(point)
 
 
@@ -358,7 +359,7 @@ class Roller:
         far = eg3.t > 0
         no_run = np.zeros(k, dtype=np.int64)  # the loop step a run ahead may next start
         for count in range(4 * len(h.normals) + 16):
-            at_face = np.flatnonzero(alive & ~in_region)
+            at_face = (alive & ~in_region).nonzero()[0]
             if len(at_face):
                 f = self.lands[cur[at_face]]  # over edges, as far as that goes
                 done = self.stable[f]
@@ -370,13 +371,13 @@ class Roller:
                 start_face[piv] = f
                 exclude[piv] = -1
                 in_region[piv] = True
-            rolling = np.flatnonzero(alive & in_region)
+            rolling = (alive & in_region).nonzero()[0]
             if len(rolling) == 0:
-                if not alive.any():
+                if not np.count_nonzero(alive):
                     return result
                 continue
             va, pa = v[rolling], p[rolling]
-            w = np.take(self.W, va, axis=0)
+            w = self.W.take(va, axis=0)
             tang = unit(dot(w, pa)[:, None] * pa - w)
             edge, q = step(h, eg3, va, pa, tang, np.full(len(rolling), np.pi),
                             exclude[rolling], far, start_face[rolling])
@@ -384,7 +385,7 @@ class Roller:
             from_face = start_face[rolling]
             # lost leaving a corner along its own arc: over the face's nearest edge
             rescue = lost & (from_face >= 0)
-            if rescue.any():
+            if np.count_nonzero(rescue):
                 cur[rolling[rescue]] = h.eg[self.tip_edge[from_face[rescue]]]
                 in_region[rolling[rescue]] = False
             gone = lost & (from_face < 0)
