@@ -100,7 +100,7 @@ def _loaded(names: set[str], prefixes) -> list[str]:
 def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
     names = imported("poses", meshes[body], "--units", "mm", *extra)
     assert not _loaded(names, NEVER + ("plumbob.stability.verdict", "plumbob.report" if extra
-                                       else "plumbob.stability.drops")), body
+                                       else "plumbob.stability.drops", "plumbob.materials")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
 
@@ -120,7 +120,8 @@ def test_poses_on_a_large_mesh_builds_no_topology(meshes):
 @pytest.mark.parametrize("extra", [(), ("--json",)])
 def test_mass_of_a_mesh_loads_only_numpy(meshes, extra):
     names = imported("mass", meshes["pyramid"], "--units", "mm", *extra)
-    assert not _loaded(names, NEVER + ("manifold3d", "plumbob.stability")), extra
+    assert not _loaded(names, NEVER + ("manifold3d", "plumbob.stability", "plumbob.materials")), \
+        extra  # the material table's module: only a --material (check_density is arguments')
 
 
 def test_check_of_a_mesh_loads_neither_poses_nor_drops(meshes):

@@ -19,10 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ArgumentError, PlumbobError
+from .errors import ArgumentError, DensityError, PlumbobError
 from .limits import check_count
 
 __all__ = [
+    "check_density",
     "placement",
     "number",
     "positive",
@@ -384,3 +385,47 @@ def mass_fields(dim: Any, mass: Any, measure: Any, center: Any, inertia: Any
     finite_result([mass, measure], "the mass or size")
     tensor = matrix(tensor, "inertia", (3, 3))
     return com, tensor, non_negative(mass, "mass"), non_negative(measure, "measure")
+
+
+def check_density(density: float | None, what: str = "density") -> float | None:
+    """A density as a float, checked: a positive finite number, or None (not given).
+
+    Parameters
+    ----------
+    density : float or None
+        kg/m³ (kg/m² for a lamina given by its areal density).
+    what : str
+        How to name the value in the error message.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    DensityError
+        Not a number, not finite, zero or negative.
+
+    Examples
+    --------
+    >>> check_density("2700"), check_density(None)
+    (2700.0, None)
+    >>> check_density(0, "--density")
+    Traceback (most recent call last):
+    ...
+    plumbob.errors.DensityError: --density must be a positive finite number, not 0
+    """
+    if density is None:
+        return None
+    if isinstance(density, (bool, bytes)):
+        raise DensityError(f"{what} must be a number, not {density!r}")
+    try:
+        value = float(density)
+    except OverflowError:  # an int beyond 1.8e308
+        raise DensityError(f"{what} must be a positive finite number, not a "
+                           f"{len(str(density))}-digit number") from None
+    except (TypeError, ValueError):
+        raise DensityError(f"{what} must be a number, not {density!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise DensityError(f"{what} must be a positive finite number, not {value:g}")
+    return value

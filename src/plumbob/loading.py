@@ -138,7 +138,7 @@ def read(path: str, *, parameters: Mapping[str, float | str] | None = None,
                                        f"--material {material}" if option
                                        else f"material={material!r}")
     elif density is not None:
-        from .materials import check_density
+        from .arguments import check_density
 
         name = "--density" if option else "density"
         reading = with_default_density(reading, check_density(density, name), name)

@@ -8,15 +8,16 @@ looked up ignoring case, spaces and hyphens; a few common spellings are aliases.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import lru_cache
 
-from .errors import DensityError, MaterialError
+from .arguments import check_density
+from .errors import MaterialError
 from .results import Key, Result
 
-# tomllib, importlib.resources and difflib load when the table is first read: every body
-# imports check_density from here, and reading a mesh never opens the table.
+# tomllib, importlib.resources and difflib load when the table is first read. check_density
+# (re-exported here) is arguments.py's: every body checks its density, and reading a mesh
+# loads neither the table nor this module.
 
 __all__ = ["Material", "materials", "material", "density_of", "sources", "resolve_density",
            "check_density", "closest", "ALIASES", "CATEGORIES"]
@@ -203,47 +204,3 @@ def closest(word: str, n: int = 3) -> list[str]:
     table = _table()[0]
     close = difflib.get_close_matches(_normalise(word), list(table) + list(ALIASES), n=n)
     return list(dict.fromkeys(ALIASES.get(c, c) for c in close))
-
-
-def check_density(density: float | None, what: str = "density") -> float | None:
-    """A density as a float, checked: a positive finite number, or None (not given).
-
-    Parameters
-    ----------
-    density : float or None
-        kg/m³ (kg/m² for a lamina given by its areal density).
-    what : str
-        How to name the value in the error message.
-
-    Returns
-    -------
-    float or None
-
-    Raises
-    ------
-    DensityError
-        Not a number, not finite, zero or negative.
-
-    Examples
-    --------
-    >>> check_density("2700"), check_density(None)
-    (2700.0, None)
-    >>> check_density(0, "--density")
-    Traceback (most recent call last):
-    ...
-    plumbob.errors.DensityError: --density must be a positive finite number, not 0
-    """
-    if density is None:
-        return None
-    if isinstance(density, (bool, bytes)):
-        raise DensityError(f"{what} must be a number, not {density!r}")
-    try:
-        value = float(density)
-    except OverflowError:  # an int beyond 1.8e308
-        raise DensityError(f"{what} must be a positive finite number, not a "
-                           f"{len(str(density))}-digit number") from None
-    except (TypeError, ValueError):
-        raise DensityError(f"{what} must be a number, not {density!r}") from None
-    if not math.isfinite(value) or value <= 0:
-        raise DensityError(f"{what} must be a positive finite number, not {value:g}")
-    return value

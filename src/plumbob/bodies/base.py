@@ -14,10 +14,9 @@ from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from ..arguments import placement, vector
+from ..arguments import check_density, placement, vector
 from ..errors import BodyQueryError, GeometryError, PlumbobError
 from ..massprops import MassProperties
-from ..materials import check_density
 from ..tolerances import contact_tolerance, size_of
 from .checked import check_questions
 

@@ -23,9 +23,18 @@ from typing import Any
 
 import numpy as np
 
-from ..arguments import answering, count, floats, non_negative, number, optional, positive, unit_vector
+from ..arguments import (
+    answering,
+    check_density,
+    count,
+    floats,
+    non_negative,
+    number,
+    optional,
+    positive,
+    unit_vector,
+)
 from ..errors import GeometryError
-from ..materials import check_density
 
 __all__ = ["CHECKS", "checked_method"]
 
