@@ -98,9 +98,9 @@ def register(subparsers) -> None:
     harness.add_argument("--jobs", type=count, metavar="N",
                          help="worker processes (default: every core)")
     harness.add_argument("--threads-per-job", type=count, metavar="N",
-                         help="BLAS/OpenMP and plumbob threads in each worker (default: 1 "
-                              "with several jobs, whatever the environment says; every core "
-                              "with --jobs 1)")
+                         help="BLAS/OpenMP, manifold3d and plumbob threads in each worker "
+                              "(default: 1 with several jobs, whatever the environment says; "
+                              "every core with --jobs 1)")
     harness.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                          help="run on this Dask distributed cluster (pip install "
                               "'plumbob[batch]')")
