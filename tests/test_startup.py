@@ -31,9 +31,9 @@ from plumbob.bodies.primitives import box, pyramid
 NEVER = ("scipy", "shapely", "trimesh", "mujoco", "matplotlib", "plotly", "numpy.ma", "shutil",
          "numpy.polynomial", "tomllib", "difflib", "plumbob.stability.drops",
          "plumbob.bodies.region", "plumbob.bodies.tiling", "plumbob.bodies.containment",
-         "plumbob.bodies.csg", "plumbob.integrals.polygon", "plumbob.integrals.cells",
-         "plumbob.integrals.rules", "plumbob.spec", "plumbob.energy", "plumbob.batch",
-         "plumbob.export", "plumbob.balance", "plumbob.dynamics")
+         "plumbob.bodies.csg", "plumbob.bodies.profiled", "plumbob.integrals.polygon",
+         "plumbob.integrals.cells", "plumbob.integrals.rules", "plumbob.spec", "plumbob.energy",
+         "plumbob.batch", "plumbob.export", "plumbob.balance", "plumbob.dynamics")
 
 
 def _gridded_box(k: int) -> np.ndarray:

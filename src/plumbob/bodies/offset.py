@@ -33,8 +33,9 @@ import numpy as np
 from ..errors import GeometryError
 from ..results import Result
 from .base import Body, Transformed
+from .profiled import Extrusion, Revolution
 from .region import Region, Ring
-from .solid import Extrusion, MeshSolid, Revolution
+from .solid import MeshSolid
 
 __all__ = ["InwardOffset", "inward_offset", "closed_form_offset", "DEFAULT_STEPS"]
 

@@ -13,8 +13,9 @@ import numpy as np
 from ...arguments import floats
 from ...errors import GeometryError
 from ..lamina import Lamina
+from ..profiled import Extrusion, Revolution
 from ..region import Region, Ring
-from ..solid import Extrusion, MeshSolid, Revolution
+from ..solid import MeshSolid
 from ..validity import check_polygon
 from .laminas import counter_clockwise, disc_region, polygon, positive_number
 
