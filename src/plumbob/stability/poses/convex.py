@@ -290,13 +290,16 @@ def _corner_planes(C: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return tn, off, norm
 
 
-def corner_levels(P: np.ndarray, tri: np.ndarray, normals: np.ndarray) -> np.ndarray:
+def corner_levels(P: np.ndarray, tri: np.ndarray, normals: np.ndarray,
+                  face: np.ndarray | None = None) -> np.ndarray:
     """(F, 3) the heights of the corners of the triangles ``tri`` through ``P`` along
-    ``normals`` (F, 3), one normal per triangle: block by block."""
+    ``normals`` (F, 3), one normal per triangle, or along ``normals[face]`` (``face``:
+    (F,) a row of ``normals`` per triangle, gathered block by block): block by block."""
     Q = _columns(P)
 
     def rows(r: slice) -> tuple[np.ndarray]:
-        return (_dot_rows(Q, tri[r], normals[r]),)
+        return (_dot_rows(Q, tri[r], normals[r] if face is None
+                          else normals.take(face[r], axis=0)),)
 
     return blockwise(len(tri), rows)[0]
 
@@ -305,7 +308,10 @@ def _beyond(P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np.ndarray,
             twin: np.ndarray) -> np.ndarray:
     """(3F,) per half-edge, the height of the far corner of the triangle across it over
     this triangle's plane (≤ 0 to rounding error where the edge is convex)."""
-    far = tri[:, [2, 0, 1]].ravel()  # the corner of each half-edge's triangle across it
+    far = np.empty_like(tri)  # the corner of each half-edge's triangle across it, by
+    far[:, 0] = tri[:, 2]  # column copies (a fancy gather of the columns costs 3x)
+    far[:, 1:] = tri[:, :2]
+    far = far.ravel()
     Q = _columns(P)
 
     def rows(r: slice) -> tuple[np.ndarray]:
@@ -480,12 +486,12 @@ def _manifold_hull(X: np.ndarray, eps: float) -> HullMesh | None:
     if len(flat) and np.any(dot(found.normals[flat // 3],
                                 found.normals[found.twins[flat] // 3]) < 0):
         return None
-    if not _holds_input(X, found, eps):
+    if not _holds_input(X, found, eps, len(flat) > 0):
         return None  # a point left outside: quickhull went wrong on degenerate input
     return found
 
 
-def _holds_input(X: np.ndarray, found: HullMesh, eps: float) -> bool:
+def _holds_input(X: np.ndarray, found: HullMesh, eps: float, flat: bool = False) -> bool:
     """Whether manifold3d's hull ``found`` is taken as the hull of ``X``: when it holds
     every point to within :data:`~plumbob.tolerances.HULL_LEFT_OUT` of the size.
 
@@ -501,9 +507,10 @@ def _holds_input(X: np.ndarray, found: HullMesh, eps: float) -> bool:
     hull is taken on an observation, not a proof: no point left out in 4 000 random
     inputs without exact degeneracy, every miss seen on grid points
     (``docs/stability.md``, *Hull check*). qhull for such a box with cylinder at 200k
-    triangles would add 1.4 s to a 0.5 s ``plumbob poses``."""
-    if len(X) * len(found.tri) > EXHAUSTIVE and not degenerate(found.area, found.beyond,
-                                                                found.points, eps):
+    triangles would add 1.4 s to a 0.5 s ``plumbob poses``. ``flat``: some edge is
+    known flat (within ``eps``), the first of :func:`.holds.degenerate`'s marks."""
+    if len(X) * len(found.tri) > EXHAUSTIVE and not (flat or degenerate(
+            found.area, found.beyond, found.points, eps)):
         return True  # the observation
     proved = holds(X, found.points, found.tri, found.normals, found.offsets, found.twins,
                    found.area, HULL_LEFT_OUT * size_of(found.points))

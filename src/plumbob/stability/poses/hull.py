@@ -231,27 +231,33 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
     comp = connected_components(m, i, j)
     nfaces = int(comp.max()) + 1
     normals = _weighted_normals(comp, nfaces, tn, area)
-    level = corner_levels(X, tri, np.take(normals, comp, axis=0))  # along the face's normal
+    level = corner_levels(X, tri, normals, comp)  # along the face's normal
     comp, bent, nfaces = _split_bent(comp, nfaces, level, eps)
     if bent.any():
         normals = _weighted_normals(comp, nfaces, tn, area)
-        level = corner_levels(X, tri, np.take(normals, comp, axis=0))
+        level = corner_levels(X, tri, normals, comp)
     areas = np.bincount(comp, weights=area, minlength=nfaces)
 
     # --- face boundaries: chains of half-edges between different faces
     frm = tri.ravel()
-    face = np.repeat(comp, 3)
-    beyond = face[twin]
-    bnd = face != beyond
-    real = np.bincount(frm[bnd], minlength=n) >= 3
     in_merged = np.bincount(comp, minlength=nfaces)[comp] > 1  # per triangle
     merged = np.flatnonzero(in_merged)
     sub = (3 * merged[:, None] + np.arange(3)).ravel()  # their half-edges, ascending
-    sub = sub[bnd[sub]]
-    nxt_sub = _chain_next(face[sub], frm[sub], frm[sub - sub % 3 + (sub + 1) % 3], sub, n)
+    # only a merged face's half-edges can lie inside it (a face of one triangle has its
+    # own number, its twins' triangles others): the rest are boundaries, unmeasured
+    face_sub = comp[sub // 3]
+    inside = face_sub == comp[twin[sub] // 3]
+    bnd = np.ones(len(frm), dtype=bool)
+    bnd[sub[inside]] = False
+    # a corner: a point with three boundary half-edges out of it
+    real = np.bincount(frm, minlength=n) - np.bincount(frm[sub[inside]], minlength=n) >= 3
+    sub, face_sub = sub[~inside], face_sub[~inside]
+    nxt_sub = _chain_next(face_sub, frm[sub], frm[sub - sub % 3 + (sub + 1) % 3], sub, n)
     ptr = _chain_ends(tri, bnd, real, sub, nxt_sub)
     # an edge per chain: from its first half-edge (at a corner) to its last one's end
-    at_corner = bnd[hm.ends] & real[hm.end_points[0]]  # corners, in the order of (from, to)
+    at_corner = bnd[hm.ends]  # corners, in the order of (from, to)
+    if not real.all():
+        at_corner &= real[hm.end_points[0]]
     placed = np.flatnonzero(at_corner)
     first = hm.ends[placed]
     last = first if ptr is None else ptr[first]
@@ -272,7 +278,9 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
             order = stable_order(frm[first] * n + to[last])
             first, last = first[order], last[order]
             ea, eb = frm[first], to[last]
-    ef, eg = comp[first // 3], beyond[first]
+    ef = comp[first // 3]
+    # the face across: the twin edge's own (or, past a chain, the twin half-edge's)
+    eg = ef[etwin] if etwin is not None else comp[twin[first] // 3]
     degree = np.bincount(ea, minlength=n)
     start = np.cumsum(degree) - degree
     if etwin is None:
