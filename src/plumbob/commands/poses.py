@@ -122,7 +122,7 @@ def run(args) -> int:
             out["notices"] = list(reading.notices)
         to_json(out)
         return 0
-    from ..stability.support import body_size
+    from ..stability.ground import body_size
 
     # the result's own report: str(plumbob.poses(path)) with these options
     print(result.described(reading.source(props, body_size(body))).text(

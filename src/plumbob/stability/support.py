@@ -34,17 +34,27 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arguments import unit_vector as _checked_unit_vector
-from ..bodies.base import Body, lowest
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
-from ..tolerances import HULL_ROUND_OFF, SLIVER, size_of
+from ..tolerances import HULL_ROUND_OFF, SLIVER
+from .ground import (  # re-exported: the ground and the body questions are ground.py's
+    GroundFrame,
+    body_dim,
+    body_size,
+    default_down,
+    ground_frame,
+    hull_points,
+    is_polytope,
+    support_points,
+    unit_vector,
+)
 from .planar import drop_collinear, planar_hull
 
 __all__ = [
     "DEFAULT_RELATIVE_TOLERANCE",
     "GroundFrame",
     "Support",
+    "body_dim",
     "default_down",
     "ground_frame",
     "support_polygon",
@@ -59,142 +69,6 @@ __all__ = [
 DEFAULT_RELATIVE_TOLERANCE = 1e-6  # contact tolerance, relative to the body's size
 _PROBE_ANGLE = 1e-3  # rad: tilt used to re-measure edges with exact support points
 _PROBE_LIMIT = 32  # at most this many edges are re-measured
-
-
-def unit_vector(vector, dim: int, what: str = "down") -> np.ndarray:
-    """``vector`` as a unit vector of ``dim`` components (a 3-vector with z = 0 is accepted
-    for a lamina).
-
-    >>> unit_vector([0, 0, -2], 3)
-    array([ 0.,  0., -1.])
-    >>> unit_vector([1, -1, 0], 2)
-    array([ 0.70710678, -0.70710678])
-    """
-    try:
-        v = np.asarray(vector, dtype=float).reshape(-1)
-    except (TypeError, ValueError, OverflowError):
-        v = vector  # arguments.unit_vector says what is wrong with it
-    else:
-        if dim == 2 and v.size == 3:
-            if v[2] != 0:
-                raise StabilityError(f"a lamina stands in its own plane: {what} needs z = 0")
-            v = v[:2]
-    return _checked_unit_vector(v, what, (dim,), error=StabilityError)
-
-
-def default_down(dim: int) -> np.ndarray:
-    """−z for solids, −y for a lamina (in its own plane).
-
-    >>> default_down(2)
-    array([ 0., -1.])
-    """
-    return np.array([0.0, -1.0]) if dim == 2 else np.array([0.0, 0.0, -1.0])
-
-
-@dataclass(frozen=True)
-class GroundFrame:
-    """Orthonormal axes of the ground for a given ``down`` (all in the body's frame).
-
-    down: (dim,) unit vector; up = −down.
-    axes: (dim − 1, dim): the ground directions as rows (``e1`` and, for solids, ``e2``).
-    """
-
-    down: np.ndarray
-    axes: np.ndarray
-
-    @property
-    def up(self) -> np.ndarray:
-        return -self.down
-
-    @property
-    def dim(self) -> int:
-        return self.down.size
-
-    def to_ground(self, vectors: np.ndarray) -> np.ndarray:
-        """Components along the ground axes of vectors (…, dim) → (…, dim − 1)."""
-        return np.asarray(vectors, dtype=float) @ self.axes.T
-
-    def from_ground(self, coords: np.ndarray) -> np.ndarray:
-        """Vectors (…, dim) with ground components (…, dim − 1)."""
-        return np.asarray(coords, dtype=float) @ self.axes
-
-    def direction(self, toward_deg: float) -> np.ndarray:
-        """The horizontal unit vector at ``toward_deg`` from ``e1`` toward ``e2``.
-
-        For a lamina the ground is a line: only 0° (+e1) and 180° (−e1) make sense,
-        other angles are taken along the line by the sign of their cosine.
-        """
-        angle = np.radians(float(toward_deg))
-        if self.dim == 2:
-            c = np.cos(angle)
-            if abs(c) < 1e-9:
-                raise StabilityError(
-                    "a lamina can only be tilted within its own plane: toward 0° or 180°")
-            return self.axes[0] * np.sign(c)
-        return np.cos(angle) * self.axes[0] + np.sin(angle) * self.axes[1]
-
-
-def ground_frame(down: np.ndarray) -> GroundFrame:
-    """The deterministic ground frame of a unit ``down`` (2 or 3 components).
-
-    >>> ground_frame(np.array([0.0, 0.0, -1.0])).axes
-    array([[1., 0., 0.],
-           [0., 1., 0.]])
-    >>> ground_frame(np.array([0.0, -1.0])).axes
-    array([[1., 0.]])
-    """
-    down = np.asarray(down, dtype=float)
-    up = -down
-    if down.size == 2:
-        return GroundFrame(down, np.array([[up[1], -up[0]]]) + 0.0)
-    seed = np.array([1.0, 0.0, 0.0]) if abs(up[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e1 = seed - (seed @ up) * up
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(up, e1)
-    axes = np.array([e1, e2])
-    axes[np.abs(axes) < 1e-15] = 0.0
-    return GroundFrame(down, axes + 0.0)
-
-
-# --------------------------------------------------------------- body access
-def hull_points(body, tolerance: float | None = None) -> np.ndarray:
-    """Points spanning the body's convex hull (n, dim) m, for any body or particle system."""
-    if isinstance(body, Body):
-        pts = body.hull_points(tolerance)
-    else:
-        pts = body.hull_points()
-    pts = np.asarray(pts, dtype=float)
-    if pts.ndim != 2 or len(pts) == 0:
-        raise GeometryError("the body has no points to stand on")
-    if not np.all(np.isfinite(pts)):
-        raise GeometryError("the body has a coordinate that is not a finite number")
-    return pts
-
-
-def support_points(body, down: np.ndarray, tolerance: float) -> np.ndarray:
-    """The body's lowest points along ``down`` within ``tolerance`` m, shape (k, dim)."""
-    down = np.asarray(down, dtype=float)
-    if isinstance(body, Body):
-        pts = np.asarray(body.support_points(down, tolerance), dtype=float)
-    else:
-        pts = lowest(hull_points(body), down, tolerance)
-    if len(pts) == 0:
-        raise GeometryError("the body has no lowest point along the given down direction")
-    return pts
-
-
-def body_size(body) -> float:
-    """Diagonal of the bounding box of the body's hull points, m."""
-    if isinstance(body, Body):
-        return float(body.size)
-    return size_of(hull_points(body))
-
-
-def body_dim(body, props: MassProperties) -> int:
-    dim = getattr(body, "dim", props.dim)
-    if dim not in (2, 3):
-        raise StabilityError(f"cannot rest a {dim}-dimensional body on a plane")
-    return dim
 
 
 # ------------------------------------------------------------------ support
@@ -331,19 +205,6 @@ def _edges(kind: str, v: np.ndarray, dim: int):
     d = ends - starts
     normals = np.stack((d[:, 1], -d[:, 0]), axis=1) / np.linalg.norm(d, axis=1)[:, None]
     return starts, ends, normals
-
-
-def is_polytope(body, size: float) -> bool:
-    """Whether the body's hull points are exact: no curved surface sampled.
-
-    A :class:`Body` answers itself (:attr:`Body.is_polytope`); any other object
-    with hull points is measured: exact when its hull points do not change with
-    the sampling tolerance (``size``, m, sets the two tolerances).
-    """
-    if isinstance(body, Body):
-        return body.is_polytope
-    coarse = hull_points(body, 1e-3 * size)
-    return len(coarse) == len(hull_points(body, 2.5e-4 * size))
 
 
 def _curved_extent(body, frame: GroundFrame, com: np.ndarray, normal: np.ndarray,

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..support import ground_frame
+from ..ground import ground_frame
 
 __all__ = ["placement"]
 

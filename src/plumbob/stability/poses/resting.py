@@ -20,7 +20,7 @@ from ...massprops import MassProperties
 from ...tolerances import CONTACT, HULL_ROUND_OFF, HULL_SAMPLING, size_of
 from ...tolerances import sampling_tolerance as sampling
 from ...units import SEED_GRAVITY
-from ..support import body_dim, body_size, hull_points, is_polytope
+from ..ground import body_dim, body_size, hull_points, is_polytope
 from ..tipping import tipping_angle_deg
 from .convex import may_be_own_hull, sample_triangles
 from .families import ROLL_ANGLE_DEG, Families, families
