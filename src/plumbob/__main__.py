@@ -64,13 +64,17 @@ def malloc_keeps_freed_memory() -> bool:
 
 
 def entry() -> int:
-    """Run the command line, its start-up not slowed by the cyclic garbage collector.
+    """Run the command line, its start-up and its exit not slowed by the cyclic garbage
+    collector.
 
     Loading numpy and plumbob makes some 10⁵ objects that all stay alive, so the
     collections their allocation triggers (~5 ms of a ~0.13 s ``plumbob poses``) find
     nothing to free. The collector is paused while :mod:`plumbob.cli` loads, then what
     is loaded is frozen (never scanned again) and the collector resumes before the
-    command runs: long runs (``plumbob batch``) collect their cycles as usual.
+    command runs: long runs (``plumbob batch``) collect their cycles as usual. When the
+    command has returned, what is alive (the modules it loaded, some 3·10⁴ objects) is
+    frozen too: the interpreter's exit, which frees it all, then does not scan it first
+    (the exit of a 100k-triangle ``plumbob poses``: 10.6 -> 8.2 ms of processor time).
     """
     one_thread = blas_starts_with_one_thread()
     malloc_keeps_freed_memory()
@@ -80,7 +84,9 @@ def entry() -> int:
     finally:
         gc.freeze()
         gc.enable()
-    return main(blas_on_one_thread=one_thread)
+    status = main(blas_on_one_thread=one_thread)
+    gc.freeze()
+    return status
 
 
 if __name__ == "__main__":
