@@ -138,8 +138,7 @@ def trace_basins(h: Hull3, eg3: Edges3, W: np.ndarray, roller: Roller,
                 break
         tang = unit(w - wp[:, None] * pa)
         limit = np.arccos(np.minimum(np.maximum(wp, -1.0), 1.0))  # np.clip, without its wrapper
-        e, q = step(h, eg3, va, pa, tang, limit, exclude[alive], near,
-                    np.full(len(alive), -1))
+        e, q = step(h, eg3, va, pa, tang, limit, exclude[alive], near, None)
         lost = e < 0  # passes through a corner, or numerically lost: end it at w
         ok = ok and not np.count_nonzero(lost)
         seg_trace.append(alive)

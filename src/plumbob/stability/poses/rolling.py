@@ -250,16 +250,16 @@ def first_least_sorted(rows: np.ndarray, values: np.ndarray, n: int) -> np.ndarr
 
 
 def step(h: Hull3, eg3: Edges3, v: np.ndarray, p: np.ndarray, tang: np.ndarray,
-          limit: np.ndarray, exclude: np.ndarray, want: np.ndarray, face: np.ndarray
+          limit: np.ndarray, exclude: np.ndarray, want: np.ndarray, face: np.ndarray | None
           ) -> tuple[np.ndarray, np.ndarray]:
     """For traces at vertices ``v`` from points ``p`` along ``tang``: the first arc of
     the vertex's region met, among out-edges selected by the mask ``want`` (per edge),
     leaving out the undirected edge ``exclude`` and the arcs ending at the face ``face``
-    (≥ 0 for a trace starting at that face's normal, a corner of the region);
-    returns (edge id or −1, meeting point)."""
+    (≥ 0 for a trace starting at that face's normal, a corner of the region; None:
+    none does); returns (edge id or −1, meeting point)."""
     rows, cand = expand(h.degree[v], h.start[v])
     keep = want[cand] & (h.und[cand] != exclude[rows])
-    if face.max(initial=-1) >= 0:  # some start at a face's normal
+    if face is not None and face.max(initial=-1) >= 0:  # some start at a face's normal
         fr = face[rows]
         keep &= (fr < 0) | ((h.ef[cand] != fr) & (h.eg[cand] != fr))
     rows, cand = rows[keep], cand[keep]
