@@ -180,17 +180,21 @@ def test_the_entry_point_resumes_the_collector(monkeypatch, capsys):
 
 def test_the_entry_point_leaves_what_is_alive_frozen_for_the_exit(meshes, monkeypatch, capsys):
     """A command that returned: what is alive is frozen (the interpreter's exit need not
-    scan it), the collector still on, the status the command's."""
-    from plumbob.__main__ import entry
+    scan it), the collector still on (its youngest generation collected less often), the
+    status the command's."""
+    from plumbob.__main__ import YOUNG_OBJECTS, entry
 
     monkeypatch.setattr(sys, "argv", ["plumbob", "mass", meshes["box"], "--units", "mm"])
     gc.unfreeze()
+    threshold = gc.get_threshold()
     try:
         assert entry() == 0 and "mass" in capsys.readouterr().out
         assert gc.isenabled() and gc.get_freeze_count() > 0
         assert not gc.get_objects(generation=2)  # every survivor frozen, none left to scan
+        assert gc.get_threshold() == (YOUNG_OBJECTS, *threshold[1:])
     finally:
         gc.unfreeze()
+        gc.set_threshold(*threshold)
 
 
 @given(st.lists(st.integers(-5, 5), max_size=30))
