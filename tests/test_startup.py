@@ -350,6 +350,47 @@ def test_welding_by_an_unstable_sort_gives_the_same_vertices(n, seed, single):
     assert np.array_equal(vertices, expect_vertices) and np.array_equal(index, expect_index)
 
 
+@given(st.integers(0, 10**6), st.integers(1, 100), st.integers(1, 3000))
+def test_unique_first_on_many_keys_is_numpys_unique(seed, tops, lows):
+    """From RADIX_MIN keys the weld sorts by the keys' top 32 bits and then each run of
+    different keys sharing them (up to 64 runs; more: all the keys at once): keys drawn
+    from few top words and few low words (ties of the top bits everywhere, repeated keys)
+    give np.unique's first indices and groups."""
+    from plumbob.arrays import RADIX_MIN
+    from plumbob.mesh.weld import unique_first
+
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(RADIX_MIN, 3 * RADIX_MIN))
+    top = rng.integers(0, 1 << 32, tops, dtype=np.uint64)[rng.integers(0, tops, n)]
+    low = rng.integers(0, 1 << 32, lows, dtype=np.uint64)[rng.integers(0, lows, n)]
+    keys = (top << np.uint64(32)) | low
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    got_first, got_inverse = unique_first(keys)
+    assert np.array_equal(got_first, first) and np.array_equal(got_inverse, inverse.reshape(-1))
+
+
+def test_unique_first_on_hashes_with_a_few_ties_is_numpys_unique():
+    """Hashes of 60,000 points, each used 3 to 8 times, two pairs of them made to share
+    their top 32 bits: np.unique's first indices and groups."""
+    from plumbob.arrays import stable_order
+    from plumbob.mesh.weld import _ties_sorted, unique_first
+
+    rng = np.random.default_rng(11)
+    distinct = rng.integers(0, np.iinfo(np.uint64).max, 60_000, dtype=np.uint64)
+    distinct[7] = (distinct[3] & np.uint64(0xFFFFFFFF00000000)) | np.uint64(5)
+    distinct[9] = (distinct[8] & np.uint64(0xFFFFFFFF00000000)) | np.uint64(2**32 - 1)
+    keys = np.repeat(distinct, rng.integers(3, 9, len(distinct)))[::-1].copy()
+    rng.shuffle(keys)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    got_first, got_inverse = unique_first(keys)
+    assert np.array_equal(got_first, first) and np.array_equal(got_inverse, inverse.reshape(-1))
+    # the two runs are sorted where they lie: the stable order of the whole keys, no resort
+    order = stable_order((keys >> np.uint64(32)).astype(np.int64))
+    assert np.any(keys[order][1:] < keys[order][:-1])
+    order, sk = _ties_sorted(keys, order, keys[order])
+    assert np.array_equal(order, np.argsort(keys, kind="stable")) and np.array_equal(sk, keys[order])
+
+
 def test_welding_survives_a_hash_collision(monkeypatch):
     from plumbob.mesh import weld
 
