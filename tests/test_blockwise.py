@@ -89,12 +89,12 @@ def test_edge_geometry_in_threaded_blocks_is_the_one_block_answer(seed):
     X = rng.normal(size=(int(rng.integers(40, 300)), 3))
     X = X - X.mean(axis=0) - 0.01
     h = build_hull3(X, 1e-12 * float(np.ptp(X)))
-    one = edge_geometry(h)
+    one = edge_geometry(h, 1e-9)
     saved = blocks.BLOCK_ROWS, blocks.MIN_THREADED_ROWS
     blocks.BLOCK_ROWS, blocks.MIN_THREADED_ROWS = 5, 10
     set_workers(3)
     try:
-        many = edge_geometry(h)
+        many = edge_geometry(h, 1e-9)
     finally:
         blocks.BLOCK_ROWS, blocks.MIN_THREADED_ROWS = saved
         set_workers(None)

@@ -56,7 +56,7 @@ def rolled(X: np.ndarray, center: np.ndarray, faces: int, runs: bool, seed: int 
     X = X - center
     eps = 1e-12 * float(np.linalg.norm(np.ptp(X, axis=0)))
     h = build_hull3(X, eps)
-    roller = rolling.Roller(h, rolling.edge_geometry(h), unit(h.X), eps)
+    roller = rolling.Roller(h, rolling.edge_geometry(h, eps), unit(h.X), eps)
     start = np.random.default_rng(seed).choice(len(h.normals), faces, replace=False)
     calls, inside = [], []
     real_step, real_ahead = rolling.step, rolling.Roller.ahead
@@ -146,8 +146,9 @@ def test_the_sign_test_predicts_the_steps_crossings():
 
     X, center = lumpy(120, 3)
     X = X - center
-    h = build_hull3(X, 1e-12 * float(np.linalg.norm(np.ptp(X, axis=0))))
-    eg3 = rolling.edge_geometry(h)
+    eps = 1e-12 * float(np.linalg.norm(np.ptp(X, axis=0)))
+    h = build_hull3(X, eps)
+    eg3 = rolling.edge_geometry(h, eps)
     W = unit(h.X)
     near = eg3.t < -1e-12
     sad = eg3.saddles[h.ea[eg3.saddles] < h.eb[eg3.saddles]]

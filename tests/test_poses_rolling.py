@@ -46,7 +46,9 @@ def _row_geometry(h):
     inset = dot(cross(D, rel), n) / L
     tau = np.clip(dot(rel, D) / L2, 0.0, 1.0)
     off = tau[:, None] * D + A - foot
-    return D / L[:, None], t, inset, np.sqrt(dot(off, off)), tau * L, L
+    along, tol = tau * L, 1e-9  # the roller's below
+    return (D / L[:, None], t, inset, np.sqrt(dot(off, off)), (along > tol) & (along < L - tol),
+            along <= tol)
 
 
 @pytest.mark.parametrize("seed", [0, 1])
@@ -60,10 +62,10 @@ def test_edge_geometry_and_roller_are_the_row_formulas_bit_for_bit(seed, monkeyp
     u = unit(rng.normal(size=(1500, 3)))  # an egg-like ellipsoid: every point a vertex
     X = u * [1.0, 0.7, 0.5] * (1 + 0.1 * u[:, :1]) + [0.1, -0.05, 0.02]
     h = build_hull3(X, 1e-12 * 4)
-    eg3 = edge_geometry(h)
+    eg3 = edge_geometry(h, 1e-9)
     assert len(h.ea) > 4 * blockwise.BLOCK_ROWS and eg3.saddle.any()
-    for got, want in zip((eg3.pole, eg3.t, eg3.inset, eg3.tip_distance, eg3.along,
-                          eg3.length), _row_geometry(h)):
+    for got, want in zip((eg3.pole, eg3.t, eg3.inset, eg3.tip_distance, eg3.tip_inside,
+                          eg3.tip_at_a), _row_geometry(h)):
         assert np.array_equal(got, want)
     roller = Roller(h, eg3, unit(h.X), 1e-9)
     over = np.where(roller.stable | roller.pivots, np.arange(len(h.normals)),

@@ -236,7 +236,7 @@ def basins3(h: Hull3, eps: float, samples: int | None,
     ``grouping(h, roller, edges, saddles)``, when given, says which stable faces are
     traced as one (:func:`trace_basins`' ``group``): their summed area is on the face
     standing for them, and the result's ``grouped`` is True."""
-    eg3 = edge_geometry(h)
+    eg3 = edge_geometry(h, eps)
     W = unit(h.X)
     roller = Roller(h, eg3, W, eps)
     stable = roller.stable

@@ -165,7 +165,7 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
     stable = roller.stable
     fa, fb = _saddle_ends(h, roller, sad)
     if h is not h0:  # seen from the true centre, a nudged pose may sit on its face's edge:
-        true = Roller(h0, edge_geometry(h0), unit(h0.X), eps)  # roll it on from there
+        true = Roller(h0, edge_geometry(h0, eps), unit(h0.X), eps)  # roll it on from there
         try:
             landed = np.flatnonzero(area > 0)
             area = np.bincount(true.sinks(landed), weights=area[landed], minlength=len(area))

@@ -53,12 +53,16 @@ class Edges3(NamedTuple):
     saddle: np.ndarray  # (E,) bool: the arc holds a saddle
     inset: np.ndarray  # (E,) how far the foot of c on face F lies inside this edge, m
     tip_distance: np.ndarray  # (E,) from that foot to the nearest point of the edge, m
-    along: np.ndarray  # (E,) that nearest point, as a distance from a, m
-    length: np.ndarray  # (E,) the edge's length, m
+    # that nearest point, ``along`` the edge from a (m) of ``length``, as the roll asks it
+    # (within ``tol`` of an end a face pivots about that corner): only at a face's tip
+    # edge, so only the answers are kept, not two more arrays of every edge's distances
+    tip_inside: np.ndarray  # (E,) bool: tol < along < length − tol
+    tip_at_a: np.ndarray  # (E,) bool: along ≤ tol
     saddles: np.ndarray  # (S,) the directed edges holding a saddle, ascending
     spoint: np.ndarray  # (S, 3) unit direction from c square to the edge line
     sheight: np.ndarray  # (S,) |c to the edge line|, m
     toward_f: np.ndarray  # (S, 3) spoint × pole: q·toward_f > 0 when q lies on n_F's side
+    tol: float  # m: the roll's tolerance ``tip_inside`` and ``tip_at_a`` were measured with
 
     def saddle_rows(self, edges: np.ndarray) -> np.ndarray:
         """The rows of ``spoint``, ``sheight`` and ``toward_f`` for the saddle edges
@@ -98,11 +102,13 @@ def _foot_direction(A: np.ndarray, D: np.ndarray, t: np.ndarray
     return s, height
 
 
-def edge_geometry(h: Hull3) -> Edges3:
+def edge_geometry(h: Hull3, tol: float) -> Edges3:
     """The Gauss-map arc of every directed edge of ``h``, whether it holds a saddle (the
     direction from the centre square to the edge's line lies on the arc and the foot
     lies strictly inside the edge), and the foot of the centre on the edge's left face
-    against the edge. Row by row, in blocks (:func:`~plumbob.blockwise.blockwise`)."""
+    against the edge, its nearest point judged within ``tol`` (m: the roll's, as
+    :class:`Roller` is given it) of the edge's ends. Row by row, in blocks
+    (:func:`~plumbob.blockwise.blockwise`)."""
     X, N, H = h.X, h.normals, h.heights
     ea, eb, ef, eg = h.ea, h.eb, h.ef, h.eg
     # coordinate columns: contiguous gathers and arithmetic on contiguous arrays, the
@@ -183,16 +189,20 @@ def edge_geometry(h: Hull3) -> Edges3:
         o *= o
         dist += o
         tip_distance = np.sqrt(dist)  # = np.linalg.norm(off, axis=1), bit for bit
-        return pole, t, saddle, inset, tip_distance, tau * L, L
+        along = tau * L
+        tip_inside = along > tol
+        tip_inside &= along < L - tol
+        return pole, t, saddle, inset, tip_distance, tip_inside, along <= tol
 
-    pole, t, saddle, inset, tip, along, length = blockwise(len(ea), rows)
+    pole, t, saddle, inset, tip, tip_inside, tip_at_a = blockwise(len(ea), rows)
     saddles = np.flatnonzero(saddle)
     A = np.take(X, np.take(ea, saddles), axis=0)
     D = np.take(X, np.take(eb, saddles), axis=0)
     D -= A
     s, height = _foot_direction(A, D, np.take(t, saddles))
     toward_f = cross(s, np.take(pole, saddles, axis=0))
-    return Edges3(pole, t, saddle, inset, tip, along, length, saddles, s, height, toward_f)
+    return Edges3(pole, t, saddle, inset, tip, tip_inside, tip_at_a, saddles, s, height,
+                  toward_f, float(tol))
 
 
 def _arc_hits(h: Hull3, eg3: Edges3, rows: np.ndarray, cand: np.ndarray, p: np.ndarray,
@@ -302,10 +312,10 @@ class Roller:
         # an unstable face tips over the point of its boundary nearest the foot
         tip = group_first(h.ef, eg3.tip_distance, nF)
         self.tip_edge = tip
-        along = eg3.along[tip]
-        length = eg3.length[tip]
-        self.pivots = ~self.stable & ~((along > tol) & (along < length - tol))
-        self._tip_at_a = along <= tol  # a pivot's corner: the tip edge's start, else its end
+        if eg3.tol != tol:
+            raise ValueError(f"edge geometry measured to {eg3.tol} m, not the roll's {tol} m")
+        self.pivots = ~self.stable & ~eg3.tip_inside[tip]
+        self._tip_at_a = eg3.tip_at_a[tip]  # a pivot's corner: the tip edge's start, else its end
         # rolls over edges chain faces: jump along them to a stable face or a pivot (the
         # chains' ends, which point to themselves); only the faces that roll over an edge
         # (a few % of a smooth hull's) jump, each until it points at an end

@@ -261,7 +261,7 @@ def _touches_at_a_point(body, down: np.ndarray, size: float) -> bool:
 
 def _rest_face(h, u0: np.ndarray, eps: float) -> int:
     """The stable face of hull ``h`` a quasi-static roll from direction ``u0`` ends on."""
-    roller = Roller(h, edge_geometry(h), unit(h.X), eps)
+    roller = Roller(h, edge_geometry(h, eps), unit(h.X), eps)
     on = np.flatnonzero(roller.stable & (h.normals @ u0 >= 1.0 - _ON_FACE))
     if len(on):  # set down on a stable face already
         return int(on[np.argmax(h.normals[on] @ u0)])
