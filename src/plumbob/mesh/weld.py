@@ -153,12 +153,12 @@ def merge_vertices(points: np.ndarray, tolerance: float = 0.0, *,
     >>> len(merge_vertices([[0, 0, 0], [1, 0, 0], [-6.1e-17, 0, 0]], 1e-12)[0])
     2
     """
-    p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3) + 0.0  # -0.0 → 0.0
+    p = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)  # no copy of float64 rows
     first, inverse = unique_first(point_keys(p) if keys is None else keys.reshape(-1))
-    unique = np.take(p, first, axis=0)
-    # a hash collision (two points, one key): merge exactly instead
+    unique = np.take(p, first, axis=0) + 0.0  # -0.0 → 0.0 (the keys hash them alike)
+    # a hash collision (two points, one key): merge exactly instead (-0.0 == 0.0 here)
     if not np.array_equal(np.take(unique, inverse, axis=0), p):
-        unique, inverse = np.unique(p, axis=0, return_inverse=True)
+        unique, inverse = np.unique(p + 0.0, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
     if tolerance > 0 and len(unique) > 1:
         group = weld_near(unique, tolerance)
