@@ -391,6 +391,32 @@ def test_unique_first_on_hashes_with_a_few_ties_is_numpys_unique():
     assert np.array_equal(order, np.argsort(keys, kind="stable")) and np.array_equal(sk, keys[order])
 
 
+@given(st.integers(0, 10**6), st.integers(0, 300), st.booleans())
+def test_point_keys_are_splitmix_of_the_coordinates_bits(seed, n, single):
+    """The weld's keys (mixed in place) are the splitmix64 rounds written out, so the
+    vertices come in the same order: -0.0 hashed as 0.0, float32 by its own bits."""
+    from plumbob.mesh.weld import point_keys
+
+    def mix(z):
+        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        return z ^ (z >> np.uint64(31))
+
+    rng = np.random.default_rng(seed)
+    p = rng.normal(size=(n, 3)).astype(np.float32 if single else float)
+    p[rng.random((n, 3)) < 0.2] = -0.0
+    q = p + p.dtype.type(0)
+    with np.errstate(over="ignore"):
+        if single:
+            b = q.view(np.uint32)
+            xy = (b[:, 0].astype(np.uint64) << np.uint64(32)) | b[:, 1]
+            expect = mix(xy ^ b[:, 2] * np.uint64(0x9E3779B97F4A7C15))
+        else:
+            b = q.view(np.uint64)
+            expect = mix(mix(mix(b[:, 0]) ^ b[:, 1]) ^ b[:, 2])
+    assert np.array_equal(point_keys(p), expect)
+
+
 def test_welding_survives_a_hash_collision(monkeypatch):
     from plumbob.mesh import weld
 
