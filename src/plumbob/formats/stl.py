@@ -328,7 +328,9 @@ def read_stl(path: str, units: str | None = None, repair: bool = False) -> Readi
     names = unique_names([s.name or (f"solid {i + 1}" if several else stem(path))
                            for i, s in enumerate(stl.solids)])
     for solid, name in zip(stl.solids, names):
-        tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float) * scale
+        tri = solid.triangles if scale == 1.0 else solid.triangles.astype(float)
+        if scale != 1.0:  # in place: one float64 copy, not two
+            tri *= scale
         body, more = mesh_solid(tri, path=path, name=name, repair=repair, extent=stl.lo is None,
                                 assumed=units is None,
                                 label=f"solid {name!r}" if several else None, scale=scale)
