@@ -215,6 +215,10 @@ def _digit_order(keys: np.ndarray, span: int) -> np.ndarray:
         return order
     words = np.ascontiguousarray(keys, dtype=np.int64).view(np.uint16).reshape(-1, 4)
     order = np.argsort(words[:, 0], kind="stable")
+    if not span >> 16:
+        return order
+    if len(keys) < 1 << 31:  # the order as int32 between the passes: each gathers half the
+        order = order.astype(np.int32)  # bytes (3 of 17 ms at 600,000 keys of 34 bits)
     k = 1
     while span >> (16 * k):
         digit = np.ascontiguousarray(words[:, k])[order]
@@ -225,7 +229,7 @@ def _digit_order(keys: np.ndarray, span: int) -> np.ndarray:
         else:
             order = order[np.argsort(digit, kind="stable")]
         k += 1
-    return order
+    return order.astype(np.intp, copy=False)
 
 
 def stable_order(keys: np.ndarray) -> np.ndarray:
