@@ -255,6 +255,31 @@ def test_each_ways_own_candidates_give_every_ways_pairs(seed, eps, flat, first, 
     assert np.array_equal(theta_own, theta_every)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-6, 1e-1), st.booleans(), st.integers(0, 700),
+       st.floats(0.05, 125.0), st.floats(0.0, 2.0 * np.pi))
+def test_one_ways_cut_keeps_the_cones_points(seed, eps, flat, first, width, azimuth):
+    """_on_arc() finds a way's candidates among the points within _cone_cut() of the top
+    along its arc's middle direction: exactly the points _on_arcs() keeps, in order, for
+    arcs up to 120° wide (wider ones are _on_arcs' alone), on blobs and boxes' faces."""
+    from plumbob.arrays import dot
+    from plumbob.stability.rocking import _across, _cone_cut, _on_arc, _on_arcs
+
+    X, down = _rocker_points(seed, flat)
+    t1, t2 = _across(down)
+    direction = np.cos(azimuth) * t1 + np.sin(azimuth) * t2
+    stop = min(720, first + 2 + int(width / 0.25))
+    arc = np.radians(np.arange(0.0, 180.0, 0.25))[first:stop]
+    reach = eps + 1e-9 * float(np.abs(X).max())
+    a, b = X @ down, X @ direction
+    radius = float(np.sqrt(dot(X, X).max()))
+    plain = np.flatnonzero(_on_arcs(a, b[None, :], arc, reach)[0])
+    if _cone_cut(arc, reach, radius) is None:
+        assert arc[-1] - arc[0] > np.radians(119.9)
+        return
+    assert np.array_equal(_on_arc(a, b, arc, reach, radius), plain)
+
+
 @settings(max_examples=12, deadline=None)
 @given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(),
        st.sampled_from([np.inf, np.nan, 0.5, 1.5, 3.0, 15.0]))

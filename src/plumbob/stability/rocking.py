@@ -248,6 +248,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         return B[ways]
 
     scale = float(np.max(np.abs(points))) if len(points) else 0.0
+    radius = float(np.sqrt(dot(points, points).max())) if len(points) else 0.0
     bound = float(cap_deg) if cap_deg < np.inf else np.inf  # NaN: no cap
     peak = np.full(K, -np.inf)
     at = np.zeros(K, dtype=np.int64)  # each way has been swept through the angles before
@@ -267,7 +268,14 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
             a_ways, B_ways = a[some], directions[ways] @ points[some].T
         else:
             some, a_ways, B_ways = None, a, rows(ways)
-        way, point = np.nonzero(_on_arcs(a_ways, B_ways, arc, reach))
+        if some is None and _cone_cut(arc, reach, radius) is not None:
+            # one or two ways over every point: each way's few candidates found from a
+            # cut along its arc's middle direction first (the same points, in order)
+            found = [_on_arc(a, B_ways[k], arc, reach, radius) for k in range(len(ways))]
+            way = np.repeat(np.arange(len(ways)), [len(f) for f in found])
+            point = np.concatenate(found)
+        else:
+            way, point = np.nonzero(_on_arcs(a_ways, B_ways, arc, reach))
         cuts = np.searchsorted(way, np.arange(len(ways) + 1))
         pairs = candidate_pairs(a_ways[point], B_ways[way, point], cuts,
                                 point if some is None else some[point], arc, eps, _LEVELS)
@@ -321,6 +329,37 @@ def _on_arcs(a: np.ndarray, B: np.ndarray, arc: np.ndarray, reach: float) -> np.
     depth = along - along[rows, top][:, None]  # v·c ≤ 0
     side = np.abs(across - across[rows, top][:, None])  # |v' × c|
     return depth * np.cos(half) + side * np.sin(half) >= -reach
+
+
+def _cone_cut(arc: np.ndarray, reach: float, radius: float) -> float | None:
+    """How far below the top of the points along an arc's middle direction c a point can
+    lie and still pass :func:`_on_arcs`' test (None for an arc wider than 120°, where the
+    cut would keep nearly all): with depth = (v·c) ≤ 0 and side ≤ 2 ``radius`` (both
+    points within ``radius`` of the origin), depth cos A + side sin A ≥ −reach needs
+    depth ≥ −(reach + 2 radius sin A) / cos A; widened by 1e-9 of the radius, far past
+    the rounding of the terms (some 1e-16 of it)."""
+    half = 0.5 * (arc[-1] - arc[0])
+    if not np.cos(half) >= 0.5:
+        return None
+    return float((reach + 2.0 * radius * np.sin(half)) / np.cos(half) + 1e-9 * radius)
+
+
+def _on_arc(a: np.ndarray, b: np.ndarray, arc: np.ndarray, reach: float, radius: float
+            ) -> np.ndarray:
+    """``np.flatnonzero(_on_arcs(a, b[None, :], arc, reach)[0])`` for one way (``b``: the
+    points' coordinates along its direction; ``radius``: no point is further from the
+    origin), with the test's numbers, bit for bit, computed only for the points within
+    :func:`_cone_cut` of the top along the arc's middle direction (the others fail it):
+    on an egg's 99,000 hull points a third of the passes over them."""
+    mid = 0.5 * (arc[0] + arc[-1])
+    half = 0.5 * (arc[-1] - arc[0])
+    along = np.cos(mid) * a + np.sin(mid) * b  # as _on_arcs computes it, row by row
+    top = int(np.argmax(along))
+    near = (along >= along[top] - _cone_cut(arc, reach, radius)).nonzero()[0]
+    across = np.cos(mid) * b[near] - np.sin(mid) * a[near]
+    depth = along[near] - along[top]
+    side = np.abs(across - (np.cos(mid) * b[top] - np.sin(mid) * a[top]))
+    return near[depth * np.cos(half) + side * np.sin(half) >= -reach]
 
 
 def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float) -> np.ndarray:

@@ -140,7 +140,9 @@ def twins_and_ends(tri: np.ndarray, n: int
     if len(ends) > 1 and np.any((a[1:] == a[:-1]) & (b[1:] == b[:-1])):
         return None  # an edge used twice in one direction: not a 2-manifold
     end_twins = stable_order(b)  # by (to, from): the reverse of each by (from, to)
-    if not (np.array_equal(a[end_twins], b) and np.array_equal(b[end_twins], a)):
+    reverse = b * n  # the key of each one's reverse (0 <= a, b < n: one key, one pair)
+    reverse += a
+    if not np.array_equal(key[end_twins], reverse):
         return None  # an edge without its reverse
     twin = np.empty_like(ends)
     twin[ends] = ends[end_twins]
