@@ -292,3 +292,26 @@ def test_a_row_sweeps_the_rocker_of_its_first_pose_only(tmp_path):
     assert row.row == table.row and row.row["pose_critical_tilt_deg"] > 0
     assert len(table.pose_rows) == 4
     assert all(r["critical_tilt_deg"] > 0 for r in table.pose_rows)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".jsonl"])
+def test_the_final_table_reuses_the_texts_written_and_formats_other_rows(tmp_path, full,
+                                                                         suffix):
+    """The end of a run writes each row's text as appended (no second formatting, the one
+    part of a run no worker shares); a row object it never wrote, even an equal copy, is
+    formatted afresh. The file equals one written from scratch in input order."""
+    rows, fields = full.rows, full.fields
+    out, fresh = str(tmp_path / f"a{suffix}"), str(tmp_path / f"b{suffix}")
+    writer = open_writer(out, fields)
+    writer.start(rows[:2])  # as kept by --resume
+    for row in reversed(rows[2:-1]):  # as workers finish, out of order
+        writer.append(row)
+    copy = dict(rows[-1])
+    writer.append(rows[-1])
+    writer.finish([*rows[:-1], copy])
+    scratch = open_writer(fresh, fields)
+    scratch.start(rows)
+    scratch.close()
+    with open(out, encoding="utf-8") as a, open(fresh, encoding="utf-8") as b:
+        assert a.read() == b.read()
+    assert open_writer(out, fields).read() == rows

@@ -143,13 +143,14 @@ def run(inputs, options: Options | None = None, *, out: str | None = None,
         with Progress(len(tasks), progress) as bar:
             for index, result in results:
                 row = _normal(result.row, fields)
+                poses_of = [_normal(p, pfields) for p in result.pose_rows]
                 if pose_writer:  # poses first: a row on disk means its poses are too
-                    for p in result.pose_rows:
-                        pose_writer.append(_normal(p, pfields))
+                    for p in poses_of:
+                        pose_writer.append(p)
                 if writer:
                     writer.append(row)
                 rows[index] = row
-                pose_rows[index] = [_normal(p, pfields) for p in result.pose_rows]
+                pose_rows[index] = poses_of
                 summary.add(row)
                 bar.advance()
     finally:

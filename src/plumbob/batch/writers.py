@@ -3,9 +3,11 @@
 Each writer appends a row the moment its file is done (one ``write`` and a flush per
 row), can read back the rows a previous run left (``--resume``) and, at the end,
 rewrites the file in input order, so the final table does not depend on which worker
-finished first. JSON Lines and CSV are their own journal; Parquet cannot be appended
-to, so rows go to ``OUT.partial.jsonl`` until the run ends and the Parquet file is
-written (pyarrow, from the batch extra).
+finished first. The rewrite reuses each row's text as it was first written (rows are
+not changed once written): the end of a run is the one part no worker shares, and
+formatting 4,000 rows again took about 0.4 s of it. JSON Lines and CSV are their own
+journal; Parquet cannot be appended to, so rows go to ``OUT.partial.jsonl`` until the
+run ends and the Parquet file is written (pyarrow, from the batch extra).
 """
 
 from __future__ import annotations
@@ -46,11 +48,15 @@ def _complete_text(path: str) -> str:
 class Writer:
     """JSON Lines: one row per line, as the single-file command's JSON."""
 
+    #: whether :meth:`finish` writes the rows' texts (else it formats them its own way)
+    _keeps_texts = True
+
     def __init__(self, path: str, fields: list[Field]) -> None:
         self.path = path
         self.fields = fields
         self.keys = [f.key for f in fields]
         self._handle = None
+        self._written: dict[int, tuple[Row, str]] = {}  # id(row) -> (row, its text)
 
     def _mismatch(self) -> PlumbobError:
         return PlumbobError("the rows there were written with other options (other columns); "
@@ -74,13 +80,26 @@ class Writer:
     def _head(self) -> str:
         return ""
 
+    def _write_text(self, row: Row) -> str:
+        """``row``'s text, remembered for :meth:`finish` (the row is held with it, so its
+        ``id`` cannot be reused by another row meanwhile)."""
+        text = self._text(row)
+        if self._keeps_texts:
+            self._written[id(row)] = (row, text)
+        return text
+
+    def _final_text(self, row: Row) -> str:
+        kept = self._written.get(id(row))
+        return kept[1] if kept is not None and kept[0] is row else self._text(row)
+
     def start(self, rows: list[Row]) -> None:
         """Begin the file with ``rows`` (those kept from a previous run) and open it."""
-        _replace(self.path, lambda h: h.write(self._head() + "".join(map(self._text, rows))))
+        _replace(self.path,
+                 lambda h: h.write(self._head() + "".join(map(self._write_text, rows))))
         self._handle = open(self.path, "a", encoding="utf-8", newline="")
 
     def append(self, row: Row) -> None:
-        self._handle.write(self._text(row))
+        self._handle.write(self._write_text(row))
         self._handle.flush()
 
     def close(self) -> None:
@@ -91,7 +110,9 @@ class Writer:
     def finish(self, rows: list[Row]) -> None:
         """The final file: every row, in input order."""
         self.close()
-        _replace(self.path, lambda h: h.write(self._head() + "".join(map(self._text, rows))))
+        _replace(self.path,
+                 lambda h: h.write(self._head() + "".join(map(self._final_text, rows))))
+        self._written.clear()
 
 
 class CsvWriter(Writer):
@@ -128,6 +149,8 @@ class CsvWriter(Writer):
 
 class ParquetWriter(Writer):
     """Parquet: rows journalled as JSON Lines beside it until :meth:`finish`."""
+
+    _keeps_texts = False  # the journal's lines are not the final file's
 
     def __init__(self, path: str, fields: list[Field]) -> None:
         require("pyarrow", "writing Parquet")
