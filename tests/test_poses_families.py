@@ -280,6 +280,22 @@ def test_one_ways_cut_keeps_the_cones_points(seed, eps, flat, first, width, azim
     assert np.array_equal(_on_arc(a, b, arc, reach, radius), plain)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.floats(1e-6, 1e-1), st.booleans(), st.floats(0.0, 1.2))
+def test_the_cone_about_down_cut_keeps_its_points(seed, eps, flat, half):
+    """_near_down() given the points' radius measures only the points within _cut() of
+    the top along down, and keeps exactly the points it keeps measuring every one."""
+    from plumbob.arrays import dot
+    from plumbob.stability.rocking import _across, _near_down
+
+    X, down = _rocker_points(seed, flat)
+    reach = eps + 1e-9 * float(np.abs(X).max())
+    a, across = X @ down, X @ _across(down).T
+    radius = float(np.sqrt(dot(X, X).max()))
+    assert np.array_equal(_near_down(a, across, half, reach, radius),
+                          _near_down(a, across, half, reach))
+
+
 @settings(max_examples=12, deadline=None)
 @given(st.integers(0, 10_000), st.floats(1e-4, 1e-1), st.booleans(),
        st.sampled_from([np.inf, np.nan, 0.5, 1.5, 3.0, 15.0]))

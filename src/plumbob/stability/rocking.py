@@ -264,7 +264,7 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
             # the ways' arcs all lie in one cone about down: one pass over the points (in
             # space) keeps those that can reach the support there, each way's cone then
             # looks at those alone
-            some = _near_down(a, across, float(arc[-1]), reach)
+            some = _near_down(a, across, float(arc[-1]), reach, radius)
             a_ways, B_ways = a[some], directions[ways] @ points[some].T
         else:
             some, a_ways, B_ways = None, a, rows(ways)
@@ -331,17 +331,22 @@ def _on_arcs(a: np.ndarray, B: np.ndarray, arc: np.ndarray, reach: float) -> np.
     return depth * np.cos(half) + side * np.sin(half) >= -reach
 
 
-def _cone_cut(arc: np.ndarray, reach: float, radius: float) -> float | None:
-    """How far below the top of the points along an arc's middle direction c a point can
-    lie and still pass :func:`_on_arcs`' test (None for an arc wider than 120°, where the
-    cut would keep nearly all): with depth = (v·c) ≤ 0 and side ≤ 2 ``radius`` (both
-    points within ``radius`` of the origin), depth cos A + side sin A ≥ −reach needs
-    depth ≥ −(reach + 2 radius sin A) / cos A; widened by 1e-9 of the radius, far past
-    the rounding of the terms (some 1e-16 of it)."""
-    half = 0.5 * (arc[-1] - arc[0])
+def _cut(half: float, reach: float, radius: float) -> float | None:
+    """How far below the top of the points along a cone's axis c (half-width ``half``)
+    a point can lie and still pass the cone's test (:func:`_on_arcs`, :func:`_near_down`;
+    None for a cone wider than 60° each way, where the cut would keep nearly all): with
+    depth = (v·c) ≤ 0 and side ≤ 2 ``radius`` (both points within ``radius`` of the
+    origin), depth cos A + side sin A ≥ −reach needs depth ≥ −(reach + 2 radius sin A) /
+    cos A; widened by 1e-9 of the radius, far past the rounding of the terms (some 1e-16
+    of it)."""
     if not np.cos(half) >= 0.5:
         return None
     return float((reach + 2.0 * radius * np.sin(half)) / np.cos(half) + 1e-9 * radius)
+
+
+def _cone_cut(arc: np.ndarray, reach: float, radius: float) -> float | None:
+    """:func:`_cut` for the cone about the middle direction of ``arc`` (its half-width)."""
+    return _cut(0.5 * (arc[-1] - arc[0]), reach, radius)
 
 
 def _on_arc(a: np.ndarray, b: np.ndarray, arc: np.ndarray, reach: float, radius: float
@@ -362,7 +367,8 @@ def _on_arc(a: np.ndarray, b: np.ndarray, arc: np.ndarray, reach: float, radius:
     return near[depth * np.cos(half) + side * np.sin(half) >= -reach]
 
 
-def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float) -> np.ndarray:
+def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float,
+               radius: float | None = None) -> np.ndarray:
     """Indices of the points that can come within ``reach`` of the support for some
     direction within ``half`` (radians, up to π) of down: :func:`_on_arcs`'s test for
     the one cone about down that holds every way's arc of a block (one test for all the
@@ -371,8 +377,16 @@ def _near_down(a: np.ndarray, across: np.ndarray, half: float, reach: float) -> 
     where φ > half, and passed where φ ≤ half (the cosine is then not negative), so it
     holds for a cone wider than 90° too. ``a``: the points' coordinates along down;
     ``across`` (n, 2): along two orthonormal directions across it, from which |v × c|
-    is taken (not from |v|² − (v·c)², which cancels near c)."""
+    is taken (not from |v|² − (v·c)², which cancels near c). ``radius``, when given: no
+    point lies further from the origin, and only the points within :func:`_cut` of the
+    top along down are measured (the others fail the test; the same indices)."""
     top = int(np.argmax(a))
+    cut = _cut(half, reach, radius) if radius is not None else None
+    if cut is not None:  # the test, bit for bit, on the points within the cut alone
+        near = (a >= a[top] - cut).nonzero()[0]
+        depth = a[near] - a[top]
+        side = np.hypot(across[near, 0] - across[top, 0], across[near, 1] - across[top, 1])
+        return near[depth * np.cos(half) + side * np.sin(half) >= -reach]
     depth = a - a[top]  # v·c ≤ 0
     side = np.hypot(across[:, 0] - across[top, 0], across[:, 1] - across[top, 1])
     return np.flatnonzero(depth * np.cos(half) + side * np.sin(half) >= -reach)
