@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from test_stability_support import SCULPTURE, A, H
 
 import plumbob.stability.poses.basins as basins_module
+import plumbob.stability.poses.faces as faces_module
 from plumbob.bodies.primitives import box, cylinder, polygon, pyramid, rectangle, sphere
 from plumbob.bodies.solid import MeshSolid
 from plumbob.errors import GeometryError, PlumbobError, StabilityError
@@ -512,3 +513,44 @@ def test_a_pose_by_its_rank():
         poses.ranked(7, "--pose")
     with pytest.raises(StabilityError):
         poses.ranked(0)
+
+
+def _physical_faces_by_search(h, sinks, tol):
+    """Each sink's physical face by a plain breadth-first search: from a face, on to
+    each neighbour across an edge that faces the sink's way and whose corners all lie
+    within ``tol`` of the sink's plane."""
+    corners = [np.unique(h.ea[h.ef == f]) for f in range(len(h.normals))]
+    pairs = []
+    for k, s in enumerate(sinks):
+        n, d = h.normals[s], h.heights[s]
+        reached, todo = {int(s)}, [int(s)]
+        while todo:
+            f = todo.pop()
+            for g in h.eg[h.ef == f].tolist():
+                if g not in reached and h.normals[g] @ n > 0 and \
+                        np.all(d - h.X[corners[g]] @ n <= tol):
+                    reached.add(g)
+                    todo.append(g)
+        pairs += [(k, g) for g in sorted(reached)]
+    return np.array(pairs).T
+
+
+@pytest.mark.parametrize("seen_flags", [1 << 24, 0])
+def test_physical_faces_are_the_faces_a_plain_search_reaches(seen_flags, monkeypatch):
+    """Boxes with finely tessellated, slightly rippled sides (hundreds of exact faces, a
+    few sinks): the physical faces, by the flags of the (sink, face) pairs reached or by
+    their sorted keys, are the ones a plain search reaches, at every tolerance."""
+    monkeypatch.setattr(faces_module, "SEEN_FLAGS", seen_flags)
+    rng = np.random.default_rng(7)
+    t = np.linspace(-1.0, 1.0, 7)
+    u, v = (a.ravel() for a in np.meshgrid(t, t))
+    w = 1 + 1e-6 * (2 - u * u - v * v) + 1e-8 * rng.standard_normal(len(u))  # bulged
+    sides = [np.stack(p, axis=1) for s in (-w, w) for p in ((u, v, s), (u, s, v), (s, u, v))]
+    h = build_hull3(np.concatenate(sides) * [1.0, 0.8, 0.6], 1e-14)
+    assert len(h.normals) > 300
+    sinks = np.arange(0, len(h.normals), 29)
+    for tol in (1e-9, 1e-6, 3e-6, 1e-5, 1e-3):
+        pf = physical_faces(h, sinks, tol)
+        want = _physical_faces_by_search(h, sinks, tol)
+        assert np.array_equal(np.stack((pf.owner, pf.face)), want), tol
+        assert pf.boundary_owner.tolist() == sorted(pf.boundary_owner.tolist())

@@ -27,6 +27,10 @@ from .hull import Hull3
 
 __all__ = ["PhysicalFaces", "physical_faces"]
 
+#: sinks × faces up to which :func:`physical_faces` flags the (sink, face) pairs it has
+#: reached (one byte each) rather than keeping them sorted and searching them
+SEEN_FLAGS = 1 << 24
+
 
 class PhysicalFaces(NamedTuple):
     """The physical face of every stable exact face.
@@ -125,11 +129,16 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
     edges_of = _FaceEdges(h).of
     owner = np.arange(len(sinks), dtype=np.int64)
     known = owner * nF + sinks  # sorted: owner-major keys of (owner, face)
-    f_owner, f_face = owner, sinks
+    # which keys are known: a flag per key where there are few enough (no sort per ring)
+    seen = np.zeros(len(sinks) * nF, dtype=bool) if len(sinks) * nF <= SEEN_FLAGS else None
+    if seen is not None:
+        seen[known] = True
+    rings = [known]
+    f_owner = owner
+    rows, edge, _ = edges_of(sinks)  # the frontier's edges (then kept from each ring's)
     while len(f_owner):
-        rows, edge, _ = edges_of(f_face)
         key = _distinct(f_owner[rows] * nF + h.eg[edge])
-        key = key[~_member(key, known)]
+        key = key[~(seen[key] if seen is not None else _member(key, known))]
         o, g = key // nF, key % nF
         # a face's mean corner: its offset from a plane is the mean of its corners' offsets,
         # never more than the largest, so a face whose mean lies over 2·tol off is out
@@ -145,15 +154,24 @@ def physical_faces(h: Hull3, sinks: np.ndarray, tol: float) -> PhysicalFaces:
         off = h_s[o[rows]] - dot(h.X[corner], n_s[o[rows]])  # ≥ 0: the hull is convex
         worst = np.zeros(len(o))
         np.maximum.at(worst, rows, off)
-        ok = (worst <= tol) & (dot(h.normals[g], n_s[o]) > 0)
-        f_owner, f_face = o[ok], g[ok]
-        known = np.sort(np.concatenate((known, key[ok])))
+        ok = worst <= tol  # (facing the sink's way: ``near`` took only those)
+        f_owner = o[ok]
+        kept = ok[rows]  # the next frontier's edges: edges_of(g[ok]), in the same order
+        rows, edge = (np.cumsum(ok) - 1)[rows[kept]], edge[kept]
+        if seen is not None:
+            seen[key[ok]] = True
+            rings.append(key[ok])
+        else:
+            known = np.sort(np.concatenate((known, key[ok])))
+    if seen is not None:  # the keys of every ring are new: one sort of them all
+        known = np.sort(np.concatenate(rings))
     owner, face = known // nF, known % nF
 
     # the boundary: edges of a member face whose other side is not a member
     rows, edge, _ = edges_of(face)
     o = owner[rows]
-    outside = ~_member(o * nF + h.eg[edge], known)
+    outside = ~(seen[o * nF + h.eg[edge]] if seen is not None
+                else _member(o * nF + h.eg[edge], known))
     edge, o = edge[outside], o[outside]
     A, D = h.X[h.ea[edge]], h.X[h.eb[edge]] - h.X[h.ea[edge]]
     foot = (h_s[o])[:, None] * n_s[o]
