@@ -245,6 +245,8 @@ def least_tilt(points: np.ndarray, down: np.ndarray, eps: float, cap_deg: float 
         new = ways[~has_row[ways]]
         if len(new):
             B[new], has_row[new] = directions[new] @ points.T, True
+        if len(ways) == 1:  # one way's row, not a copy of it
+            return B[int(ways[0]):int(ways[0]) + 1]
         return B[ways]
 
     scale = float(np.max(np.abs(points))) if len(points) else 0.0
