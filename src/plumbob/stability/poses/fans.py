@@ -158,8 +158,9 @@ class Fans:
                 break
             lengths = np.array([n for _, n in chains])
             offsets = np.cumsum(lengths) - lengths
-            vs, ks = np.array(verts), np.array(edges)
-            q = np.array(points).reshape(-1, 3)
+            # (the lists' types given: no element's type looked at, a third less time)
+            vs, ks = np.array(verts, dtype=np.intp), np.array(edges, dtype=np.intp)
+            q = np.fromiter(points, dtype=float, count=len(points)).reshape(-1, 3)
             starts = np.empty_like(q)
             starts[1:] = q[:-1]
             starts[offsets] = [at[t][2] for t, _ in chains]
@@ -170,8 +171,7 @@ class Fans:
             wp = dot(starts, w)
             tang = unit(w - wp[:, None] * starts)
             limit = np.arccos(np.clip(wp, -1.0, 1.0))
-            e, q_step = step(h, eg3, vs, starts, tang, limit, h.und[prev], self.near,
-                             np.full(len(vs), -1))
+            e, q_step = step(h, eg3, vs, starts, tang, limit, h.und[prev], self.near, None)
             good = ((e == ks) & ~self.ismax[vs] & (wp < 1.0 - 1e-24)
                     & (np.linalg.norm(q_step - q, axis=1) <= _AGREE))
             first_bad = np.minimum.reduceat(np.where(good, len(vs), np.arange(len(vs))), offsets)
@@ -213,8 +213,7 @@ class Fans:
             wp = dot(starts, w)
             tang = unit(w - wp[:, None] * starts)
             limit = np.arccos(np.clip(wp, -1.0, 1.0))
-            e, q_step = step(h, eg3, vs, starts, tang, limit, h.und[prev], self.near,
-                             np.full(len(vs), -1))
+            e, q_step = step(h, eg3, vs, starts, tang, limit, h.und[prev], self.near, None)
             good = ((e == ks) & ~self.ismax[vs] & (wp < 1.0 - 1e-24)
                     & (np.linalg.norm(q_step - q, axis=1) <= _AGREE))
             bad = np.flatnonzero(~good)
