@@ -14,6 +14,8 @@ import os
 
 import pytest
 from hostile import assert_bad_input, run_limited
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 PLATE = "POLYGON ((0 0, 2 0, 2 1, 0 1, 0 0))"
 
@@ -259,3 +261,19 @@ def test_standard_output_is_escaped_even_where_a_report_forgot(monkeypatch, caps
     _break_mass(monkeypatch, careless)
     assert cli.main(["mass", "shapes/block.toml"]) == 0
     assert capsys.readouterr().out == "title: part\\x1b[2Jname\nsecond line\\x07\n"
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(["a", "é", "m³", " ", "\n", "\x1b", "\x07", "\t", "\r", "\x00",
+                                 "\u2028", "{", '"']), max_size=30).map("".join))
+def test_the_escaping_stream_writes_each_line_as_printable_gives_it(text):
+    """What the commands' standard output writes: each line as :func:`printable` gives it,
+    lines printable or not (the fast path for text all printable but its newlines)."""
+    import io
+
+    from plumbob.cli import _Escaping
+    from plumbob.errors import printable
+
+    out = io.StringIO()
+    _Escaping(out).write(text)
+    assert out.getvalue() == "\n".join(printable(line) for line in text.split("\n"))
