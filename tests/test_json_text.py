@@ -12,7 +12,7 @@ import json
 import math
 
 import numpy as np
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
@@ -93,3 +93,15 @@ def test_dump_json_writes_one_object_and_a_newline(capsys):
     dump_json({"a": np.array([np.nan, 1.5]), "b": [[1, 2]] * 20})
     text = capsys.readouterr().out
     assert text.endswith("}\n") and json.loads(text) == {"a": [None, 1.5], "b": [[1, 2]] * 20}
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.lists(st.sampled_from([0.5, -0.0, 3, None, True]), max_size=18)
+                | st.tuples(st.just(1.0)) | st.just("a") | st.just(2.0)
+                | st.just([[1.0]]), min_size=1, max_size=24))
+def test_rows_of_numbers_is_the_per_row_test(values):
+    """The rows-of-numbers test, made in C-level passes, is the test row by row."""
+    from plumbob.commands.output import _NUMBERS, _rows_of_numbers
+
+    assert _rows_of_numbers(values) == all(
+        type(v) is list and len(v) <= 16 and _NUMBERS.issuperset(map(type, v)) for v in values)

@@ -5,6 +5,7 @@ number is finite, and the one JSON writer (short lists on one line).
 from __future__ import annotations
 
 import sys
+from itertools import chain
 from typing import Any
 
 from ..errors import ArgumentError
@@ -72,6 +73,14 @@ def _flat(values: list) -> bool:
     return not any(isinstance(v, (dict, list)) for v in values)
 
 
+def _rows_of_numbers(values: list) -> bool:
+    """Whether a non-empty list holds only lists of up to 16 numbers (and nulls): its
+    rows' types, lengths and entries' types each looked at in one C-level pass (a
+    generator over a cap's 4,400 corners cost 2 ms)."""
+    return (set(map(type, values)) == {list} and max(map(len, values), default=0) <= 16
+            and _NUMBERS.issuperset(map(type, chain.from_iterable(values))))
+
+
 def _json_text(obj: Any, indent: int = 0) -> str:
     """JSON text, indented, with short lists of numbers kept on one line.
 
@@ -94,8 +103,7 @@ def _json_text(obj: Any, indent: int = 0) -> str:
             return "[" + ", ".join(_json_text(v) for v in obj) + "]"
         pad = "  " * (indent + 1)
         end = "\n" + "  " * indent + "]"
-        if all(type(v) is list and len(v) <= 16 and _NUMBERS.issuperset(map(type, v))
-               for v in obj):  # rows of numbers: "], [" is only ever between two rows
+        if _rows_of_numbers(obj):  # "], [" is only ever between two rows
             return "[\n" + pad + _encode(obj)[1:-1].replace("], [", "],\n" + pad + "[") + end
         return "[\n" + ",\n".join(pad + _json_text(v, indent + 1) for v in obj) + end
     return _encode(obj)
