@@ -17,7 +17,7 @@ PACKAGE = Path(ROOT) / "src" / "plumbob"
 
 #: Rooms from the bottom up: a room may import its own layer and the layers below it.
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("errors", "version", "gravity"),
+    ("errors", "version", "gravity", "lazy"),
     ("units", "tolerances", "results", "plot", "report", "limits", "arguments", "frames",
      "blockwise", "callable_module", "files", "arrays"),
     ("expr", "integrals", "massprops", "materials", "loads"),

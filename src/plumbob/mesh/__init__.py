@@ -34,10 +34,10 @@ plumbob.errors.GeometryError: is open with a hole too large to close safely (3 b
 
 from __future__ import annotations
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
 
 from ..arrays import connected_components
+from ..lazy import lazy_exports as _lazy_exports
 from .closure import (
     CLOSURE_TOLERANCE,
     Holes,
@@ -93,15 +93,4 @@ _LAZY = {
     **dict.fromkeys(("solid_angle", "solid_angles", "winding_numbers"), ".winding"),
 }
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_import_module(_LAZY[name], __name__), name)
-    globals()[name] = value  # looked up once
-    return value
-
-
-def __dir__() -> list[str]:
-    """What the package shows: its public names as if imported, with its modules."""
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = _lazy_exports(__name__, _LAZY, __all__)

@@ -10,28 +10,20 @@ figure, and the figure is returned.
 
 from __future__ import annotations
 
-from importlib import import_module
+from ..lazy import lazy_exports
 
 __all__ = ["plot_body", "plot_check", "tilt_rose", "plot_poses", "plot_lift", "save_figure",
            "report_page", "png_bytes"]
 
 _LAZY = {
-    "plot_body": "body",
-    "plot_check": "check",
-    "tilt_rose": "rose",
-    "plot_poses": "gallery",
-    "plot_lift": "lift",
-    "save_figure": "files",
-    "png_bytes": "files",
-    "report_page": "html",
+    "plot_body": ".body",
+    "plot_check": ".check",
+    "tilt_rose": ".rose",
+    "plot_poses": ".gallery",
+    "plot_lift": ".lift",
+    "save_figure": ".files",
+    "png_bytes": ".files",
+    "report_page": ".html",
 }
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module 'plumbob.plot' has no attribute {name!r}")
-    return getattr(import_module(f".{_LAZY[name]}", __name__), name)
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, __all__)

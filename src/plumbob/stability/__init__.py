@@ -13,8 +13,9 @@ of the names below only when first used: ``plumbob poses`` loads neither the ver
 nor the drops room, ``plumbob check`` not the poses.
 """
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
+
+from ..lazy import lazy_exports as _lazy_exports
 
 if _TYPE_CHECKING:  # for readers and type checkers; at run time see __getattr__
     from .drops import DropPose, Drops, drop_poses
@@ -48,15 +49,4 @@ _LAZY = {
     **dict.fromkeys(("SlopeCheck", "TippingEdge", "Verdict", "check"), ".verdict"),
 }
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_import_module(_LAZY[name], __name__), name)
-    globals()[name] = value  # looked up once
-    return value
-
-
-def __dir__() -> list[str]:
-    """What the package shows: its public names as if imported, with its modules."""
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = _lazy_exports(__name__, _LAZY, __all__)
