@@ -55,7 +55,7 @@ def thread_report(imports: tuple[str, ...] = (), manifold_work: bool = False) ->
         tasks = "/proc/self/task"
         before = len(os.listdir(tasks)) if os.path.isdir(tasks) else None
         manifold3d.Manifold.sphere(1.0, 64).volume()
-        report["os_threads"] = before and [before, len(os.listdir(tasks))]
+        report["os_threads"] = None if before is None else [before, len(os.listdir(tasks))]
     return report
 
 
