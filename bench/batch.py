@@ -176,7 +176,7 @@ def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) ->
     OpenMP for (the workers must not follow it)."""
     env = src_environment(**dict.fromkeys(THREAD_VARIABLES, threads) if threads else {})
     cpu, start = _children_cpu(), time.perf_counter()
-    done = subprocess.run([PYTHON, "-m", "plumbob.cli", "batch", folder, "--poses", "--out",
+    done = subprocess.run([PYTHON, "-m", "plumbob", "batch", folder, "--poses", "--out",
                            out, "--jobs", str(jobs), "--quiet"], env=env, check=False)
     seconds = time.perf_counter() - start
     if done.returncode not in (0, 1):  # 1: the corpus's broken files

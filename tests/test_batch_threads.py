@@ -114,6 +114,52 @@ def test_manifold_on_threads_leaves_the_affinity_as_it_was():
     assert os.sched_getaffinity(0) == before
 
 
+# As ``plumbob batch`` starts (its entry point insists on BLAS's one thread, whatever the
+# environment asks: here 8): a single-threaded process, from which the pool forks its
+# workers; then the same with a thread of the program's own alive, the control.
+FORKED = """
+import json, threading
+from plumbob.__main__ import blas_starts_with_one_thread
+started = blas_starts_with_one_thread(insist=True)  # a fork server reruns this: False
+from plumbob.batch.pool import worker_threads
+
+if __name__ == "__main__":
+    assert started
+    single = worker_threads(imports=("scipy.linalg",), manifold_work=True)
+    stop = threading.Event()
+    waiting = threading.Thread(target=stop.wait)
+    waiting.start()
+    try:
+        threaded = worker_threads()
+    finally:
+        stop.set()
+        waiting.join()
+    print(json.dumps({"single": single, "threaded": threaded}))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the pool forks its "
+                    "workers on Linux only (where /proc counts a process's threads)")
+def test_the_pool_forks_its_workers_from_a_single_threaded_process(tmp_path):
+    """Forked, a worker starts in milliseconds rather than after a fork server's ~0.2 s,
+    and owns its threads as a fork server's workers do; a process running another thread
+    (a lock it may hold would be copied held) gets them from the fork server instead."""
+    script = tmp_path / "forked.py"
+    script.write_text(FORKED)
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"),
+               **{name: "8" for name in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")})
+    out = subprocess.run([sys.executable, str(script)], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    report = json.loads(out.stdout)
+    single, threaded = report["single"], report["threaded"]
+    assert single["start_method"] == "fork" and threaded["start_method"] == "forkserver"
+    assert len(single["libraries"]) >= 2 and _threads(single) == [1] * len(single["libraries"])
+    before, after = single["os_threads"]
+    assert after == before
+    assert single["plumbob"] == threaded["plumbob"] == 1
+
+
 def test_threads_per_job_asks_for_more(reports):
     report = reports["batch_two"]
     assert report["plumbob"] == 2
@@ -206,33 +252,42 @@ def test_a_command_starts_openblas_without_its_threads():
 
 
 ENTRY = """
-import contextlib, io, json, sys
+import contextlib, io, json, os, sys
 from plumbob.__main__ import entry
-sys.argv = ["plumbob", "mass", sys.argv[1]]
+sys.argv = ["plumbob", *sys.argv[1:]]
 with contextlib.redirect_stdout(io.StringIO()):
     status = entry()
 import threadpoolctl
-print(json.dumps({"status": status, "blas": [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
-                                            if lib["user_api"] == "blas"]}))
+print(json.dumps({"status": status, "variable": os.environ["OPENBLAS_NUM_THREADS"],
+                  "blas": [lib["num_threads"] for lib in threadpoolctl.threadpool_info()
+                           if lib["user_api"] == "blas"]}))
 """
 
 
 @pytest.mark.parametrize("asked", [None, "8"])
-def test_the_command_runs_blas_on_one_thread_however_it_started(shapes_dir, asked):
+@pytest.mark.parametrize("command", ["mass", "batch"])
+def test_the_command_runs_blas_on_one_thread_however_it_started(shapes_dir, tmp_path, asked,
+                                                               command):
     """Through the console script's entry point: BLAS on one thread while the command
     runs, whether it started so (nothing asked: the entry point set it) or the
-    environment asked for 8 threads (then the command limits it)."""
+    environment asked for 8 threads (then the command limits it; ``batch`` insists on
+    one from the start, whatever is asked, so that its pool may fork its workers)."""
     from plumbob.__main__ import BLAS_VARIABLES
 
     env = {k: v for k, v in os.environ.items() if k not in BLAS_VARIABLES}
     if asked:
         env["OPENBLAS_NUM_THREADS"] = asked
-    out = subprocess.run([sys.executable, "-c", ENTRY, os.path.join(shapes_dir, "sculpture.toml")],
+    arguments = [command, os.path.join(shapes_dir, "sculpture.toml")]
+    if command == "batch":
+        arguments += ["--out", str(tmp_path / "rows.csv"), "--jobs", "2", "--quiet"]
+    out = subprocess.run([sys.executable, "-c", ENTRY, *arguments],
                          env=dict(env, PYTHONPATH=os.path.join(ROOT, "src")),
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     report = json.loads(out.stdout)
     assert report["status"] == 0 and report["blas"] == [1]
+    insisted = command == "batch" or not asked
+    assert report["variable"] == ("1" if insisted else asked)
 
 
 MALLOC = """

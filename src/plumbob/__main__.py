@@ -12,10 +12,10 @@ BLAS_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
                   "VECLIB_MAXIMUM_THREADS")
 
 
-def blas_starts_with_one_thread() -> bool:
-    """Have numpy's BLAS start with one thread, unless the environment names a count;
-    return whether it will (numpy not loaded yet, no other count named), so that the
-    command need not limit it again.
+def blas_starts_with_one_thread(insist: bool = False) -> bool:
+    """Have numpy's BLAS start with one thread, unless the environment names a count
+    (``insist``: whatever it names); return whether it will (numpy not loaded yet, no
+    other count named), so that the command need not limit it again.
 
     The command runs BLAS on one thread (:func:`plumbob.blockwise.blas_on_one_thread`:
     its products are thin), but OpenBLAS starts a thread per core when numpy loads, and
@@ -24,11 +24,20 @@ def blas_starts_with_one_thread() -> bool:
     inherit the variables; ``--threads-per-job`` raises the count through threadpoolctl,
     which OpenBLAS allows). Only the command does this, before numpy loads (``import
     plumbob`` does not load it); a program that imports plumbob keeps its own setting.
+
+    ``plumbob batch`` insists: its workers run BLAS on ``--threads-per-job`` threads
+    whatever the environment says, and so does its own process when it measures the
+    files itself; and its pool forks the workers from this process only while it runs a
+    single thread (:func:`plumbob.batch.pool._context`), which BLAS threads started here
+    would spoil.
     """
     if "numpy" in sys.modules:
         return False
     for name in BLAS_VARIABLES:
-        os.environ.setdefault(name, "1")
+        if insist:
+            os.environ[name] = "1"
+        else:
+            os.environ.setdefault(name, "1")
     return all(os.environ[name] == "1" for name in BLAS_VARIABLES)
 
 
@@ -85,7 +94,7 @@ def entry() -> int:
     frozen too: the interpreter's exit, which frees it all, then does not scan it first
     (the exit of a 100k-triangle ``plumbob poses``: 10.6 -> 8.2 ms of processor time).
     """
-    one_thread = blas_starts_with_one_thread()
+    one_thread = blas_starts_with_one_thread(insist=sys.argv[1:2] == ["batch"])
     malloc_keeps_freed_memory()
     gc.disable()
     try:

@@ -5,8 +5,12 @@
 its own with a pipe: the parent sends a path, waits on every pipe and every process
 at once, and when a file overruns ``--timeout`` kills that worker and starts another.
 Only paths go out and small rows come back: meshes are read where they are measured,
-never copied between processes. Workers come from a fork server that has already
-imported numpy and plumbob, so a restart costs milliseconds.
+never copied between processes. Workers are forked from this process where that is
+safe (Linux, and no other thread here that a fork could catch holding a lock: the
+command's own process), after it has imported what every worker needs
+(:data:`PRELOAD`), so the pool starts in milliseconds; elsewhere they come from a fork
+server that has imported the same, at a fork server's start (~0.2 s on this project's
+2-core machine), or are spawned.
 
 The workers own their threads: each runs BLAS, OpenMP, manifold3d's loops and plumbob's
 own blocks on ``threads`` threads (default 1, ``--threads-per-job``) whatever the
@@ -17,9 +21,11 @@ One job without a time limit runs in this process, on every core it was given.
 
 from __future__ import annotations
 
+import importlib
 import multiprocessing
 import os
 import signal
+import sys
 import time
 from collections import deque
 from collections.abc import Iterator
@@ -82,11 +88,35 @@ def _serve(conn, options: Options, threads: int) -> None:
         conn.send((index, process_file(path, options, shown)))
 
 
+#: what every worker imports before its first file (threadpoolctl and manifold3d to
+#: limit its threads, the readers and the measures), loaded once where workers fork from
+PRELOAD = ("numpy", "threadpoolctl", "manifold3d", "plumbob.loading", "plumbob.batch.rows",
+           "plumbob.stability")
+
+
+def _one_thread() -> bool:
+    """Does this process run a single thread, native ones counted (Linux's /proc)?"""
+    try:
+        return len(os.listdir("/proc/self/task")) == 1
+    except OSError:
+        return False
+
+
 def _context():
+    """Where the next worker comes from: forked from this process when it runs one
+    thread only (once :data:`PRELOAD` is loaded: BLAS may start threads as it loads), so
+    that no lock can be caught held by another thread (oneTBB's, OpenBLAS's, a
+    program's); else a fork server (a clean process that forks the workers); else spawned.
+    Asked again for each worker: a restart may find threads a first start did not."""
     methods = multiprocessing.get_all_start_methods()
+    if sys.platform.startswith("linux") and "fork" in methods and _one_thread():
+        for name in PRELOAD:
+            importlib.import_module(name)
+        if _one_thread():
+            return multiprocessing.get_context("fork")
     if "forkserver" in methods:
         context = multiprocessing.get_context("forkserver")
-        context.set_forkserver_preload(["numpy", "plumbob.batch.rows", "plumbob.stability"])
+        context.set_forkserver_preload(list(PRELOAD))
         return context
     return multiprocessing.get_context("spawn")
 
@@ -104,11 +134,13 @@ def _answer(message):
 
 
 class _Worker:
-    def __init__(self, context, options: Options, threads: int = 1) -> None:
+    def __init__(self, options: Options, threads: int = 1) -> None:
+        context = _context()
         self.conn, child = context.Pipe()
         self.process = context.Process(target=_serve, args=(child, options, threads),
                                        daemon=True)
         self.process.start()
+        self.start_method = context.get_start_method()
         child.close()
         self.task: Task | None = None
         self.deadline = float("inf")
@@ -136,10 +168,10 @@ def worker_threads(threads: int = 1, imports: tuple[str, ...] = (),
     """The :func:`thread_report` of a live pool worker started with ``threads``, once it
     has imported ``imports``: what BLAS, OpenMP, manifold3d and plumbob run on in a
     batch's workers."""
-    worker = _Worker(_context(), Options(), threads)
+    worker = _Worker(Options(), threads)
     try:
         worker.conn.send(("threads", tuple(imports), manifold_work))
-        return _answer(worker.conn.recv())
+        return dict(_answer(worker.conn.recv()), start_method=worker.start_method)
     finally:
         worker.stop()
 
@@ -168,17 +200,30 @@ def run_pool(tasks: list[Task], options: Options, jobs: int,
     ``threads`` threads each (None: one each; in this process, its own cores).
 
     With one job and no time limit the files are measured in this process (nothing to
-    stop, nothing to gain from a second process).
+    stop, nothing to gain from a second process). Otherwise the workers start here, at
+    the call, before the caller starts any thread of its own, so that they can fork
+    from it (:func:`_context`); iterate the result to its end, or close it, to stop them.
     """
     if jobs <= 1 and options.timeout is None:
-        yield from _in_process(tasks, options, threads)
-        return
+        return _in_process(tasks, options, threads)
+    threads = threads or 1
+    workers: list[_Worker] = []
+    try:
+        for _ in range(min(jobs, len(tasks))):
+            workers.append(_Worker(options, threads))
+    except BaseException:
+        for w in workers:
+            w.stop(kill=True)
+        raise
+    return _results(workers, deque(tasks), options, threads)
+
+
+def _results(workers: list[_Worker], pending: deque[Task], options: Options,
+             threads: int) -> Iterator[tuple[int, FileResult]]:
+    """The pool's loop: give each worker a task, collect its row, replace a worker that
+    crashed or overran ``options.timeout``."""
     from multiprocessing.connection import wait
 
-    context = _context()
-    pending = deque(tasks)
-    threads = threads or 1
-    workers = [_Worker(context, options, threads) for _ in range(min(jobs, len(tasks)))]
     try:
         for w in workers:
             if pending:
@@ -209,7 +254,7 @@ def run_pool(tasks: list[Task], options: Options, jobs: int,
                 index = w.task[0]
                 if result.row.get("status") in ("crashed", "timeout"):
                     w.stop(kill=True)
-                    w = workers[i] = _Worker(context, options, threads)
+                    w = workers[i] = _Worker(options, threads)
                 w.task = None
                 if pending:
                     w.give(pending.popleft(), options.timeout)
