@@ -315,3 +315,26 @@ def test_the_final_table_reuses_the_texts_written_and_formats_other_rows(tmp_pat
     with open(out, encoding="utf-8") as a, open(fresh, encoding="utf-8") as b:
         assert a.read() == b.read()
     assert open_writer(out, fields).read() == rows
+
+
+def test_a_pool_measures_the_largest_files_first_and_tables_them_in_input_order(corpus,
+                                                                                full):
+    """Rows come back as they finish, so the pool sends the largest files first (no
+    worker left alone on a big part at the end); the table is in input order still, and
+    the same as one job's."""
+    from plumbob.batch.pool import largest_first
+
+    folder, _ = corpus
+    names = sorted(os.listdir(folder))
+    tasks = [(k, os.path.join(folder, n), n) for k, n in enumerate(names)]
+    tasks.append((len(tasks), os.path.join(folder, "no such file.stl"), "gone"))
+    ordered = largest_first(tasks)
+    sizes = [os.stat(t[1]).st_size for t in ordered[:-1]]
+    assert sizes == sorted(sizes, reverse=True) and ordered[-1][2] == "gone"
+    equal = [[t[0] for t in ordered[:-1] if os.stat(t[1]).st_size == s] for s in set(sizes)]
+    assert all(group == sorted(group) for group in equal)  # input order among equals
+    pooled = plumbob.batch.run([folder], check=True, poses=True, pose_table=True,
+                               inertial=("urdf", "mjcf"), units="mm", material="aluminium",
+                               jobs=2, timeout=60)
+    assert [r["path"] for r in pooled.rows] == [r["path"] for r in full.rows]
+    assert pooled.rows == full.rows and pooled.pose_rows == full.pose_rows
