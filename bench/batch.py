@@ -171,20 +171,26 @@ def compile_plumbob() -> None:
                    check=True, stdout=subprocess.DEVNULL)
 
 
-def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None) -> float:
+def plumbob_cli(folder: str, jobs: int, out: str, threads: str | None = None,
+                one_core: bool = False) -> float:
     """Wall time of the whole command; ``threads``: what the environment asks BLAS and
-    OpenMP for (the workers must not follow it)."""
+    OpenMP for (the workers must not follow it); ``one_core``: one job on one thread
+    (``--threads-per-job 1``), where one job otherwise uses every core for its blocks
+    and manifold3d's loops."""
     env = src_environment(**dict.fromkeys(THREAD_VARIABLES, threads) if threads else {})
     cpu, start = _children_cpu(), time.perf_counter()
     done = subprocess.run([PYTHON, "-m", "plumbob", "batch", folder, "--poses", "--out",
-                           out, "--jobs", str(jobs), "--quiet"], env=env, check=False)
+                           out, "--jobs", str(jobs), "--quiet",
+                           *(["--threads-per-job", "1"] if one_core else [])],
+                          env=env, check=False)
     seconds = time.perf_counter() - start
     if done.returncode not in (0, 1):  # 1: the corpus's broken files
         raise SystemExit(f"plumbob batch exited {done.returncode}")
     if ADOPTS:
         _reap_orphans()
     if jobs == 1 or ADOPTS:  # one job runs in the command's own process
-        CPU[f"plumbob {jobs}{f' env {threads}' if threads else ''}"] = _children_cpu() - cpu
+        key = f"plumbob {jobs}{f' env {threads}' if threads else ''}"
+        CPU[key + (" one core" if one_core else "")] = _children_cpu() - cpu
     return seconds
 
 
@@ -212,6 +218,9 @@ def _counts(text: str) -> list[int]:
     return counts
 
 
+ONE_CORE = "plumbob batch --jobs 1, one thread"
+
+
 def _pool(n: int) -> str:
     return f"trimesh pool, {n} process{'es' if n > 1 else ''}"
 
@@ -232,11 +241,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--skip-dask", action="store_true")
     parser.add_argument("--skip-env", action="store_true",
                         help="skip the run with the environment asking BLAS for 8 threads")
+    parser.add_argument("--one-core", action="store_true",
+                        help="also one job on one thread (--threads-per-job 1): the scaling "
+                             "per core, where one job alone uses every core in part")
     parser.add_argument("--smoke", action="store_true",
                         help="tiny corpus, each step once, no targets judged")
     args = parser.parse_args(argv)
     if args.smoke:
-        args.files, args.skip_dask = 4, True
+        args.files, args.skip_dask, args.one_core = 4, True, True
     sys.path.insert(0, SRC)
     from plumbob.batch import default_jobs
 
@@ -275,6 +287,9 @@ def main(argv: list[str] | None = None) -> int:
                    f"plumbob {n}")
             if n in trimesh_sizes:
                 report(_pool(n), trimesh_loop(paths, n), f"trimesh {n}")
+            if n == 1 and args.one_core:
+                report(ONE_CORE, plumbob_cli(corpus, 1, os.path.join(folder, "1c.csv"),
+                                             one_core=True), "plumbob 1 one core")
         many = f"plumbob batch --jobs {jobs}"
         eight = f"--jobs {jobs}, BLAS env {args.env_threads}"
         if not args.skip_env:
@@ -293,6 +308,13 @@ def main(argv: list[str] | None = None) -> int:
                   f"{rate[ours] / rate[one] / n:.2f} per job (target 1.7x for 2 jobs)" + (
                       f", {CPU['plumbob 1'] / CPU[f'plumbob {n}']:.2f}x CPU (the pool's "
                       "own cost)" if f"plumbob {n}" in CPU else ""))
+            if args.one_core:
+                print(f"scaling, one job on one thread -> --jobs {n}: "
+                      f"{rate[ours] / rate[ONE_CORE]:.2f}x wall, "
+                      f"{rate[ours] / rate[ONE_CORE] / n:.2f} per job")
+        if args.one_core:
+            print(f"one job on every core / on one thread: {rate[one] / rate[ONE_CORE]:.2f}x "
+                  "wall")
         if not args.skip_env:
             print(f"--jobs {jobs} with OPENBLAS/OMP/MKL_NUM_THREADS={args.env_threads} / "
                   f"without: {rate[eight] / rate[many]:.2f}x (the workers keep one thread "
