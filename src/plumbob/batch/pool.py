@@ -252,7 +252,8 @@ def _results(workers: list[_Worker], pending: deque[Task], options: Options,
             left = min(w.deadline for w in busy) - time.monotonic()
             ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy],
                              timeout=None if left == float("inf") else max(left, 0.0)))
-            for i, w in enumerate(workers):
+            finished = []  # yielded once every ready worker has its next path: the
+            for i, w in enumerate(workers):  # caller's work on a row keeps none waiting
                 if not w.task:
                     continue
                 result = None
@@ -277,7 +278,8 @@ def _results(workers: list[_Worker], pending: deque[Task], options: Options,
                 w.task = None
                 if pending:
                     w.give(pending.popleft(), options.timeout)
-                yield index, result
+                finished.append((index, result))
+            yield from finished
     finally:
         for w in workers:
             w.stop(kill=bool(w.task))
