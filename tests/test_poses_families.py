@@ -355,7 +355,8 @@ def test_group_max_is_numpys_maximum_at(seed, n, groups, ties):
 def test_the_least_tilt_loads_no_more_of_numpy():
     """least_tilt() runs in `plumbob poses`, whose start-up is held to what it uses
     (tests/test_startup.py): sweeping every way on a lumpy rim leaves numpy.ma (which
-    np.unique imports) unloaded."""
+    np.unique imports) unloaded, and the verdict's Rocking result (its frozen dataclass,
+    in plumbob.stability.rocking_result) uncreated."""
     import subprocess
     import sys
 
@@ -368,9 +369,10 @@ def test_the_least_tilt_loads_no_more_of_numpy():
             "X /= np.linalg.norm(X, axis=1)[:, None]\n"
             "X = X * [1.0, 0.8, 0.6] + [0.0, 0.0, 0.15] + rng.normal(size=X.shape) * 0.05\n"
             "tilt = least_tilt(X, np.array([0.0, 0.0, -1.0]), 0.01)\n"
-            "print(tilt, 'numpy.ma' in sys.modules)\n")
+            "print(tilt, 'numpy.ma' in sys.modules,\n"
+            "      'plumbob.stability.rocking_result' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=60, env=dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src")))
     assert out.returncode == 0, out.stderr
-    tilt, loaded = out.stdout.split()
-    assert 0.0 < float(tilt) < 90.0 and loaded == "False"
+    tilt, loaded, result = out.stdout.split()
+    assert 0.0 < float(tilt) < 90.0 and loaded == "False" and result == "False"

@@ -101,7 +101,8 @@ def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
     names = imported("poses", meshes[body], "--units", "mm", *extra)
     assert not _loaded(names, NEVER + ("plumbob.stability.verdict", "plumbob.report" if extra
                                        else "plumbob.stability.drops", "plumbob.materials",
-                                       "plumbob.stability.support")), body
+                                       "plumbob.stability.support", "plumbob.bodies.cells",
+                                       "plumbob.stability.rocking_result")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
 

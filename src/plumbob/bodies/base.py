@@ -8,20 +8,27 @@ Downstream code (stability, energy, reports) uses only this interface.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import NamedTuple, Protocol
+from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
 
 from ..arguments import check_density, placement, vector
 from ..errors import BodyQueryError, GeometryError, PlumbobError
+from ..lazy import lazy_exports
 from ..massprops import MassProperties
 from ..tolerances import contact_tolerance, size_of
 from .checked import check_questions
 
+if TYPE_CHECKING:
+    from .cells import DensityCells
+
 __all__ = ["Body", "DensityCells", "Grader", "Surface", "Transformed", "check_density",
            "DEFAULT_DENSITY_NOTE", "lowest", "contact_sampling", "manifold_surface"]
+
+#: the cells a density field is integrated on live in :mod:`.cells`, loaded on first use
+#: (a mesh read for its mass or poses never asks for them)
+__getattr__, __dir__ = lazy_exports(__name__, {"DensityCells": "plumbob.bodies.cells"}, __all__)
 
 DEFAULT_DENSITY_NOTE = "no density given: 1 kg/m³ (1 kg/m² for a lamina) assumed"
 
@@ -385,34 +392,6 @@ def density_words(density: float | None, unit: str = "kg/m³") -> str:
 
 
 check_questions(Body)  # the defaults Body itself gives, as its subclasses' own are
-
-
-@dataclass(frozen=True, eq=False)
-class DensityCells:
-    """Where a density field over a body is integrated: what :meth:`Body.density_cells` gives.
-
-    origin: (dim,) m, a point near the body; the cells' coordinates are relative
-        to it, so products stay small.
-    size: m, the body's size, which scales the adaptive integration.
-    tiles: builds the signed cells (:class:`plumbob.integrals.cells.Cells`)
-        that tile the body; called when integrating, it may raise a
-        :class:`GeometryError` (an open mesh).
-    corners: builds points (n, dim) on the body's boundary, where the field is
-        checked before integrating.
-    triangles: the closed mesh (n, 3, 3) bounding the body, when it is one: a
-        polynomial field is then integrated in one pass over it
-        (:func:`plumbob.integrals.mesh.mesh_field_moments`).
-    """
-
-    origin: np.ndarray
-    size: float
-    tiles: Callable[[], list]
-    corners: Callable[[], np.ndarray]
-    triangles: np.ndarray | None = None
-
-    def __repr__(self) -> str:
-        where = ", ".join(f"{v:.3g}" for v in self.origin)
-        return f"<DensityCells about ({where}), size {self.size:.3g} m>"
 
 
 class Grader(Protocol):

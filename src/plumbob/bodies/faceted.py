@@ -15,9 +15,10 @@ import numpy as np
 
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties, combine
-from .base import DEFAULT_DENSITY_NOTE, Body, DensityCells, check_density, density_words, lowest
+from .base import DEFAULT_DENSITY_NOTE, Body, check_density, density_words, lowest
 from .booleans import measure as geometry_measure
 from .bounds import change, faceting_moved, relative_bound, roundoff_moved
+from .cells import DensityCells
 
 __all__ = ["Faceted", "integrate_boolean"]
 

@@ -36,7 +36,8 @@ from ..integrals.adaptive import MAX_EVALUATIONS, FieldIntegral, integrate_field
 from ..integrals.mesh import mesh_field_moments
 from ..massprops import MassProperties
 from ..mesh.closure import require_sums_close
-from .base import Body, DensityCells, Grader
+from .base import Body, Grader
+from .cells import DensityCells
 from .density_field import FIELD_DENSITY, DensityField
 from .uniform import second_moments_to_inertia
 

@@ -14,13 +14,13 @@ from ..massprops import MassProperties
 from ..tolerances import contact_tolerance, sampling_tolerance
 from .base import (
     Body,
-    DensityCells,
     check_density,
     contact_sampling,
     density_words,
     lowest,
     measure_words,
 )
+from .cells import DensityCells
 from .uniform import second_moments_to_inertia, uniform_mass_properties
 
 if TYPE_CHECKING:

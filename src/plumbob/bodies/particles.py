@@ -9,7 +9,8 @@ import numpy as np
 from ..arguments import floats, placement
 from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties
-from .base import Body, DensityCells
+from .base import Body
+from .cells import DensityCells
 
 __all__ = ["ParticleSystem"]
 

@@ -27,7 +27,8 @@ from ..errors import DensityError, GeometryError
 from ..massprops import MassProperties, combine
 from ..units import parse_length as units_parse_length
 from ..units import split_length
-from .base import Body, DensityCells, Grader, density_words
+from .base import Body, Grader, density_words
+from .cells import DensityCells
 from .offset import InwardOffset, inward_offset
 
 __all__ = ["Printed", "printed", "parse_length", "parse_fraction"]

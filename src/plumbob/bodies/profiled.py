@@ -17,7 +17,8 @@ import numpy as np
 from ..errors import GeometryError
 from ..massprops import MassProperties
 from ..tolerances import contact_tolerance, sampling_tolerance
-from .base import DensityCells, check_density, contact_sampling, lowest
+from .base import check_density, contact_sampling, lowest
+from .cells import DensityCells
 from .solid import _UniformSolid
 
 if TYPE_CHECKING:

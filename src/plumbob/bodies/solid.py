@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import InitVar, dataclass, field, replace
 from functools import cached_property, partial
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,8 +20,11 @@ from ..integrals.mesh import CHUNK, VolumeMoments, triangle_soup_moments
 from ..massprops import MassProperties
 from ..mesh.closure import require_closed, require_sums_close, surface_summary
 from ..mesh.weld import merge_vertices
-from .base import Body, DensityCells, Surface, check_density, density_words, measure_words
+from .base import Body, Surface, check_density, density_words, measure_words
 from .uniform import uniform_mass_properties
+
+if TYPE_CHECKING:
+    from .cells import DensityCells
 
 # containment and tiling (and the region and polygon modules under them) load when a
 # solid is asked what contains a point or for its integration cells: reading a mesh and
@@ -201,6 +205,8 @@ class MeshSolid(_UniformSolid):
         return True
 
     def density_cells(self) -> DensityCells:
+        from .cells import DensityCells  # only a density field asks (see bodies.cells)
+
         tri = self.triangles
         origin = tri[: min(len(tri), 1024)].reshape(-1, 3).mean(axis=0, dtype=float)
         size = float(np.linalg.norm(np.ptp(tri[: min(len(tri), 4096)].reshape(-1, 3), axis=0)))

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..results import Key, Result
 from .requirement import Requirement
-from .rocking import Rocking
+from .rocking_result import Rocking
 from .support import Support
 from .tipping import tipping_angle_deg
 

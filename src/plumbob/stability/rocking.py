@@ -18,63 +18,27 @@ whose centre of mass lies d from the centre of its radius-R surface, asin(d/R).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..arrays import dot
+from ..lazy import lazy_exports
 from .sweep import candidate_pairs, sweep_planes
 from .sweep import sweep_pairs as _sweep_pairs
 
+if TYPE_CHECKING:
+    from .rocking_result import Rocking
+
 __all__ = ["Rocking", "least_tilt", "rocking"]
 
+#: the result of :func:`rocking` (and its probe angle) live in :mod:`.rocking_result`,
+#: loaded on first use: resting poses ask only :func:`least_tilt`
+__getattr__, __dir__ = lazy_exports(__name__, {"Rocking": "plumbob.stability.rocking_result",
+                                               "PROBE_DEG": "plumbob.stability.rocking_result"},
+                                    __all__)
+
 ROLL_STEP_DEG = 0.25
-PROBE_DEG = 8.0  # how far u turns to judge curvature: past the sampling's ripple
-
-
-@dataclass(frozen=True)
-class Rocking:
-    """How a body resting on a curved surface responds to being turned.
-
-    directions: (k, dim) unit vectors perpendicular to ``down`` (body frame): the
-        ways the contact direction is turned.
-    alpha: (m,) how far it is turned, radians.
-    heights: (k, m) height of the centre of mass, m, with contact direction
-        u = cos α · down + sin α · direction.
-    tilts_deg: (k,) the tilt of the plane, degrees, each way, before the rocker's
-        equilibrium ends.
-    """
-
-    down: np.ndarray
-    directions: np.ndarray
-    alpha: np.ndarray
-    heights: np.ndarray
-    tilts_deg: np.ndarray
-
-    @property
-    def rest_height(self) -> float:
-        """Height of the centre of mass at rest, m."""
-        return float(self.heights[:, 0].min())
-
-    def rise(self, probe_deg: float = PROBE_DEG) -> np.ndarray:
-        """(k,) how much the centre of mass rises, m, when turned ``probe_deg`` each way."""
-        i = int(np.argmin(np.abs(self.alpha - np.radians(probe_deg))))
-        return self.heights[:, i] - self.heights[:, 0]
-
-    def kind(self, noise: float) -> str:
-        """``"stands"`` (rocks back), ``"topples"`` or ``"neutral"`` (rolls), judging rises
-        against ``noise`` (m, the sampling's error in heights)."""
-        rise = self.rise()
-        if np.all(rise > noise):
-            return "stands"
-        if np.any(rise < -noise):
-            return "topples"
-        return "neutral"
-
-    def barrier(self) -> float:
-        """Least rise of the centre of mass, m, that rolls it out of its bowl (over the
-        highest point of the way it rolls, in the easiest direction)."""
-        return float((self.heights.max(axis=1) - self.heights[:, 0]).min())
 
 
 def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24) -> Rocking:
@@ -91,6 +55,8 @@ def rocking(points: np.ndarray, down: np.ndarray, eps: float, azimuths: int = 24
     for ways in _groups([len(at) for at, _ in pairs]):  # ways together, pairs bounded
         heights[ways], tilts[ways] = _sweep(points, down, directions[ways], alpha, eps,
                                             [pairs[k] for k in ways])
+    from .rocking_result import Rocking
+
     return Rocking(down, directions, alpha, heights, tilts)
 
 

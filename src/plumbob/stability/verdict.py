@@ -45,7 +45,8 @@ from .keys import VERDICT_KEYS
 from .loaded import VERDICT_KEY as LOADED_KEY
 from .loaded import LoadVerdict
 from .requirement import Requirement
-from .rocking import Rocking, rocking
+from .rocking import rocking
+from .rocking_result import Rocking
 from .support import Support, contact_kind, hull_points, is_polytope, support_polygon
 from .tipping import tipping_angle_deg, tipping_angles_deg
 
