@@ -50,20 +50,39 @@ class Hull3(NamedTuple):
     und: np.ndarray
 
 
-def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray
+def _face_firsts(comp: np.ndarray, nfaces: int, merged: np.ndarray) -> np.ndarray:
+    """(nfaces,) each face's least triangle, for the face labels ``comp`` (F,) whose
+    faces of more than one triangle hold the triangles ``merged`` (ascending): a face
+    of one triangle is its own, and only the merged faces' are sought."""
+    first = np.empty(nfaces, dtype=np.int64)
+    first[comp] = np.arange(len(comp))
+    if len(merged):
+        g = comp[merged]
+        first[g] = len(comp)
+        np.minimum.at(first, g, merged)
+    return first
+
+
+def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: np.ndarray,
+                      merged: np.ndarray | None = None, firsts: np.ndarray | None = None
                       ) -> np.ndarray:
     """Area-weighted unit normals of groups (``np.bincount`` adds in the same order as
     ``np.add.at``, so the sums are the same to the bit). A group of one is its own
-    weighted normal plus 0.0 (the sum a bincount starts from: −0.0 becomes 0.0); only
-    the larger groups are summed."""
-    weighted = normals * area[:, None]
-    out = np.empty((nfaces, normals.shape[1]))
-    out[comp] = weighted + 0.0
-    grouped = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
-    if len(grouped):
-        g = comp[grouped]
+    weighted normal plus 0.0 (the sum a bincount starts from: −0.0 becomes 0.0),
+    weighted only at its triangle (``firsts``: :func:`_face_firsts`); only the larger
+    groups' triangles (``merged``, ascending) are summed."""
+    if merged is None:
+        merged = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
+    if firsts is None:
+        firsts = _face_firsts(comp, nfaces, merged)
+    out = np.take(normals, firsts, axis=0)
+    out *= np.take(area, firsts)[:, None]
+    out += 0.0
+    if len(merged):
+        g = comp[merged]
+        weighted = np.take(normals, merged, axis=0) * np.take(area, merged)[:, None]
         for k in range(normals.shape[1]):
-            out[g, k] = np.bincount(g, weights=weighted[grouped, k], minlength=nfaces)[g]
+            out[g, k] = np.bincount(g, weights=weighted[:, k], minlength=nfaces)[g]
     norm = np.sqrt(dot(out, out))
     bad = norm == 0
     if bad.any():  # zero-area groups: the plain normals
@@ -71,21 +90,30 @@ def _weighted_normals(comp: np.ndarray, nfaces: int, normals: np.ndarray, area: 
         out += np.stack([np.bincount(comp, weights=normals[:, k] * w, minlength=nfaces)
                          for k in range(normals.shape[1])], axis=1)
         return unit(out)
-    return out / norm[:, None]  # unit(out), its norm measured once
+    out /= norm[:, None]  # unit(out), its norm measured once
+    return out
 
 
-def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float
-                ) -> tuple[np.ndarray, np.ndarray, int]:
+def _split_bent(comp: np.ndarray, nfaces: int, level: np.ndarray, tol: float,
+                merged: np.ndarray | None = None, firsts: np.ndarray | None = None,
+                top: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, int]:
     """Groups whose corners stray more than ``tol`` from the group's plane go back to their
     parts (a chain of nearly coplanar slivers can bend). ``level`` (F, 3): each part's
-    corners' heights along its group's normal; returns (comp, bent mask of old groups,
-    nfaces)."""
-    hi, lo = np.empty(nfaces), np.empty(nfaces)
-    hi[comp], lo[comp] = row_max(level), row_min(level)  # right for a face of one triangle
-    grouped = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
-    hi[comp[grouped]], lo[comp[grouped]] = -np.inf, np.inf  # the others': over their parts
-    np.maximum.at(hi, comp[grouped], row_max(level[grouped]))
-    np.minimum.at(lo, comp[grouped], row_min(level[grouped]))
+    corners' heights along its group's normal; ``merged``, ``firsts``: as for
+    :func:`_weighted_normals`; ``top``: ``row_max(level)``, when the caller has it.
+    Returns (comp, bent mask of old groups, nfaces)."""
+    if merged is None:
+        merged = np.flatnonzero(np.bincount(comp, minlength=nfaces)[comp] > 1)
+    if firsts is None:
+        firsts = _face_firsts(comp, nfaces, merged)
+    # right for a face of one triangle; the others' over their parts below
+    hi = np.take(row_max(level) if top is None else top, firsts)
+    lo = row_min(np.take(level, firsts, axis=0))
+    if len(merged):
+        g = comp[merged]
+        hi[g], lo[g] = -np.inf, np.inf
+        np.maximum.at(hi, g, row_max(level[merged]))
+        np.minimum.at(lo, g, row_min(level[merged]))
     bent = hi - lo > tol
     if bent.any():
         comp = np.where(bent[comp], nfaces + np.arange(len(comp)), comp)
@@ -230,18 +258,26 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
         return _single(hm, area)
     comp = connected_components(m, i, j)
     nfaces = int(comp.max()) + 1
-    normals = _weighted_normals(comp, nfaces, tn, area)
+    # the triangles of faces of more than one (few on a smooth hull: each pass over
+    # every face is made once, the merged faces' sums over their triangles alone)
+    in_merged = np.bincount(comp, minlength=nfaces)[comp] > 1
+    merged = np.flatnonzero(in_merged)
+    firsts = _face_firsts(comp, nfaces, merged)
+    normals = _weighted_normals(comp, nfaces, tn, area, merged, firsts)
     level = corner_levels(X, tri, normals, comp)  # along the face's normal
-    comp, bent, nfaces = _split_bent(comp, nfaces, level, eps)
+    top = row_max(level)
+    comp, bent, nfaces = _split_bent(comp, nfaces, level, eps, merged, firsts, top)
     if bent.any():
-        normals = _weighted_normals(comp, nfaces, tn, area)
+        in_merged = np.bincount(comp, minlength=nfaces)[comp] > 1
+        merged = np.flatnonzero(in_merged)
+        firsts = _face_firsts(comp, nfaces, merged)
+        normals = _weighted_normals(comp, nfaces, tn, area, merged, firsts)
         level = corner_levels(X, tri, normals, comp)
+        top = row_max(level)
     areas = np.bincount(comp, weights=area, minlength=nfaces)
 
     # --- face boundaries: chains of half-edges between different faces
     frm = tri.ravel()
-    in_merged = np.bincount(comp, minlength=nfaces)[comp] > 1  # per triangle
-    merged = np.flatnonzero(in_merged)
     sub = (3 * merged[:, None] + np.arange(3)).ravel()  # their half-edges, ascending
     # only a merged face's half-edges can lie inside it (a face of one triangle has its
     # own number, its twins' triangles others): the rest are boundaries, unmeasured
@@ -286,8 +322,7 @@ def build_hull3(X: np.ndarray, eps: float, surface: np.ndarray | None = None) ->
     if etwin is None:
         etwin = _edge_twins(ea, eb, first, last, twin, n)
     und = np.minimum(np.arange(len(ea)), etwin)
-    # a face's height: its highest corner, along its normal
-    top = row_max(level)
+    # a face's height: its highest corner, along its normal (``top``)
     # (only a merged face's triangle, or one at a point that is no corner, has a
     # half-edge that starts no edge)
     odd = merged if ptr is None else np.flatnonzero(in_merged | ~real[tri].all(axis=1))
