@@ -105,6 +105,7 @@ def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
                                        "plumbob.stability.rocking_result")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
+    assert "threading" not in names  # blockwise starts threads only for large arrays
 
 
 def test_poses_on_a_large_mesh_builds_no_topology(meshes):

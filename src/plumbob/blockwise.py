@@ -23,7 +23,6 @@ workers each starting a thread per core would fight N × cores threads over the 
 from __future__ import annotations
 
 import os
-import threading
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -189,7 +188,12 @@ def blockwise(n: int, work: Callable[[slice], Sequence[np.ndarray]],
             errors.append(exc)
 
     shares = [rest[k::threads] for k in range(threads)]
-    helpers = [threading.Thread(target=run, args=(share,), daemon=True) for share in shares[1:]]
+    helpers = []
+    if threads > 1:  # loaded only here: a command on a small mesh starts no thread (~0.9 ms)
+        import threading
+
+        helpers = [threading.Thread(target=run, args=(share,), daemon=True)
+                   for share in shares[1:]]
     for thread in helpers:
         thread.start()
     run(shares[0])
