@@ -156,12 +156,13 @@ def test_the_sign_test_predicts_the_steps_crossings():
     crossings = 0
     for start in (h.ea[sad], h.eb[sad]):
         for v0, edge, p0 in zip(start.tolist(), sad.tolist(), eg3.spoint[eg3.saddle_rows(sad)]):
-            verts, edges, points = climb(s, v0, *p0.tolist(), int(h.und[edge]), 400)
+            edges, points = climb(s, v0, *p0.tolist(), int(h.und[edge]), 400)
             if not edges:
                 continue
             q = np.array(points).reshape(-1, 3)
             starts = np.concatenate((p0[None, :], q[:-1]))
-            vs = np.array(verts)
+            vs = h.ea[np.array(edges)]  # each region's vertex: its exit edge's start
+            assert vs[0] == v0 and np.array_equal(vs[1:], h.eb[np.array(edges[:-1])])
             w = W[vs]
             wp = dot(starts, w)
             before = np.concatenate(([h.und[edge]], h.und[np.array(edges[:-1], dtype=np.int64)]))

@@ -63,11 +63,12 @@ def scalars(h: Hull3, eg3: Any, W: np.ndarray, crosses: np.ndarray) -> Scalars:
 
 
 def climb(s: Scalars, v: int, px: float, py: float, pz: float, exclude: int, longest: int
-          ) -> tuple[list[int], list[int], list[float]]:
+          ) -> tuple[list[int], list[float]]:
     """Up to ``longest`` crossings of a separatrix traced uphill from the unit point ``p``
     in the region of ``v``, having last crossed the undirected edge ``exclude``: the
-    vertices whose regions it crosses (``v`` first), the directed edge it leaves each by,
-    and the points where, flat (x, y, z per crossing).
+    directed edge it leaves each region by (an out-edge of the region's vertex, so the
+    vertices are their ``ea``, ``v`` first), and the points where, flat (x, y, z per
+    crossing).
 
     The region of ``v`` is a convex spherical polygon and the trace runs on the great
     circle from ``p`` toward ``w = W[v]``: that circle meets the boundary twice, at ``p``
@@ -81,7 +82,6 @@ def climb(s: Scalars, v: int, px: float, py: float, pz: float, exclude: int, lon
     predicted here)."""
     W, N, K, start, degree = s.W, s.N, s.K, s.start, s.degree
     ef, eg, eb, und, near = s.ef, s.eg, s.eb, s.und, s.crosses
-    verts: list[int] = []
     edges: list[int] = []
     points: list[float] = []
     for _ in range(longest):
@@ -115,11 +115,10 @@ def climb(s: Scalars, v: int, px: float, py: float, pz: float, exclude: int, lon
         qx, qy, qz = wx * kp - px * kw, wy * kp - py * kw, wz * kp - pz * kw
         norm = math.sqrt(qx * qx + qy * qy + qz * qz)
         px, py, pz = qx / norm, qy / norm, qz / norm
-        verts.append(v)
         edges.append(found)
         points += (px, py, pz)
         v, exclude = eb[found], und[found]
-    return verts, edges, points
+    return edges, points
 
 
 class Tables(NamedTuple):
