@@ -130,13 +130,18 @@ def twins_and_ends(tri: np.ndarray, n: int
      [3, 6, 9, 0, 7, 10, 1, 4, 11, 2, 5, 8],
      [[0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3], [1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2]]]
     """
-    frm = tri.ravel()
-    to = tri[:, [1, 2, 0]].ravel()
-    key = frm * n + to
+    key = np.empty_like(tri)  # each half-edge's end, by column copies (a fancy gather of
+    key[:, :2] = tri[:, 1:]  # the columns costs 3x) ...
+    key[:, 2] = tri[:, 0]
+    key = key.ravel()
+    key += tri.ravel() * n  # ... and its key (from, to)
     ends = stable_order(key)
     key = key[ends]  # the directed keys in ascending order
-    a = key // n
-    b = key - a * n
+    points = np.empty((2, len(key)), dtype=key.dtype)  # their points, in place
+    a, b = points
+    np.floor_divide(key, n, out=a)
+    np.multiply(a, n, out=b)
+    np.subtract(key, b, out=b)
     if len(ends) > 1 and np.any((a[1:] == a[:-1]) & (b[1:] == b[:-1])):
         return None  # an edge used twice in one direction: not a 2-manifold
     end_twins = stable_order(b)  # by (to, from): the reverse of each by (from, to)
@@ -146,7 +151,7 @@ def twins_and_ends(tri: np.ndarray, n: int
         return None  # an edge without its reverse
     twin = np.empty_like(ends)
     twin[ends] = ends[end_twins]
-    return twin, ends, end_twins, np.stack((a, b))
+    return twin, ends, end_twins, points
 
 
 def _normal_order(normals: np.ndarray, ties: np.ndarray | None = None) -> np.ndarray:
