@@ -102,7 +102,8 @@ def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
     assert not _loaded(names, NEVER + ("plumbob.stability.verdict", "plumbob.report" if extra
                                        else "plumbob.stability.drops", "plumbob.materials",
                                        "plumbob.stability.support", "plumbob.bodies.cells",
-                                       "plumbob.stability.rocking_result")), body
+                                       "plumbob.stability.rocking_result",
+                                       "plumbob.stability.frame")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
     assert "threading" not in names  # blockwise starts threads only for large arrays

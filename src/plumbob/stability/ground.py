@@ -1,15 +1,14 @@
 """The ground a body stands on, and what stability asks a body about it.
 
-Down directions as unit vectors, the deterministic ground frame of a ``down`` (its
-axes, see :mod:`plumbob.stability.support`), and a body's hull and lowest points, size,
+Down directions as unit vectors, the deterministic ground axes of a ``down`` (the
+frame made of them, :class:`.frame.GroundFrame`, is loaded where a support polygon or a
+tilt asks for it), and a body's hull and lowest points, size,
 dimension and whether its hull points are exact. The support polygon itself is
 :mod:`plumbob.stability.support`'s (which re-exports these); resting poses need only
 these, so ``plumbob poses`` never defines the support's result.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -20,11 +19,10 @@ from ..massprops import MassProperties
 from ..tolerances import size_of
 
 __all__ = [
-    "GroundFrame",
     "body_dim",
     "body_size",
     "default_down",
-    "ground_frame",
+    "ground_axes",
     "hull_points",
     "is_polytope",
     "support_points",
@@ -62,69 +60,28 @@ def default_down(dim: int) -> np.ndarray:
     return np.array([0.0, -1.0]) if dim == 2 else np.array([0.0, 0.0, -1.0])
 
 
-@dataclass(frozen=True)
-class GroundFrame:
-    """Orthonormal axes of the ground for a given ``down`` (all in the body's frame).
+def ground_axes(down: np.ndarray) -> np.ndarray:
+    """The deterministic ground axes (dim − 1, dim) of a unit ``down`` (2 or 3
+    components), as rows: ``e1`` and, for solids, ``e2`` (:class:`.frame.GroundFrame`'s
+    ``axes``; resting poses place a body by them without making the frame).
 
-    down: (dim,) unit vector; up = −down.
-    axes: (dim − 1, dim): the ground directions as rows (``e1`` and, for solids, ``e2``).
-    """
-
-    down: np.ndarray
-    axes: np.ndarray
-
-    @property
-    def up(self) -> np.ndarray:
-        return -self.down
-
-    @property
-    def dim(self) -> int:
-        return self.down.size
-
-    def to_ground(self, vectors: np.ndarray) -> np.ndarray:
-        """Components along the ground axes of vectors (…, dim) → (…, dim − 1)."""
-        return np.asarray(vectors, dtype=float) @ self.axes.T
-
-    def from_ground(self, coords: np.ndarray) -> np.ndarray:
-        """Vectors (…, dim) with ground components (…, dim − 1)."""
-        return np.asarray(coords, dtype=float) @ self.axes
-
-    def direction(self, toward_deg: float) -> np.ndarray:
-        """The horizontal unit vector at ``toward_deg`` from ``e1`` toward ``e2``.
-
-        For a lamina the ground is a line: only 0° (+e1) and 180° (−e1) make sense,
-        other angles are taken along the line by the sign of their cosine.
-        """
-        angle = np.radians(float(toward_deg))
-        if self.dim == 2:
-            c = np.cos(angle)
-            if abs(c) < 1e-9:
-                raise StabilityError(
-                    "a lamina can only be tilted within its own plane: toward 0° or 180°")
-            return self.axes[0] * np.sign(c)
-        return np.cos(angle) * self.axes[0] + np.sin(angle) * self.axes[1]
-
-
-def ground_frame(down: np.ndarray) -> GroundFrame:
-    """The deterministic ground frame of a unit ``down`` (2 or 3 components).
-
-    >>> ground_frame(np.array([0.0, 0.0, -1.0])).axes
+    >>> ground_axes(np.array([0.0, 0.0, -1.0]))
     array([[1., 0., 0.],
            [0., 1., 0.]])
-    >>> ground_frame(np.array([0.0, -1.0])).axes
+    >>> ground_axes(np.array([0.0, -1.0]))
     array([[1., 0.]])
     """
     down = np.asarray(down, dtype=float)
     up = -down
     if down.size == 2:
-        return GroundFrame(down, np.array([[up[1], -up[0]]]) + 0.0)
+        return np.array([[up[1], -up[0]]]) + 0.0
     seed = np.array([1.0, 0.0, 0.0]) if abs(up[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     e1 = seed - (seed @ up) * up
     e1 /= np.linalg.norm(e1)
     e2 = np.cross(up, e1)
     axes = np.array([e1, e2])
     axes[np.abs(axes) < 1e-15] = 0.0
-    return GroundFrame(down, axes + 0.0)
+    return axes + 0.0
 
 
 # --------------------------------------------------------------- body access

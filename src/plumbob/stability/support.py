@@ -37,12 +37,11 @@ import numpy as np
 from ..errors import GeometryError, StabilityError
 from ..massprops import MassProperties
 from ..tolerances import HULL_ROUND_OFF, SLIVER
-from .ground import (  # re-exported: the ground and the body questions are ground.py's
-    GroundFrame,
+from .frame import GroundFrame, ground_frame  # re-exported, as are the body questions:
+from .ground import (  # the ground's are ground.py's and frame.py's
     body_dim,
     body_size,
     default_down,
-    ground_frame,
     hull_points,
     is_polytope,
     support_points,

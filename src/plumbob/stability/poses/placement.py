@@ -8,7 +8,7 @@ z = 0, up is +z and the centre of mass lies straight above the origin:
 
     T·x = R (x − c) + (0, 0, h),   R's rows: e1, e2, up = −down,
 
-with ``(e1, e2)`` the ground frame of :func:`plumbob.stability.support.ground_frame`
+with ``(e1, e2)`` the ground axes of :func:`plumbob.stability.ground.ground_axes`
 (so ``down = −z`` gives the identity rotation). Every point of the body then has
 z ≥ 0 and the face it rests on lies at z = 0.
 
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..ground import ground_frame
+from ..ground import ground_axes
 
 __all__ = ["placement"]
 
@@ -37,13 +37,13 @@ def placement(down: np.ndarray, center_of_mass: np.ndarray, height: float) -> np
     """
     down = np.asarray(down, dtype=float)
     com = np.asarray(center_of_mass, dtype=float)
-    frame = ground_frame(down)
+    axes, up = ground_axes(down), -down
     if down.size == 2:  # the lamina's plane becomes the world's xz plane
-        e1, up = frame.axes[0], frame.up
+        e1 = axes[0]
         R = np.array([[e1[0], e1[1], 0.0], [0.0, 0.0, -1.0], [up[0], up[1], 0.0]])
         com = np.append(com, 0.0)
     else:
-        R = np.vstack((frame.axes, frame.up))
+        R = np.vstack((axes, up))
     T = np.eye(4)
     T[:3, :3] = R
     T[:3, 3] = -R @ com + np.array([0.0, 0.0, float(height)])
