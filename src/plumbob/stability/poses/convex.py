@@ -196,7 +196,7 @@ def _rotated(tri: np.ndarray) -> np.ndarray:
     at_a = (a <= b) & (a <= c)  # np.argmin's choice: the first least corner
     at_b = ~at_a & (b <= c)
     out = np.empty_like(tri)
-    out[:, 0] = np.where(at_a, a, np.where(at_b, b, c))
+    np.minimum(np.minimum(a, b), c, out=out[:, 0])  # the least corner, where it is
     out[:, 1] = np.where(at_a, b, np.where(at_b, c, a))
     out[:, 2] = np.where(at_a, c, np.where(at_b, a, b))
     return out
