@@ -103,7 +103,7 @@ def test_poses_on_a_mesh_loads_only_what_it_uses(meshes, body, extra):
                                        else "plumbob.stability.drops", "plumbob.materials",
                                        "plumbob.stability.support", "plumbob.bodies.cells",
                                        "plumbob.stability.rocking_result",
-                                       "plumbob.stability.frame")), body
+                                       "plumbob.stability.frame", "plumbob.stability.planar")), body
     assert "manifold3d" in names  # the hull: the one heavy library poses needs
     assert ("json" in names) == bool(extra)
     assert "threading" not in names  # blockwise starts threads only for large arrays

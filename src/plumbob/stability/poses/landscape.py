@@ -22,7 +22,6 @@ import numpy as np
 from ...arrays import dot, pointer_sinks, unit
 from ...errors import StabilityError
 from ...tolerances import HULL_ROUND_OFF, size_of
-from ..planar import drop_collinear, planar_hull
 from .basins import basins3
 from .faces import physical_faces
 from .hull import Hull3, build_hull3, shifted
@@ -180,6 +179,8 @@ def landscape3(X: np.ndarray, tol: float, samples: int,
 
 def landscape2(X: np.ndarray, tol: float) -> Landscape:
     """2D: hull edges are the poses; basins are arcs of the circle of directions."""
+    from ..planar import drop_collinear, planar_hull  # a lamina's only (~0.25 ms)
+
     V = drop_collinear(X[planar_hull(X)], tol)  # counter-clockwise
     m = len(V)
     A, B = V, np.roll(V, -1, axis=0)
