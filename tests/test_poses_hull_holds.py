@@ -71,6 +71,28 @@ def test_holds_is_every_point_under_every_plane(seed, out, walk):
         holds_module.EXHAUSTIVE = saved
 
 
+@pytest.mark.parametrize("near", [3000, 100])
+@pytest.mark.parametrize("out", [False, True])
+def test_holds_finds_the_points_to_locate_in_either_order(near, out):
+    """The points left to walk are those outside the ball under every plane that are no
+    vertex's copy, whichever test goes first: the ball where most points are not the
+    hull's vertices (3,000 near its faces), the copies where most are (100). Points deep
+    inside and one just outside a face: the walk must meet the outside one."""
+    S, hm, inside = _sphere_case(5, 400, near)
+    deep = np.random.default_rng(6).normal(size=(200, 3)) * 0.05
+    X = np.vstack((S, inside, deep))
+    if out:
+        corner = hm.points[hm.tri[17]].mean(axis=0)
+        X = np.vstack((X, corner + 1e-5 * hm.normals[17]))
+    args = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins, hm.area, 1e-7
+    saved = holds_module.EXHAUSTIVE
+    holds_module.EXHAUSTIVE = 0  # located by walks
+    try:
+        assert holds(X, *args) is _truth(X, hm, 1e-7) is (not out)
+    finally:
+        holds_module.EXHAUSTIVE = saved
+
+
 def test_holds_leaves_undecided_what_it_cannot_afford():
     S, hm, near = _sphere_case(11, 400, 3000)
     args = hm.points, hm.tri, hm.normals, hm.offsets, hm.twins, hm.area, 1e-7

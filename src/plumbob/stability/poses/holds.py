@@ -301,9 +301,19 @@ def holds(X: np.ndarray, P: np.ndarray, tri: np.ndarray, tn: np.ndarray, off: np
         return False  # wound about o more than once (or a tie: not proved)
     if len(X) * len(keep) <= EXHAUSTIVE:
         return _within(X - o, tn[keep], off[keep], tol)
-    Y = X[~_vertex_copies(X, P)] - o
+    # left to locate: the points outside the ball about o under every plane (inside it: in
+    # K) that are no vertex's copy. Both tests are a point's own, so either may go first:
+    # the copies where most points are hull vertices (a smooth convex body), else the ball,
+    # and only the points outside it are looked up among the vertices (a box with a tilted
+    # cylinder: 26,000 of 50,000 points, 5,700 vertices)
     r = float(off[keep].min())
-    Y = Y[dot(Y, Y) > r * r]  # inside the ball about o under every plane: in K
+    if 2 * len(P) >= len(X):
+        Y = X[~_vertex_copies(X, P)] - o
+        Y = Y[dot(Y, Y) > r * r]
+    else:
+        Xo = X - o
+        out = np.flatnonzero(dot(Xo, Xo) > r * r)
+        Y = Xo[out[~_vertex_copies(X[out], P)]]
     if len(Y) * len(keep) <= EXHAUSTIVE:
         return _within(Y, tn[keep], off[keep], tol)
     if len(Y) > WALKERS:
