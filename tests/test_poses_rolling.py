@@ -34,36 +34,6 @@ def test_first_least_sorted_is_group_first(pairs):
                                                   lone, 2)[:1])
 
 
-
-def _plain_group_first(keys, values, n):
-    """group_first's answer group by group: the first member of least value, and for a
-    group whose least is infinite, its first infinite member."""
-    first = np.full(n, -1, dtype=np.int64)
-    for g in range(n):
-        idx = np.flatnonzero(keys == g)
-        if len(idx) == 0:
-            continue
-        least = np.minimum.reduce(values[idx])
-        hits = idx[values[idx] == least]
-        if len(hits):
-            first[g] = hits[0]
-        if np.isinf(least):
-            first[g] = idx[np.isinf(values[idx])][0]
-    return first
-
-
-@settings(max_examples=80, deadline=None)
-@given(st.lists(st.tuples(st.integers(0, 6), st.sampled_from(
-    [0.0, -0.0, 1.0, 2.5, -1.0, np.inf, -np.inf])), max_size=40), st.booleans())
-def test_group_first_is_the_first_least_of_each_group(pairs, ascending):
-    """Both of group_first's paths (keys in runs, as a ragged expansion's rows, and keys in
-    any order) give each group's first least member."""
-    if ascending:
-        pairs.sort(key=lambda kv: kv[0])
-    keys = np.array([k for k, _ in pairs], dtype=np.int64)
-    values = np.array([v for _, v in pairs], dtype=float)
-    assert np.array_equal(group_first(keys, values, 7), _plain_group_first(keys, values, 7))
-
 def _row_geometry(h):
     """The edge geometry by the row formulas (whole rows, no blocks, no columns)."""
     A, D = h.X[h.ea], h.X[h.eb] - h.X[h.ea]

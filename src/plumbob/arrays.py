@@ -108,31 +108,11 @@ def group_first(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
     >>> group_first(np.array([0, 0, 2, 2]), np.array([3.0, 1.0, 5.0, 5.0]), 3).tolist()
     [1, -1, 2]
     """
-    keys = np.asarray(keys)
-    values = np.asarray(values)
-    k = len(keys)
-    ascending = k > 1 and bool(np.all(keys[1:] >= keys[:-1]))
-    if ascending:  # groups in runs (a ragged expansion's rows): segment reductions, the
-        # same minima (taken in the same order) and first indices; ufunc.at is slow on
-        # many repeats of few groups (5 ms where these take 1, on 115,000 keys of 835)
-        new = np.empty(k, dtype=bool)
-        new[0] = True
-        np.not_equal(keys[1:], keys[:-1], out=new[1:])
-        starts = new.nonzero()[0]
-        runs = np.minimum.reduceat(values, starts)
-        hit = np.where(values == runs[new.cumsum() - 1], np.arange(k), k)
-        at = np.minimum.reduceat(hit, starts)
-        least = np.full(n, np.inf)
-        least[keys[starts]] = runs
-        first = np.full(n, -1, dtype=np.int64)
-        found = at < k
-        first[keys[starts[found]]] = at[found]
-    else:
-        least = np.full(n, np.inf)
-        np.minimum.at(least, keys, values)
-        idx = np.flatnonzero(values == least[keys])[::-1]
-        first = np.full(n, -1, dtype=np.int64)
-        first[keys[idx]] = idx  # the last write wins: the first index of each group
+    least = np.full(n, np.inf)
+    np.minimum.at(least, keys, values)
+    idx = np.flatnonzero(values == least[keys])[::-1]
+    first = np.full(n, -1, dtype=np.int64)
+    first[keys[idx]] = idx  # the last write wins: the first index of each group
     if np.any(np.isinf(least)):  # groups whose values are all inf: their first member
         allinf = np.flatnonzero(np.isinf(values) & np.isinf(least[keys]))[::-1]
         first[keys[allinf]] = allinf
