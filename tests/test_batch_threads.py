@@ -340,3 +340,49 @@ def test_a_command_keeps_the_memory_it_freed_for_the_next_array():
     assert command["done"] is True
     assert command["mapped_while_held"] < MB and command["heap_after_free"] >= 64 * MB
     assert program["mapped_while_held"] >= 64 * MB and program["heap_after_free"] < 64 * MB
+
+
+ONE_JOB = """
+import json, os, sys
+import plumbob.batch
+
+threads = None if sys.argv[2] == "none" else int(sys.argv[2])
+result = plumbob.batch.run([sys.argv[1]], poses=True, jobs=1, threads_per_job=threads)
+import manifold3d
+
+manifold3d.Manifold.sphere(1.0, 64).volume()  # parallel-sized: starts the scheduler's threads
+print(json.dumps({"status": result.rows[0]["status"],
+                  "tasks": len(os.listdir("/proc/self/task"))}))
+"""
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task") or _cores() < 2,
+                    reason="counts the threads in /proc on a machine with 2 or more cores")
+def test_one_job_on_one_thread_runs_manifolds_loops_on_one(tmp_path):
+    """``--jobs 1 --threads-per-job 1`` measures in the command's own process, and there
+    too manifold3d's scheduler starts on one thread (it fixes its count once, for the
+    process's life): parallel-sized manifold work after the run starts no thread. The
+    control, one job on its cores: the same work starts manifold's threads."""
+    import manifold3d
+    import numpy as np
+
+    sphere = manifold3d.Manifold.sphere(1.0, 32).to_mesh()
+    triangles = np.asarray(sphere.vert_properties)[:, :3][np.asarray(sphere.tri_verts)]
+    records = np.zeros(len(triangles),
+                       dtype=[("n", "<f4", 3), ("t", "<f4", (3, 3)), ("a", "<u2")])
+    records["t"] = triangles
+    ball = tmp_path / "ball.stl"
+    ball.write_bytes(bytes(80) + np.uint32(len(records)).tobytes() + records.tobytes())
+
+    def tasks(threads: str) -> int:
+        env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), OPENBLAS_NUM_THREADS="1",
+                   PLUMBOB_THREADS="1")
+        out = subprocess.run([sys.executable, "-c", ONE_JOB, str(ball), threads], env=env,
+                             capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0, out.stderr
+        report = json.loads(out.stdout)
+        assert report["status"] == "ok"
+        return report["tasks"]
+
+    assert tasks("1") == 1
+    assert tasks("none") > 1

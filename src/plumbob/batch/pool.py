@@ -30,7 +30,7 @@ import time
 from collections import deque
 from collections.abc import Iterator
 
-from ..blockwise import limit_threads, set_workers
+from ..blockwise import limit_threads, manifold_on_threads, set_workers
 from ..blockwise import workers as block_threads
 from .options import Options
 from .rows import FileResult, lost_row, process_file
@@ -178,12 +178,20 @@ def worker_threads(threads: int = 1, imports: tuple[str, ...] = (),
 
 def _in_process(tasks: list[Task], options: Options,
                 threads: int | None) -> Iterator[tuple[int, FileResult]]:
+    """The files measured in this process: on the cores it was given (``threads`` None),
+    or on ``threads`` threads: BLAS's and plumbob's blocks while the files are measured,
+    and manifold3d's scheduler for the process's life where it has not started yet
+    (oneTBB fixes its count once; :func:`~plumbob.blockwise.manifold_on_threads`).
+    Without that last, one job on one thread on 16 cores paid twice a pool worker's CPU
+    for each file (49.5 s against 24.1 s for 2,000 small parts, 2026-11-27): manifold's
+    15 other threads spinning between its loops."""
     if threads is None:  # the cores this process was given, as the environment says
         for index, path, shown in tasks:
             yield index, process_file(path, options, shown)
         return
     import threadpoolctl
 
+    manifold_on_threads(threads)
     before = block_threads()
     try:
         with threadpoolctl.threadpool_limits(limits=threads):
