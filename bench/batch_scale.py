@@ -81,7 +81,8 @@ def _cpu(pid: int) -> float:
 
 class PeakWatch:
     """Polls the peak memory of a process and its descendants every ``every`` s; the
-    pool's workers are the root's grandchildren (children of its fork server)."""
+    pool's workers are the deepest of them: the root's children where the pool forks
+    them from the command's process, its grandchildren where a fork server does."""
 
     def __init__(self, root: int, every: float = 0.5) -> None:
         self.root, self.every, self.peaks, self.depth = root, every, {}, {}
@@ -104,8 +105,9 @@ class PeakWatch:
         """(the root's peak, the workers' peaks), MB, and the root's own CPU time, s."""
         self._stop.set()
         self._thread.join()
-        return (self.peaks.get(self.root, 0.0),
-                [v for pid, v in self.peaks.items() if self.depth.get(pid) == 2], self.cpu)
+        deepest = max((d for pid, d in self.depth.items() if pid in self.peaks), default=0)
+        workers = [v for pid, v in self.peaks.items() if 0 < deepest == self.depth.get(pid)]
+        return self.peaks.get(self.root, 0.0), workers, self.cpu
 
 
 def _rows(path: str) -> int:
