@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import pytest
+from _batch_corpus import write_stl
 from conftest import ROOT
 
 # Run in a fresh process whose environment asks for 8 threads everywhere: the fork server
@@ -367,12 +368,8 @@ def test_one_job_on_one_thread_runs_manifolds_loops_on_one(tmp_path):
     import numpy as np
 
     sphere = manifold3d.Manifold.sphere(1.0, 32).to_mesh()
-    triangles = np.asarray(sphere.vert_properties)[:, :3][np.asarray(sphere.tri_verts)]
-    records = np.zeros(len(triangles),
-                       dtype=[("n", "<f4", 3), ("t", "<f4", (3, 3)), ("a", "<u2")])
-    records["t"] = triangles
     ball = tmp_path / "ball.stl"
-    ball.write_bytes(bytes(80) + np.uint32(len(records)).tobytes() + records.tobytes())
+    write_stl(str(ball), np.asarray(sphere.vert_properties)[:, :3][np.asarray(sphere.tri_verts)])
 
     def tasks(threads: str) -> int:
         env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "src"), OPENBLAS_NUM_THREADS="1",
